@@ -1,0 +1,79 @@
+# raycore: the commands people type. CMake does the build (in $(BUILD)); this is the front end.
+#   make              Release build in build/
+#   make test         everything through ctest, with a summary of the cases each test ran
+#   make lint         Verilator --lint-only -Wall over all RTL, plus a Yosys read of all RTL
+#   make synth-units  Yosys synth_ecp5 of each arithmetic unit: LUTs, flip-flops, multipliers
+#   make deps         installs the Debian/PyPI packages the project needs when they are missing
+# Every target that needs a dependency calls `deps` first, so a fresh machine needs no extra step.
+
+BUILD   ?= build
+JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
+BUILD_TYPE ?= Release
+PYTHON  ?= python3
+
+# Debian packages the project needs (one list: .ci/run installs through `make deps` too).
+DEB_PKGS := build-essential cmake python3 pkg-config verilator yosys \
+            libgtest-dev libgmock-dev libbenchmark-dev libmpfr-dev libgmp-dev \
+            libglm-dev libopenimageio-dev libtinyobjloader-dev libcli11-dev nlohmann-json3-dev \
+            clang-format
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+GEN_PKG   := $(BUILD)/gen/rc_pkg.sv
+RTL_FILES  = $(patsubst build/%,$(BUILD)/%,$(shell grep -v '^\s*\#' rtl/rtl_files.f))
+TB_RTL    := $(wildcard tests/rtl/*.sv)
+WAIVERS   := rtl/lint_waivers.vlt
+
+.PHONY: all build configure deps test lint synth-units format clean
+
+all: build
+
+deps:
+	@missing=""; \
+	for p in $(DEB_PKGS); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "make deps: installing$$missing"; \
+	  $(SUDO) apt-get update -qq && \
+	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
+	fi
+
+$(BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+
+configure: deps $(BUILD)/CMakeCache.txt
+
+build: configure
+	cmake --build $(BUILD) -j$(JOBS)
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure -j$(JOBS); rc=$$?; \
+	echo "---- cases run (from $(BUILD)/Testing/Temporary/LastTest.log) ----"; \
+	grep -hE '^\[(cases|ulps)\]' Testing/Temporary/LastTest.log | sort; \
+	exit $$rc
+
+$(GEN_PKG): docs/spec.toml tb/gen_constants.py
+	$(PYTHON) tb/gen_constants.py docs/spec.toml $(BUILD)/gen
+
+# Every module is linted as a top of its own (so submodules are checked with default parameters
+# too), then Yosys reads everything, elaborates and checks for latches and other problems.
+lint: deps $(GEN_PKG)
+	@set -e; tops=$$(sed -n 's/^\s*module\s\+\([a-zA-Z0-9_]\+\).*/\1/p' $(RTL_FILES) $(TB_RTL)); \
+	for top in $$tops; do \
+	  echo "verilator --lint-only -Wall --top-module $$top"; \
+	  verilator --lint-only -Wall --assert $(WAIVERS) $(RTL_FILES) $(TB_RTL) --top-module $$top; \
+	done
+	@echo "yosys: read, elaborate and check all RTL"
+	@yosys -q -p "read_verilog -sv $(RTL_FILES); hierarchy -check; proc; check -assert" \
+	  > $(BUILD)/yosys_lint.log 2>&1 || { cat $(BUILD)/yosys_lint.log; exit 1; }
+	@if grep -qi 'latch' $(BUILD)/yosys_lint.log; then grep -i latch $(BUILD)/yosys_lint.log; exit 1; fi
+	@echo "lint clean"
+
+synth-units: deps $(GEN_PKG)
+	$(PYTHON) fpga/synth_units.py --build $(BUILD) $(RTL_FILES)
+
+format:
+	clang-format -i $$(git ls-files '*.cpp' '*.hpp' '*.h')
+
+clean:
+	rm -rf $(BUILD)
