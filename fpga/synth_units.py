@@ -39,7 +39,8 @@ def synth(unit, files, out_dir, params):
     if res.returncode != 0:
         sys.stderr.write(f"synth_units: yosys failed for {unit} (log: {log})\n{res.stderr}\n")
         return None
-    if "latch" in log.read_text().lower().replace("no latch", ""):
+    # Yosys's proc pass says "Latch inferred for signal ..." (and "No latch inferred" otherwise)
+    if "Latch inferred" in log.read_text():
         sys.stderr.write(f"synth_units: {unit} has a latch (see {log})\n")
         return None
     text = stat.read_text()

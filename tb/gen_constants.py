@@ -17,11 +17,16 @@ def camel(name: str) -> str:
     return "".join(part[:1].upper() + part[1:] for part in name.split("_"))
 
 
-def sv_int(value: int) -> str:
-    if value < 0:
-        return f"-{sv_int(-value)}"
-    width = max(32, value.bit_length())
-    return f"{width}'d{value}" if width > 32 else str(value)
+def sv_param(name: str, value: int) -> str:
+    """A localparam: int unsigned below 2^31, int for small negatives, else a sized 64-bit
+    literal (an unsized literal is a 32-bit signed number in SystemVerilog)."""
+    if 0 <= value < 2**31:
+        return f"  localparam int unsigned {name} = {value};"
+    if -2**31 <= value < 0:
+        return f"  localparam int {name} = {value};"
+    if value < 0 or value >= 2**64:
+        raise ValueError(f"{name} = {value} does not fit 64 unsigned bits")
+    return f"  localparam logic [63:0] {name} = 64'd{value};"
 
 
 def write_if_changed(path: pathlib.Path, text: str) -> None:
@@ -66,9 +71,11 @@ def main() -> int:
                 return 1
             if isinstance(value, int):
                 hpp.append(f"inline constexpr int64_t k{name} = {value};")
-                sv.append(f"  localparam int unsigned {name} = {sv_int(value)};"
-                          if 0 <= value < 2**31 else
-                          f"  localparam logic [63:0] {name} = {sv_int(value)};")
+                try:
+                    sv.append(sv_param(name, value))
+                except ValueError as err:
+                    print(f"gen_constants: {section}.{key}: {err}", file=sys.stderr)
+                    return 1
             else:
                 hpp.append(f'inline constexpr const char* k{name} = "{value}";')
                 sv.append(f'  localparam string {name} = "{value}";')

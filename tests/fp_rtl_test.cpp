@@ -11,6 +11,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <type_traits>
 
 #include "Vfp_units_e5f6.h"
 #include "Vfp_units_e7f16.h"
@@ -47,8 +48,8 @@ class UnitsHarness {
     }
     dut_->valid_i = 1;
     dut_->sub_i = sub;
-    dut_->a_i = a.bits();
-    dut_->b_i = b.bits();
+    dut_->a_i = static_cast<std::remove_reference_t<decltype(dut_->a_i)>>(a.bits());  // port width = the format's
+    dut_->b_i = static_cast<std::remove_reference_t<decltype(dut_->b_i)>>(b.bits());
     add_q_.push_back({a, b, sub ? (a - b).bits() : (a + b).bits(), sub ? 1u : 0u});
     mul_q_.push_back({a, b, (a * b).bits(), 0});
     div_q_.push_back({a, b, (a / b).bits(), 0});

@@ -1,0 +1,254 @@
+// rc_fp_div: pipelined floating-point divider for the raycore number format.
+//
+// Contract
+// - Function: res_o = a_i / b_i, correctly rounded, bit-exact with rc::Fp<ExpW, FracW>::operator/
+//   (tb/fp/fp.hpp). A reciprocal 1/x is this unit with a_i = 1.0.
+// - Handshake: valid only, no backpressure. valid_o is valid_i delayed by exactly Stages cycles;
+//   res_o belongs to the inputs presented Stages cycles earlier and is meaningful only while
+//   valid_o is 1. A new operation may be presented every cycle (fully pipelined).
+// - Latency: Stages cycles (Stages >= 1, checked at elaboration).
+// - Parameters: ExpW exponent bits (>= 2), FracW fraction bits (>= 1); a word is
+//   {sign, exp[ExpW-1:0], frac[FracW-1:0]}. Stages = latency in cycles.
+// - Illegal input: none; every bit pattern of a_i and b_i is legal.
+// - Reset: rst_ni (active low, asynchronous) clears only the valid pipeline; data registers have
+//   no reset.
+// - Format rules implemented: an exponent field of 0 reads as signed zero whatever the fraction
+//   (flush-to-zero inputs, so x / subnormal-encoding = +-inf); exp all ones with frac 0 is +-inf,
+//   with frac != 0 NaN; any NaN input, 0/0 and inf/inf give the canonical NaN (sign 0, exp all
+//   ones, frac MSB only); x/0 = +-inf for finite nonzero x, inf/x = +-inf, x/inf = +-0, 0/x = +-0;
+//   the sign of every non-NaN result is the xor of the operand signs; rounding is to nearest,
+//   ties to even, with an unbounded exponent, and only then a biased exponent <= 0 flushes to
+//   signed zero and one >= all ones overflows to signed infinity.
+//
+// Algorithm: radix-2 restoring division of the significands. Slot 0 unpacks, classifies and
+// pre-normalises the dividend (doubled when its significand is below the divisor's, so the
+// quotient lies in [1, 2)); slots 1..N (N = FracW + 2) each produce one quotient bit (FracW + 1
+// significand bits and a round bit); slot N + 1 rounds to nearest even with the sticky bit taken
+// from the final remainder (nonzero remainder = inexact), adjusts the exponent and packs.
+//
+// Pipeline: the N + 2 slots are spread evenly over the Stages: with Se = min(Stages, N + 2), a
+// register sits before slot k (1 <= k <= N + 1) when floor(k * Se / (N + 2)) differs from
+// floor((k - 1) * Se / (N + 2)); the remaining Stages - floor((N + 1) * Se / (N + 2)) registers
+// (at least one) sit at the output. At fp24 (N = 18, 20 slots) the default Stages = 5 gives four
+// slots (about four quotient bits) per cycle.
+module rc_fp_div #(
+  parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW  = rc_pkg::Fp24FracW,
+  parameter int unsigned Stages = 5
+) (
+  input  logic                clk_i,
+  input  logic                rst_ni,
+  input  logic                valid_i,
+  input  logic [ExpW+FracW:0] a_i,
+  input  logic [ExpW+FracW:0] b_i,
+  output logic                valid_o,
+  output logic [ExpW+FracW:0] res_o
+);
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  if (Stages < 1) begin : g_stages_check
+    $error("rc_fp_div: Stages must be >= 1 (it is the latency in cycles)");
+  end
+  if (ExpW < 2 || FracW < 1) begin : g_width_check
+    $error("rc_fp_div: need ExpW >= 2 and FracW >= 1");
+  end
+
+  localparam int unsigned W     = 1 + ExpW + FracW;
+  localparam int unsigned ManW  = FracW + 1;          // significand with the hidden bit
+  localparam int unsigned RemW  = ManW + 1;           // partial remainder, < 2 * divisor
+  localparam int unsigned N     = ManW + 1;           // quotient bits: significand + round
+  localparam int unsigned Slots = N + 2;
+  localparam int unsigned Se    = (Stages < Slots) ? Stages : Slots;
+  localparam int unsigned ExW   = ExpW + 2;           // unbounded exponent, two's complement
+  localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
+  localparam int unsigned OutRegs = Stages - ((Slots - 1) * Se) / Slots;
+
+  localparam logic [ExpW-1:0] ExpOnes = {ExpW{1'b1}};
+  localparam logic [W-1:0]    QNaN    = (W'(ExpOnes) << FracW) | (W'(1) << (FracW - 1));
+
+  // Per-operation flags carried down the pipeline: {spec_nan, spec_inf, spec_zero, sign}.
+  localparam int unsigned MetaW = 4;
+  localparam int unsigned HdrW  = MetaW + ExW;
+  // Iteration state: {hdr, divisor fraction, partial remainder, quotient bits so far}.
+  localparam int unsigned StW   = HdrW + FracW + RemW + N;
+  // State after the last iteration (the divisor is no longer needed).
+  localparam int unsigned FinW  = HdrW + RemW + N;
+
+  ///////////////////////////////////////
+  // Slot 0: unpack, pre-normalise     //
+  ///////////////////////////////////////
+
+  logic [ExpW-1:0] a_exp, b_exp;
+  logic            a_zero, b_zero, a_nan, b_nan, a_inf, b_inf;
+  logic            spec_nan, spec_inf, spec_zero;
+  logic [ManW-1:0] a_man, b_man;
+  logic            a_below;
+  logic [RemW-1:0] rem0;
+  logic [ExW-1:0]  exp0;
+
+  assign a_exp  = a_i[W-2 -: ExpW];
+  assign b_exp  = b_i[W-2 -: ExpW];
+  assign a_zero = ~|a_exp;
+  assign b_zero = ~|b_exp;
+  assign a_nan  = (&a_exp) & (|a_i[FracW-1:0]);
+  assign b_nan  = (&b_exp) & (|b_i[FracW-1:0]);
+  assign a_inf  = (&a_exp) & ~(|a_i[FracW-1:0]);
+  assign b_inf  = (&b_exp) & ~(|b_i[FracW-1:0]);
+
+  assign spec_nan  = a_nan | b_nan | (a_zero & b_zero) | (a_inf & b_inf);
+  assign spec_inf  = a_inf | b_zero;  // (overridden by spec_nan)
+  assign spec_zero = a_zero | b_inf;  // (overridden by spec_nan and spec_inf)
+
+  // The hidden bit is always 1 here: zero, infinity and NaN operands are overridden at the end.
+  assign a_man   = {1'b1, a_i[FracW-1:0]};
+  assign b_man   = {1'b1, b_i[FracW-1:0]};
+  assign a_below = a_man < b_man;
+  // Dividend in [divisor, 2 * divisor), so the first quotient bit is 1 and q lies in [1, 2).
+  assign rem0    = a_below ? {a_man, 1'b0} : {1'b0, a_man};
+  assign exp0    = ExW'(a_exp) - ExW'(b_exp) + ExW'(Bias) - ExW'(a_below);
+
+  ///////////////////////////////////////////
+  // Slots 1..N: one quotient bit each     //
+  ///////////////////////////////////////////
+
+  // st_out[k] is the state after slot k (k = 0..N-1), st_in[k-1] the state entering slot k
+  // (k = 1..N). split_var lets Verilator schedule the chain element by element.
+  logic [N*StW-1:0] st_out /* verilator split_var */;
+  logic [N*StW-1:0] st_in /* verilator split_var */;
+  logic [FinW-1:0]  fin_d, fin_q;
+
+  assign st_out[StW-1:0] = {spec_nan, spec_inf, spec_zero, a_i[W-1] ^ b_i[W-1], exp0,
+                            b_i[FracW-1:0], rem0, {N{1'b0}}};
+
+  for (genvar k = 1; k <= N; k++) begin : g_iter
+    // The register (or wire) in front of slot k.
+    if ((k * Se) / Slots != ((k - 1) * Se) / Slots) begin : g_cut
+      always_ff @(posedge clk_i) begin
+        st_in[(k-1)*StW +: StW] <= st_out[(k-1)*StW +: StW];
+      end
+    end else begin : g_no_cut
+      always_comb begin
+        st_in[(k-1)*StW +: StW] = st_out[(k-1)*StW +: StW];
+      end
+    end
+
+    logic [HdrW-1:0]  hdr;
+    logic [FracW-1:0] dvs_frac;
+    logic [RemW-1:0]  rem, rem_next;
+    logic [N-1:0]     quo, quo_next;
+    logic [RemW:0]    diff;
+    logic             q_bit;
+    logic [ManW-1:0]  rem_kept;
+
+    assign {hdr, dvs_frac, rem, quo} = st_in[(k-1)*StW +: StW];
+    // Restoring step: subtract the divisor if it fits. The kept remainder is below the divisor,
+    // so it fits in ManW bits (the bit dropped by the cast is 0).
+    assign diff     = {1'b0, rem} - {3'b001, dvs_frac};
+    assign q_bit    = ~diff[RemW];
+    assign rem_kept = ManW'(q_bit ? diff[RemW-1:0] : rem);
+    assign rem_next = {rem_kept, 1'b0};
+    // Quotient bits are placed MSB first, bit N - k in slot k.
+    always_comb begin
+      quo_next          = quo;
+      quo_next[N-k] = q_bit;
+    end
+
+    if (k < N) begin : g_mid
+      assign st_out[k*StW +: StW] = {hdr, dvs_frac, rem_next, quo_next};
+    end else begin : g_last
+      assign fin_d = {hdr, rem_next, quo_next};
+    end
+  end
+
+  // The register (or wire) in front of slot N + 1.
+  if (((N + 1) * Se) / Slots != (N * Se) / Slots) begin : g_cut_fin
+    always_ff @(posedge clk_i) begin
+      fin_q <= fin_d;
+    end
+  end else begin : g_no_cut_fin
+    assign fin_q = fin_d;
+  end
+
+  ///////////////////////////////////////////////
+  // Slot N + 1: round, flush/overflow, pack   //
+  ///////////////////////////////////////////////
+
+  logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
+  logic [ExW-1:0]  exp_f, exp_rounded;
+  logic [RemW-1:0] rem_f;
+  logic [N-1:0]    quo_f;
+  logic [ManW-1:0] man;
+  logic            round_up, exp_uflow, exp_oflow;
+  logic [ManW:0]   man_rounded;
+  logic [W-1:0]    res_d;
+
+  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, rem_f, quo_f} = fin_q;
+  assign man         = quo_f[N-1:1];
+  assign round_up    = quo_f[0] & ((|rem_f) | man[0]);
+  assign man_rounded = {1'b0, man} + (ManW + 1)'(round_up);
+  assign exp_rounded = exp_f + ExW'(man_rounded[ManW]);
+  assign exp_uflow   = exp_rounded[ExW-1] | ~|exp_rounded;
+  assign exp_oflow   = ~exp_rounded[ExW-1] & (exp_rounded >= ExW'(ExpOnes));
+
+  always_comb begin
+    if (spec_nan_f) begin
+      res_d = QNaN;
+    end else if (spec_inf_f || (!spec_zero_f && exp_oflow)) begin
+      res_d = {sign_f, ExpOnes, {FracW{1'b0}}};
+    end else if (spec_zero_f || exp_uflow) begin
+      res_d = {sign_f, {(W - 1){1'b0}}};
+    end else begin
+      // On a carry out man_rounded is 10...0, so its low FracW bits are the right fraction (0).
+      res_d = {sign_f, exp_rounded[ExpW-1:0], man_rounded[FracW-1:0]};
+    end
+  end
+
+  ///////////////////////////////
+  // Output and valid pipeline //
+  ///////////////////////////////
+
+  logic [OutRegs*W-1:0] out_q;
+  always_ff @(posedge clk_i) begin
+    out_q <= (out_q << W) | (OutRegs * W)'(res_d);
+  end
+  assign res_o = out_q[OutRegs*W-1 -: W];
+
+  logic [Stages-1:0] valid_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      valid_q <= '0;
+    end else begin
+      valid_q <= (valid_q << 1) | Stages'(valid_i);
+    end
+  end
+  assign valid_o = valid_q[Stages-1];
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  // Simulation-only: 1 from the first clock edge after a reset has been seen. The assertions use
+  // it instead of sampling rst_ni synchronously (rst_ni stays a purely asynchronous reset), and
+  // it keeps them quiet before the first reset, while the pipeline still holds X.
+  logic checks_on_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      checks_on_q <= 1'b0;
+    end else begin
+      checks_on_q <= 1'b1;
+    end
+  end
+
+  // The consumer qualifies res_o with valid_o, so valid_o must be known once out of reset.
+  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                 !$isunknown(valid_o));
+  // A valid result must be fully determined by inputs that were known when they were valid.
+  ResKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                               valid_o |-> !$isunknown(res_o));
+`endif
+
+endmodule

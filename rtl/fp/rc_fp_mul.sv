@@ -1,0 +1,262 @@
+// rc_fp_mul: pipelined floating-point multiplier for the raycore number format.
+//
+// Contract
+// - Function: res_o = a_i * b_i, correctly rounded, bit-exact with rc::Fp<ExpW, FracW>::operator*
+//   (tb/fp/fp.hpp).
+// - Handshake: valid only, no backpressure. valid_o is valid_i delayed by exactly Stages cycles;
+//   res_o belongs to the inputs presented Stages cycles earlier and is meaningful only while
+//   valid_o is 1. A new operation may be presented every cycle.
+// - Latency: Stages cycles (Stages >= 1, checked at elaboration).
+// - Parameters: ExpW exponent bits (>= 2), FracW fraction bits (>= 1); a word is
+//   {sign, exp[ExpW-1:0], frac[FracW-1:0]}. Stages = latency in cycles.
+// - Illegal input: none; every bit pattern of a_i and b_i is legal.
+// - Reset: rst_ni (active low, asynchronous) clears only the valid pipeline; data registers have
+//   no reset.
+// - Format rules implemented: an exponent field of 0 reads as signed zero whatever the fraction
+//   (flush-to-zero inputs); exp all ones with frac 0 is +-inf, with frac != 0 NaN; any NaN input,
+//   and 0 * inf, give the canonical NaN (sign 0, exp all ones, frac MSB only); the sign of every
+//   other result (zero and infinity included) is the xor of the operand signs; rounding is to
+//   nearest, ties to even, with an unbounded exponent, and only then a biased exponent <= 0
+//   flushes to signed zero and one >= all ones overflows to signed infinity.
+// - Synthesis: the significand product is a single plain (FracW+1) x (FracW+1) unsigned multiply
+//   of two signals (one MULT18X18D on ECP5 at fp24).
+//
+// Pipeline (segments, and the cuts between them in the order Stages enables them):
+//   segment 0: unpack, classify, exponent sum            | cut A (Stages >= 3)
+//   segment 1: significand product                       | cut B (Stages >= 2)
+//   segment 2: normalise (one-bit shift), round/sticky   | cut C (Stages >= 4)
+//   segment 3: round increment, flush/overflow, pack     | output register(s)
+//   The output has Stages minus the enabled internal cuts registers (at least one).
+module rc_fp_mul #(
+  parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW  = rc_pkg::Fp24FracW,
+  parameter int unsigned Stages = 2
+) (
+  input  logic                clk_i,
+  input  logic                rst_ni,
+  input  logic                valid_i,
+  input  logic [ExpW+FracW:0] a_i,
+  input  logic [ExpW+FracW:0] b_i,
+  output logic                valid_o,
+  output logic [ExpW+FracW:0] res_o
+);
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  if (Stages < 1) begin : g_stages_check
+    $error("rc_fp_mul: Stages must be >= 1 (it is the latency in cycles)");
+  end
+  if (ExpW < 2 || FracW < 1) begin : g_width_check
+    $error("rc_fp_mul: need ExpW >= 2 and FracW >= 1");
+  end
+
+  localparam int unsigned W     = 1 + ExpW + FracW;
+  localparam int unsigned ManW  = FracW + 1;          // significand with the hidden bit
+  localparam int unsigned ProdW = 2 * ManW;
+  localparam int unsigned ExW   = ExpW + 2;           // unbounded exponent, two's complement
+  localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
+
+  localparam logic [ExpW-1:0] ExpOnes = {ExpW{1'b1}};
+  localparam logic [W-1:0]    QNaN    = (W'(ExpOnes) << FracW) | (W'(1) << (FracW - 1));
+
+  localparam bit          CutA    = Stages >= 3;
+  localparam bit          CutB    = Stages >= 2;
+  localparam bit          CutC    = Stages >= 4;
+  localparam int unsigned OutRegs = Stages - 32'(CutA) - 32'(CutB) - 32'(CutC);
+
+  // Per-operation flags carried down the pipeline: {spec_nan, spec_inf, spec_zero, sign}.
+  localparam int unsigned MetaW = 4;
+
+  ///////////////////////////
+  // Segment 0: unpack     //
+  ///////////////////////////
+
+  logic [ExpW-1:0]  a_exp, b_exp;
+  logic             a_zero, b_zero, a_nan, b_nan, a_inf, b_inf;
+  logic             spec_nan, spec_inf, spec_zero;
+  logic [MetaW-1:0] meta_s0;
+  logic [ExW-1:0]   exp_s0;
+  logic [ManW-1:0]  a_man_s0, b_man_s0;
+
+  assign a_exp  = a_i[W-2 -: ExpW];
+  assign b_exp  = b_i[W-2 -: ExpW];
+  assign a_zero = ~|a_exp;
+  assign b_zero = ~|b_exp;
+  assign a_nan  = (&a_exp) & (|a_i[FracW-1:0]);
+  assign b_nan  = (&b_exp) & (|b_i[FracW-1:0]);
+  assign a_inf  = (&a_exp) & ~(|a_i[FracW-1:0]);
+  assign b_inf  = (&b_exp) & ~(|b_i[FracW-1:0]);
+
+  assign spec_nan  = a_nan | b_nan | (a_inf & b_zero) | (a_zero & b_inf);
+  assign spec_inf  = a_inf | b_inf;
+  assign spec_zero = a_zero | b_zero;
+  assign meta_s0   = {spec_nan, spec_inf, spec_zero, a_i[W-1] ^ b_i[W-1]};
+
+  // Biased exponent of the product before normalisation (only used for finite nonzero operands).
+  assign exp_s0   = ExW'(a_exp) + ExW'(b_exp) - ExW'(Bias);
+  // The hidden bit is always 1 here: zero, infinity and NaN operands are overridden later.
+  assign a_man_s0 = {1'b1, a_i[FracW-1:0]};
+  assign b_man_s0 = {1'b1, b_i[FracW-1:0]};
+
+  ////////////////
+  // Cut A      //
+  ////////////////
+
+  localparam int unsigned SAW = MetaW + ExW + 2 * ManW;
+  logic [SAW-1:0]   sa_d, sa_q;
+  logic [MetaW-1:0] meta_s1;
+  logic [ExW-1:0]   exp_s1;
+  logic [ManW-1:0]  a_man_s1, b_man_s1;
+
+  assign sa_d = {meta_s0, exp_s0, a_man_s0, b_man_s0};
+  if (CutA) begin : g_cut_a
+    always_ff @(posedge clk_i) begin
+      sa_q <= sa_d;
+    end
+  end else begin : g_no_cut_a
+    assign sa_q = sa_d;
+  end
+  assign {meta_s1, exp_s1, a_man_s1, b_man_s1} = sa_q;
+
+  ///////////////////////////
+  // Segment 1: product    //
+  ///////////////////////////
+
+  logic [ProdW-1:0] prod_s1;
+  assign prod_s1 = a_man_s1 * b_man_s1;
+
+  ////////////////
+  // Cut B      //
+  ////////////////
+
+  localparam int unsigned SBW = MetaW + ExW + ProdW;
+  logic [SBW-1:0]   sb_d, sb_q;
+  logic [MetaW-1:0] meta_s2;
+  logic [ExW-1:0]   exp_s2;
+  logic [ProdW-1:0] prod_s2;
+
+  assign sb_d = {meta_s1, exp_s1, prod_s1};
+  if (CutB) begin : g_cut_b
+    always_ff @(posedge clk_i) begin
+      sb_q <= sb_d;
+    end
+  end else begin : g_no_cut_b
+    assign sb_q = sb_d;
+  end
+  assign {meta_s2, exp_s2, prod_s2} = sb_q;
+
+  ///////////////////////////////////////
+  // Segment 2: normalise, round bits  //
+  ///////////////////////////////////////
+
+  // The product of two significands in [1, 2) lies in [1, 4): its top bit says which.
+  logic             prod_top;
+  logic [ProdW-1:0] prod_norm;
+  logic [ManW-1:0]  man_s2;
+  logic             round_up_s2;
+  logic [ExW-1:0]   exp_norm_s2;
+
+  assign prod_top    = prod_s2[ProdW-1];
+  assign prod_norm   = prod_top ? prod_s2 : (prod_s2 << 1);
+  assign man_s2      = prod_norm[ProdW-1 -: ManW];
+  assign round_up_s2 = prod_norm[ManW-1] & ((|prod_norm[ManW-2:0]) | man_s2[0]);
+  assign exp_norm_s2 = exp_s2 + ExW'(prod_top);
+
+  ////////////////
+  // Cut C      //
+  ////////////////
+
+  localparam int unsigned SCW = MetaW + ExW + ManW + 1;
+  logic [SCW-1:0]   sc_d, sc_q;
+  logic [MetaW-1:0] meta_s3;
+  logic [ExW-1:0]   exp_s3;
+  logic [ManW-1:0]  man_s3;
+  logic             round_up_s3;
+
+  assign sc_d = {meta_s2, exp_norm_s2, man_s2, round_up_s2};
+  if (CutC) begin : g_cut_c
+    always_ff @(posedge clk_i) begin
+      sc_q <= sc_d;
+    end
+  end else begin : g_no_cut_c
+    assign sc_q = sc_d;
+  end
+  assign {meta_s3, exp_s3, man_s3, round_up_s3} = sc_q;
+
+  ////////////////////////////////////////////
+  // Segment 3: round, flush/overflow, pack //
+  ////////////////////////////////////////////
+
+  logic            spec_nan_s3, spec_inf_s3, spec_zero_s3, sign_s3;
+  logic [ManW:0]   man_rounded;
+  logic [ExW-1:0]  exp_rounded;
+  logic            exp_uflow, exp_oflow;
+  logic [W-1:0]    res_d;
+
+  assign {spec_nan_s3, spec_inf_s3, spec_zero_s3, sign_s3} = meta_s3;
+  assign man_rounded = {1'b0, man_s3} + (ManW + 1)'(round_up_s3);
+  assign exp_rounded = exp_s3 + ExW'(man_rounded[ManW]);
+  assign exp_uflow   = exp_rounded[ExW-1] | ~|exp_rounded;
+  assign exp_oflow   = ~exp_rounded[ExW-1] & (exp_rounded >= ExW'(ExpOnes));
+
+  always_comb begin
+    if (spec_nan_s3) begin
+      res_d = QNaN;
+    end else if (spec_inf_s3 || (!spec_zero_s3 && exp_oflow)) begin
+      res_d = {sign_s3, ExpOnes, {FracW{1'b0}}};
+    end else if (spec_zero_s3 || exp_uflow) begin
+      res_d = {sign_s3, {(W - 1){1'b0}}};
+    end else begin
+      // On a carry out man_rounded is 10...0, so its low FracW bits are the right fraction (0).
+      res_d = {sign_s3, exp_rounded[ExpW-1:0], man_rounded[FracW-1:0]};
+    end
+  end
+
+  ///////////////////////////////
+  // Output and valid pipeline //
+  ///////////////////////////////
+
+  logic [OutRegs*W-1:0] out_q;
+  always_ff @(posedge clk_i) begin
+    out_q <= (out_q << W) | (OutRegs * W)'(res_d);
+  end
+  assign res_o = out_q[OutRegs*W-1 -: W];
+
+  logic [Stages-1:0] valid_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      valid_q <= '0;
+    end else begin
+      valid_q <= (valid_q << 1) | Stages'(valid_i);
+    end
+  end
+  assign valid_o = valid_q[Stages-1];
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  // Simulation-only: 1 from the first clock edge after a reset has been seen. The assertions use
+  // it instead of sampling rst_ni synchronously (rst_ni stays a purely asynchronous reset), and
+  // it keeps them quiet before the first reset, while the pipeline still holds X.
+  logic checks_on_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      checks_on_q <= 1'b0;
+    end else begin
+      checks_on_q <= 1'b1;
+    end
+  end
+
+  // The consumer qualifies res_o with valid_o, so valid_o must be known once out of reset.
+  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                 !$isunknown(valid_o));
+  // A valid result must be fully determined by inputs that were known when they were valid.
+  ResKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                               valid_o |-> !$isunknown(res_o));
+`endif
+
+endmodule
