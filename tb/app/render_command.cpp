@@ -135,16 +135,19 @@ int run_render(const RenderArgs& a) {
         {"only_this_hits", ag.only_a_hits},
         {"only_reference_hits", ag.only_b_hits},
         {"different_triangle", ag.different_tri},
+        {"different_triangle_same_depth", ag.same_depth},
         {"psnr_db", std::isinf(ag.psnr_db) ? nlohmann::json("inf") : nlohmann::json(ag.psnr_db)}};
     if (!a.diff.empty()) write_image(a.diff, f.width, f.height, hit_difference_image(f, ref));
     if (!a.quiet)
       std::printf(
           "  against %s (%.0f rays/s): hit agreement %.4f%% (%llu of %llu pixels differ: "
-          "%llu different triangle, %llu only %s hits, %llu only %s hits), PSNR %.2f dB\n",
+          "%llu different triangle (%llu of them at the same depth), %llu only %s hits, %llu only "
+          "%s hits), PSNR %.2f dB\n",
           a.reference.c_str(), ref_rps, 100.0 * ag.share(),
           static_cast<unsigned long long>(ag.pixels - ag.agree),
           static_cast<unsigned long long>(ag.pixels),
           static_cast<unsigned long long>(ag.different_tri),
+          static_cast<unsigned long long>(ag.same_depth),
           static_cast<unsigned long long>(ag.only_a_hits), a.engine.c_str(),
           static_cast<unsigned long long>(ag.only_b_hits), a.reference.c_str(), ag.psnr_db);
   } else if (!a.diff.empty()) {

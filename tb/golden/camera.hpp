@@ -1,0 +1,53 @@
+// Camera and primary-ray generation (docs/architecture.md, "Rays"). The same code generates the
+// rays for the golden model, the Embree reference and the RTL harness.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <optional>
+#include <string>
+
+namespace rc {
+
+struct Camera {
+  glm::dvec3 eye{0.0, 0.0, 1.0};
+  glm::dvec3 look{0.0, 0.0, 0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double vfov_deg = 45.0;
+};
+
+// The automatic camera: look at the centre of the bounds, from
+// eye = look + normalize(0.3, 0.25, 1.0) * 1.6 * |diagonal|, up = +y, vfov 45 degrees.
+Camera auto_camera(const glm::dvec3& bounds_lo, const glm::dvec3& bounds_hi);
+
+// Parses "eye=X,Y,Z:look=X,Y,Z:up=X,Y,Z:fov=DEG" (every part optional but eye and look).
+// Throws std::runtime_error naming the problem.
+Camera parse_camera(const std::string& text);
+
+// Checks that the camera defines a view (eye != look, up not parallel to the view direction,
+// 0 < fov < 180); throws std::runtime_error naming the problem.
+void validate_camera(const Camera& cam);
+
+// One primary ray in double precision, before rounding to the core's format: origin, direction
+// d(x, y) = f + ((x+0.5)/W*2 - 1)*h*a*r + (1 - (y+0.5)/H*2)*h*u, and 1/|d| (used by shading).
+struct RayD {
+  glm::dvec3 org;
+  glm::dvec3 dir;
+  double inv_len;
+};
+
+class RayGenerator {
+ public:
+  RayGenerator(const Camera& cam, uint32_t width, uint32_t height);
+  RayD ray(uint32_t x, uint32_t y) const;
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+
+ private:
+  glm::dvec3 eye_, f_, r_, u_;
+  double h_, a_;
+  uint32_t width_, height_;
+};
+
+}  // namespace rc

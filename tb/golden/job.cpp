@@ -1,0 +1,60 @@
+#include "job.hpp"
+
+#include <cmath>
+
+#include "error.hpp"
+
+namespace rc {
+
+namespace {
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+uint8_t to_byte(double v) {
+  return static_cast<uint8_t>(std::nearbyint(std::min(std::max(v, 0.0), 1.0) * 255.0));
+}
+}  // namespace
+
+RenderInput load_render_input(const std::string& input, const scene::LoadOptions& load,
+                              const scene::NumberFormat& format) {
+  if (ends_with(input, ".rcimg")) {
+    scene::SceneImage img = scene::SceneImage::load(input);
+    return {input, std::nullopt, std::move(img), std::nullopt};
+  }
+  scene::Scene s = scene::load_scene(input, load);
+  scene::CompileOptions opt;
+  opt.format = format;
+  scene::Compiled c = scene::compile_scene(s, opt);
+  scene::SceneImage img = scene::SceneImage::from_bytes(std::move(c.image), input);
+  return {input, std::move(s), std::move(img), std::move(c.stats)};
+}
+
+Camera auto_camera_for(const scene::SceneImage& img) {
+  const auto b = img.bounds();
+  return auto_camera(glm::dvec3(b[0], b[1], b[2]), glm::dvec3(b[3], b[4], b[5]));
+}
+
+RenderOptions input_options(const RenderInput& in) {
+  RenderOptions o;
+  const scene::ViewRecord v = in.image.view();
+  o.width = v.width ? v.width : o.width;
+  o.height = v.height ? v.height : o.height;
+  for (int c = 0; c < 3; ++c) o.background[c] = to_byte(v.background[c]);
+  if (v.flags & spec::kImageViewFlagAutoCamera) {
+    o.camera = auto_camera_for(in.image);
+  } else if (in.scene && in.scene->camera) {  // the scene's camera in double
+    o.camera.eye = in.scene->camera->eye;
+    o.camera.look = in.scene->camera->look;
+    o.camera.up = in.scene->camera->up;
+    o.camera.vfov_deg = in.scene->camera->fov_deg;
+  } else {  // an image file: its view record in float32
+    o.camera.eye = glm::dvec3(v.eye[0], v.eye[1], v.eye[2]);
+    o.camera.look = glm::dvec3(v.look[0], v.look[1], v.look[2]);
+    o.camera.up = glm::dvec3(v.up[0], v.up[1], v.up[2]);
+    o.camera.vfov_deg = v.fov_deg;
+  }
+  return o;
+}
+
+}  // namespace rc

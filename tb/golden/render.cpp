@@ -1,0 +1,126 @@
+#include "render.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+namespace rc {
+
+void parallel_rows(uint32_t rows, unsigned threads, bool progress, const char* label,
+                   const std::function<void(uint32_t)>& fn) {
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  std::atomic<uint32_t> next{0}, done{0};
+  const auto start = std::chrono::steady_clock::now();
+  std::mutex print_mutex;
+  bool printed = false;
+  const auto worker = [&] {
+    for (uint32_t row; (row = next.fetch_add(1)) < rows;) {
+      fn(row);
+      const uint32_t d = done.fetch_add(1) + 1;
+      if (!progress) continue;
+      const double s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (s < 1.0 || (d % 8 != 0 && d != rows)) continue;
+      std::lock_guard<std::mutex> lock(print_mutex);
+      const int bar = static_cast<int>(40.0 * d / rows);
+      std::fprintf(stderr, "\r%s [%-40.*s] %3u%% %.1fs", label, bar,
+                   "########################################", 100u * d / rows, s);
+      printed = true;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (printed) std::fprintf(stderr, "\n");
+}
+
+template <class T>
+Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  const RayGenerator gen(opt.camera, opt.width, opt.height);
+  Frame f;
+  f.width = opt.width;
+  f.height = opt.height;
+  f.rgb.assign(static_cast<size_t>(opt.width) * opt.height * 3, 0);
+  f.hit_tri.assign(static_cast<size_t>(opt.width) * opt.height, -1);
+  f.hit_t.assign(static_cast<size_t>(opt.width) * opt.height, 0.0f);
+  const uint32_t pw = (opt.width + 1) / 2, ph = (opt.height + 1) / 2;
+  std::vector<Counters> row_counters(ph);
+  std::vector<uint32_t> row_errors(ph, 0);
+  parallel_rows(ph, opt.threads, opt.progress, "golden", [&](uint32_t py) {
+    Counters& c = row_counters[py];
+    std::array<Ray<T>, kPacketRays> rays;
+    std::array<Hit<T>, kPacketRays> hits;
+    for (uint32_t px = 0; px < pw; ++px) {
+      const uint32_t mask = make_packet(gen, px, py, rays);
+      row_errors[py] |= trace_packet(g, rays, mask, hits, c);
+      for (int r = 0; r < kPacketRays; ++r) {
+        if (!(mask >> r & 1)) continue;
+        const size_t pix =
+            static_cast<size_t>(2 * py + (static_cast<uint32_t>(r) >> 1)) * opt.width + 2 * px +
+            (static_cast<uint32_t>(r) & 1u);
+        const auto& h = hits[r];
+        const std::array<uint8_t, 3> rgb = h.tri >= 0 ? shade(g, rays[r], h) : opt.background;
+        std::memcpy(&f.rgb[pix * 3], rgb.data(), 3);
+        f.hit_tri[pix] = h.tri;
+        f.hit_t[pix] = h.tri >= 0 ? h.t.to_float() : 0.0f;
+      }
+    }
+  });
+  for (uint32_t py = 0; py < ph; ++py) {  // summed in row order: the same totals every time
+    f.counters.add(row_counters[py]);
+    f.error_bits |= row_errors[py];
+  }
+  f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return f;
+}
+
+template Frame render_golden<fp24>(const Geometry<fp24>&, const RenderOptions&);
+template Frame render_golden<fp32ftz>(const Geometry<fp32ftz>&, const RenderOptions&);
+
+namespace {
+void put_u32(std::ofstream& out, uint32_t v) {
+  const unsigned char b[4] = {static_cast<unsigned char>(v), static_cast<unsigned char>(v >> 8),
+                              static_cast<unsigned char>(v >> 16),
+                              static_cast<unsigned char>(v >> 24)};
+  out.write(reinterpret_cast<const char*>(b), 4);
+}
+}  // namespace
+
+void write_hits(const std::string& path, const Frame& f) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error("cannot write hits file '" + path + "'");
+  out.write("RCHITS1\0", 8);
+  put_u32(out, f.width);
+  put_u32(out, f.height);
+  for (size_t i = 0; i < f.hit_tri.size(); ++i) {
+    put_u32(out, static_cast<uint32_t>(f.hit_tri[i]));
+    uint32_t tb;
+    std::memcpy(&tb, &f.hit_t[i], 4);
+    put_u32(out, tb);
+  }
+  if (!out) throw std::runtime_error("error writing hits file '" + path + "'");
+}
+
+void write_image(const std::string& path, uint32_t width, uint32_t height,
+                 const std::vector<uint8_t>& rgb) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw std::runtime_error("cannot write image '" + path + "': " + OIIO::geterror());
+  const OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 3,
+                             OIIO::TypeDesc::UINT8);
+  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
+      !out->close())
+    throw std::runtime_error("cannot write image '" + path + "': " + out->geterror());
+}
+
+}  // namespace rc

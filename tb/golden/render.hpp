@@ -1,0 +1,71 @@
+// Frame rendering on top of the golden model: packets as 2x2 pixel quads, multithreaded over
+// rows of packets, deterministic whatever the thread count.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "camera.hpp"
+#include "trace.hpp"
+
+namespace rc {
+
+// Per pixel: what the hits file stores, plus the shaded colour.
+struct Frame {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> rgb;      // width * height * 3, top row first
+  std::vector<int32_t> hit_tri;  // -1 for a miss
+  std::vector<float> hit_t;      // hit distance (0 for a miss)
+  Counters counters;
+  uint32_t error_bits = 0;
+  double seconds = 0.0;
+};
+
+struct RenderOptions {
+  uint32_t width = 256, height = 192;
+  Camera camera;
+  std::array<uint8_t, 3> background{0, 0, 0};
+  unsigned threads = 0;  // 0: all hardware threads
+  bool progress = true;  // progress bar on stderr for renders longer than a second
+};
+
+// The four rays of packet (px, py): pixels (2px + (r & 1), 2py + (r >> 1)) for r = 0..3; a ray
+// whose pixel lies outside the image is absent (its mask bit is 0).
+template <class T>
+uint32_t make_packet(const RayGenerator& gen, uint32_t px, uint32_t py,
+                     std::array<Ray<T>, kPacketRays>& rays) {
+  uint32_t mask = 0;
+  for (int r = 0; r < kPacketRays; ++r) {
+    const uint32_t x = 2 * px + (static_cast<uint32_t>(r) & 1u);
+    const uint32_t y = 2 * py + (static_cast<uint32_t>(r) >> 1);
+    if (x >= gen.width() || y >= gen.height()) continue;
+    const RayD d = gen.ray(x, y);
+    for (int a = 0; a < 3; ++a) {
+      rays[r].org[a] = T::from_double(d.org[a]);
+      rays[r].dir[a] = T::from_double(d.dir[a]);
+    }
+    rays[r].inv_len = T::from_double(d.inv_len);
+    mask |= 1u << r;
+  }
+  return mask;
+}
+
+// Runs fn(first_row, last_row) for rows [0, rows) in chunks on `threads` threads (0: all), with a
+// progress bar on stderr when `progress` and the work takes longer than a second.
+void parallel_rows(uint32_t rows, unsigned threads, bool progress, const char* label,
+                   const std::function<void(uint32_t)>& fn);
+
+template <class T>
+Frame render_golden(const Geometry<T>& g, const RenderOptions& opt);
+
+// Writes the hits file: "RCHITS1\0", uint32 width, uint32 height, then per pixel (top row first)
+// int32 triangle index (-1: miss) and float32 t, little-endian.
+void write_hits(const std::string& path, const Frame& f);
+// Writes rgb through OpenImageIO (format from the file name: PNG, EXR, ...).
+void write_image(const std::string& path, uint32_t width, uint32_t height,
+                 const std::vector<uint8_t>& rgb);
+
+}  // namespace rc
