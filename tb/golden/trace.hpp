@@ -126,6 +126,60 @@ bool intersect(const std::array<T, 12>& m, const Ray<T>& r, int32_t tri, const H
   return true;
 }
 
+// Ray set-up (one ray): the reciprocal direction and the interval clipped to the root box.
+// Per axis the slab [lo, hi] gives t0 = (lo - o) * inv and t1 = (hi - o) * inv; if either is NaN
+// (the origin lies in a face plane and the direction component is zero) the axis does not restrict
+// the ray. The interval is [max(0, min(t0, t1) per axis), min(+inf, max(t0, t1) per axis)], axes
+// in order x, y, z; the ray is active when tmin <= tmax.
+template <class T>
+struct RaySetup {
+  std::array<T, 3> inv;
+  T tmin, tmax;
+  bool active;
+};
+
+template <class T>
+RaySetup<T> setup_ray(const Ray<T>& r, const std::array<T, 6>& bounds) {
+  RaySetup<T> s;
+  const T one = T::from_double(1.0);
+  for (int a = 0; a < 3; ++a) s.inv[a] = one / r.dir[a];
+  s.tmin = T::zero();
+  s.tmax = T::inf();
+  for (int a = 0; a < 3; ++a) {
+    const T t0 = (bounds[a] - r.org[a]) * s.inv[a];
+    const T t1 = (bounds[a + 3] - r.org[a]) * s.inv[a];
+    if (t0.is_nan() || t1.is_nan()) continue;
+    s.tmin = max(s.tmin, min(t0, t1));
+    s.tmax = min(s.tmax, max(t0, t1));
+  }
+  s.active = le(s.tmin, s.tmax);
+  return s;
+}
+
+// One traversal step (one ray, one inner node): t = (split - org[axis]) * inv[axis] and which of
+// the ray's near and far children get which interval.
+enum class StepCase : uint8_t {
+  kBothWhole,  // t is NaN (ray in the split plane): near and far get [tmin, tmax]
+  kNearOnly,   // tmax < t: near gets [tmin, tmax]
+  kFarOnly,    // t < tmin: far gets [tmin, tmax]
+  kBothSplit,  // near gets [tmin, t], far gets [t, tmax]
+};
+
+template <class T>
+struct StepResult {
+  T t;
+  StepCase which;
+};
+
+template <class T>
+StepResult<T> trav_step(T split, T org, T inv, T tmin, T tmax) {
+  const T t = (split - org) * inv;
+  if (t.is_nan()) return {t, StepCase::kBothWhole};
+  if (lt(tmax, t)) return {t, StepCase::kNearOnly};
+  if (lt(t, tmin)) return {t, StepCase::kFarOnly};
+  return {t, StepCase::kBothSplit};
+}
+
 // Traces one packet of up to four rays (valid_mask bit r set: ray r exists) through the tree.
 // Returns the error bits (0 on success). The rules are those of docs/architecture.md.
 template <class T>
@@ -139,36 +193,20 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
   std::array<Entry, kStackDepth> stack;
   int sp = 0;
 
-  std::array<T, 3 * kPacketRays> inv;  // ray set-up: 1/d per component (+-inf for +-0)
-  const T one = T::from_double(1.0);
+  std::array<std::array<T, 3>, kPacketRays> inv;  // per ray: 1/d per component
+  Entry cur{0, 0, {}, {}};
   for (int r = 0; r < kPacketRays; ++r) {
     hits[r] = Hit<T>{};
     hits[r].t = T::inf();
-    if (valid_mask >> r & 1)
-      for (int a = 0; a < 3; ++a) inv[3 * r + a] = one / rays[r].dir[a];
-  }
-  ++c.packets;
-  // Clip each ray to the root box: per axis the slab [lo, hi] gives t0 = (lo - o) * inv and
-  // t1 = (hi - o) * inv; if either is NaN (the origin lies in a face plane and the direction
-  // component is zero) the axis does not restrict the ray. The interval is
-  // [max(0, min(t0, t1) per axis), min(+inf, max(t0, t1) per axis)]; a ray whose interval is
-  // empty (tmin > tmax) misses the scene and takes no further part.
-  Entry cur{0, 0, {}, {}};
-  for (int r = 0; r < kPacketRays; ++r) {
     if (!(valid_mask >> r & 1)) continue;
     ++c.rays;
-    T tmin = T::zero(), tmax = T::inf();
-    for (int a = 0; a < 3; ++a) {
-      const T t0 = (g.bounds[a] - rays[r].org[a]) * inv[3 * r + a];
-      const T t1 = (g.bounds[a + 3] - rays[r].org[a]) * inv[3 * r + a];
-      if (t0.is_nan() || t1.is_nan()) continue;
-      tmin = max(tmin, min(t0, t1));
-      tmax = min(tmax, max(t0, t1));
-    }
-    cur.tmin[r] = tmin;
-    cur.tmax[r] = tmax;
-    if (le(tmin, tmax)) cur.mask |= 1u << r;
+    const RaySetup<T> su = setup_ray(rays[r], g.bounds);
+    inv[r] = su.inv;
+    cur.tmin[r] = su.tmin;
+    cur.tmax[r] = su.tmax;
+    if (su.active) cur.mask |= 1u << r;
   }
+  ++c.packets;
   const auto fail = [&](uint32_t bits) {
     for (auto& h : hits) h = Hit<T>{};
     ++c.errors;
@@ -199,22 +237,16 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
         for (int r = 0; r < kPacketRays; ++r) {
           if (!(cur.mask >> r & 1)) continue;
           ++c.traversal_steps;
-          const T t = (split - rays[r].org[n.kind]) * inv[3 * r + n.kind];
+          const T lo = cur.tmin[r], hi = cur.tmax[r];
+          const StepResult<T> st = trav_step(split, rays[r].org[n.kind], inv[r][n.kind], lo, hi);
           const uint32_t near = rays[r].dir[n.kind].sign() ? n.index + 1 : n.index;
           Entry& en = near == first ? a : b;  // this ray's near child
           Entry& ef = near == first ? b : a;  // this ray's far child
-          const T lo = cur.tmin[r], hi = cur.tmax[r];
-          if (t.is_nan()) {  // ray in the split plane: both children, whole interval
-            en.mask |= 1u << r, en.tmin[r] = lo, en.tmax[r] = hi;
-            ef.mask |= 1u << r, ef.tmin[r] = lo, ef.tmax[r] = hi;
-          } else if (lt(hi, t)) {  // plane beyond the interval: near child only
-            en.mask |= 1u << r, en.tmin[r] = lo, en.tmax[r] = hi;
-          } else if (lt(t, lo)) {  // plane before the interval: far child only
-            ef.mask |= 1u << r, ef.tmin[r] = lo, ef.tmax[r] = hi;
-          } else {  // both, split at t
-            en.mask |= 1u << r, en.tmin[r] = lo, en.tmax[r] = t;
-            ef.mask |= 1u << r, ef.tmin[r] = t, ef.tmax[r] = hi;
-          }
+          const bool to_near = st.which != StepCase::kFarOnly;
+          const bool to_far = st.which != StepCase::kNearOnly;
+          const bool split_at_t = st.which == StepCase::kBothSplit;
+          if (to_near) en.mask |= 1u << r, en.tmin[r] = lo, en.tmax[r] = split_at_t ? st.t : hi;
+          if (to_far) ef.mask |= 1u << r, ef.tmin[r] = split_at_t ? st.t : lo, ef.tmax[r] = hi;
         }
         if (a.mask != 0 && b.mask != 0) {
           if (sp == kStackDepth) return fail(kErrStackOverflow);
