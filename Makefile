@@ -50,7 +50,7 @@ build: configure
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j$(JOBS); rc=$$?; \
 	echo "---- cases run (from $(BUILD)/Testing/Temporary/LastTest.log) ----"; \
-	grep -hE '^\[(cases|ulps)\]' Testing/Temporary/LastTest.log | sort; \
+	grep -hE '^\[(cases|ulps|agreement)\]' Testing/Temporary/LastTest.log | sort; \
 	exit $$rc
 
 $(GEN_PKG): docs/spec.toml tb/gen_constants.py

@@ -8,16 +8,6 @@
 
 namespace rc {
 
-Camera auto_camera(const glm::dvec3& bounds_lo, const glm::dvec3& bounds_hi) {
-  Camera cam;
-  cam.look = (bounds_lo + bounds_hi) * 0.5;
-  const double diag = glm::length(bounds_hi - bounds_lo);
-  cam.eye = cam.look + glm::normalize(glm::dvec3(0.3, 0.25, 1.0)) * (1.6 * diag);
-  cam.up = glm::dvec3(0.0, 1.0, 0.0);
-  cam.vfov_deg = 45.0;
-  return cam;
-}
-
 namespace {
 
 glm::dvec3 parse_vec(const std::string& key, const std::string& value) {
@@ -60,7 +50,7 @@ Camera parse_camera(const std::string& text) {
       cam.up = parse_vec(key, value);
     } else if (key == "fov") {
       try {
-        cam.vfov_deg = std::stod(value);
+        cam.fov_deg = std::stod(value);
       } catch (const std::exception&) {
         throw std::runtime_error("camera: fov has a bad number '" + value + "'");
       }
@@ -81,7 +71,7 @@ void validate_camera(const Camera& cam) {
   if (glm::length(f) == 0.0) throw std::runtime_error("camera: eye and look are the same point");
   if (glm::length(glm::cross(glm::normalize(f), cam.up)) < 1e-9)
     throw std::runtime_error("camera: up is parallel to the view direction (or zero)");
-  if (!(cam.vfov_deg > 0.0 && cam.vfov_deg < 180.0))
+  if (!(cam.fov_deg > 0.0 && cam.fov_deg < 180.0))
     throw std::runtime_error("camera: fov must be between 0 and 180 degrees");
 }
 
@@ -93,7 +83,7 @@ RayGenerator::RayGenerator(const Camera& cam, uint32_t width, uint32_t height)
   f_ = glm::normalize(cam.look - cam.eye);
   r_ = glm::normalize(glm::cross(f_, cam.up));
   u_ = glm::cross(r_, f_);
-  h_ = std::tan(cam.vfov_deg * M_PI / 360.0);
+  h_ = std::tan(cam.fov_deg * M_PI / 360.0);
   a_ = static_cast<double>(width) / static_cast<double>(height);
 }
 

@@ -8,18 +8,13 @@
 #include <optional>
 #include <string>
 
+#include "scene.hpp"
+
 namespace rc {
 
-struct Camera {
-  glm::dvec3 eye{0.0, 0.0, 1.0};
-  glm::dvec3 look{0.0, 0.0, 0.0};
-  glm::dvec3 up{0.0, 1.0, 0.0};
-  double vfov_deg = 45.0;
-};
-
-// The automatic camera: look at the centre of the bounds, from
-// eye = look + normalize(0.3, 0.25, 1.0) * 1.6 * |diagonal|, up = +y, vfov 45 degrees.
-Camera auto_camera(const glm::dvec3& bounds_lo, const glm::dvec3& bounds_hi);
+// The scene's camera type (eye, look, up, vertical fov in degrees); scene::auto_camera() places
+// the automatic one.
+using Camera = scene::Camera;
 
 // Parses "eye=X,Y,Z:look=X,Y,Z:up=X,Y,Z:fov=DEG" (every part optional but eye and look).
 // Throws std::runtime_error naming the problem.

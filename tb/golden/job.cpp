@@ -32,7 +32,7 @@ RenderInput load_render_input(const std::string& input, const scene::LoadOptions
 
 Camera auto_camera_for(const scene::SceneImage& img) {
   const auto b = img.bounds();
-  return auto_camera(glm::dvec3(b[0], b[1], b[2]), glm::dvec3(b[3], b[4], b[5]));
+  return scene::auto_camera(glm::dvec3(b[0], b[1], b[2]), glm::dvec3(b[3], b[4], b[5]));
 }
 
 RenderOptions input_options(const RenderInput& in) {
@@ -47,12 +47,12 @@ RenderOptions input_options(const RenderInput& in) {
     o.camera.eye = in.scene->camera->eye;
     o.camera.look = in.scene->camera->look;
     o.camera.up = in.scene->camera->up;
-    o.camera.vfov_deg = in.scene->camera->fov_deg;
+    o.camera.fov_deg = in.scene->camera->fov_deg;
   } else {  // an image file: its view record in float32
     o.camera.eye = glm::dvec3(v.eye[0], v.eye[1], v.eye[2]);
     o.camera.look = glm::dvec3(v.look[0], v.look[1], v.look[2]);
     o.camera.up = glm::dvec3(v.up[0], v.up[1], v.up[2]);
-    o.camera.vfov_deg = v.fov_deg;
+    o.camera.fov_deg = v.fov_deg;
   }
   return o;
 }

@@ -209,7 +209,7 @@ Compiled compile_scene(const Scene& scene, const CompileOptions& options) {
   }
 
   std::vector<uint8_t> view(spec::kImageViewStride, 0);
-  const Camera cam = scene.camera ? *scene.camera : auto_camera(lo, hi, 45.0);
+  const Camera cam = scene.camera ? *scene.camera : auto_camera(root.lo, root.hi);
   for (int k = 0; k < 3; ++k) {
     put_f32(&view, spec::kImageViewEye + 4 * k, static_cast<float>(cam.eye[k]));
     put_f32(&view, spec::kImageViewLook + 4 * k, static_cast<float>(cam.look[k]));

@@ -188,13 +188,11 @@ std::string find_model(const std::string& path, const std::string& base_dir,
               "\n(set --models-path or RAYCORE_MODELS_PATH)");
 }
 
-Camera auto_camera(const glm::dvec3& lo, const glm::dvec3& hi, double fov_deg) {
+Camera auto_camera(const glm::dvec3& lo, const glm::dvec3& hi) {
   Camera cam;
-  cam.fov_deg = fov_deg;
+  cam.fov_deg = 45.0;
   cam.look = (lo + hi) * 0.5;
-  const double radius = std::max(glm::length(hi - lo) * 0.5, 1e-6);
-  const double dist = radius / std::sin(glm::radians(fov_deg) * 0.5);
-  cam.eye = cam.look + dist * glm::normalize(glm::dvec3(0.0, 0.25, 1.0));
+  cam.eye = cam.look + glm::normalize(glm::dvec3(0.3, 0.25, 1.0)) * (1.6 * glm::length(hi - lo));
   cam.up = {0.0, 1.0, 0.0};
   return cam;
 }

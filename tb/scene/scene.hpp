@@ -66,9 +66,10 @@ Scene load_scene_json_text(const std::string& text, const std::string& name,
 std::vector<std::string> builtin_names();
 Scene builtin_scene(const std::string& name);
 
-// The camera used when a scene has none: looking at the centre of the bounds from the +z side,
-// slightly above, far enough that the bounding sphere fits the vertical field of view.
-Camera auto_camera(const glm::dvec3& lo, const glm::dvec3& hi, double fov_deg);
+// The automatic camera (docs/architecture.md, "Rays"), used when a scene has none and for
+// --auto-camera: look = centre of the bounds, eye = look + normalize(0.3, 0.25, 1.0) * 1.6 *
+// |diagonal|, up = +y, vertical fov 45 degrees. The bounds are the image's (rounded outwards).
+Camera auto_camera(const glm::dvec3& lo, const glm::dvec3& hi);
 
 // The repository root baked in at build time.
 std::string source_root();
