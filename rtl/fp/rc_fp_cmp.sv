@@ -110,50 +110,26 @@ module rc_fp_cmp #(
   // Output and valid pipeline //
   ///////////////////////////////
 
-  logic [OutW-1:0]        out_d;
-  logic [Stages*OutW-1:0] out_q;
-
+  logic [OutW-1:0] out_d;
   assign out_d = {lt_d, le_d, eq_d, min_d, max_d};
-  always_ff @(posedge clk_i) begin
-    out_q <= (out_q << OutW) | (Stages * OutW)'(out_d);
-  end
-  assign {lt_o, le_o, eq_o, min_o, max_o} = out_q[Stages*OutW-1 -: OutW];
 
-  logic [Stages-1:0] valid_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      valid_q <= '0;
-    end else begin
-      valid_q <= (valid_q << 1) | Stages'(valid_i);
-    end
-  end
-  assign valid_o = valid_q[Stages-1];
-
-  ////////////////
-  // Assertions //
-  ////////////////
+  rc_pipe_out #(
+    .Width   (OutW),
+    .DataRegs(Stages),
+    .Stages  (Stages)
+  ) u_out (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .data_i (out_d),
+    .valid_o,
+    .data_o ({lt_o, le_o, eq_o, min_o, max_o})
+  );
 
 `ifndef SYNTHESIS
-  // Simulation-only: 1 from the first clock edge after a reset has been seen. The assertions use
-  // it instead of sampling rst_ni synchronously (rst_ni stays a purely asynchronous reset), and
-  // it keeps them quiet before the first reset, while the pipeline still holds X.
-  logic checks_on_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      checks_on_q <= 1'b0;
-    end else begin
-      checks_on_q <= 1'b1;
-    end
-  end
-
-  // The consumer qualifies the outputs with valid_o, so it must be known once out of reset.
-  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
-                                 !$isunknown(valid_o));
-  // A valid result must be fully determined by inputs that were known when they were valid.
-  ResKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
-                               valid_o |-> !$isunknown({lt_o, le_o, eq_o, min_o, max_o}));
-  // le is lt or eq, and lt excludes eq: a cheap internal consistency check.
-  LeConsistent_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  // le is lt or eq, and lt excludes eq: a cheap internal consistency check (checked once u_out's
+  // own checks are on, i.e. after the first reset).
+  LeConsistent_A: assert property (@(posedge clk_i) disable iff (u_out.checks_on_q !== 1'b1)
                                    valid_o |-> (le_o == (lt_o | eq_o)) && !(lt_o && eq_o));
 `endif
 

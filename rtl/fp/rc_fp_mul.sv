@@ -218,45 +218,17 @@ module rc_fp_mul #(
   // Output and valid pipeline //
   ///////////////////////////////
 
-  logic [OutRegs*W-1:0] out_q;
-  always_ff @(posedge clk_i) begin
-    out_q <= (out_q << W) | (OutRegs * W)'(res_d);
-  end
-  assign res_o = out_q[OutRegs*W-1 -: W];
-
-  logic [Stages-1:0] valid_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      valid_q <= '0;
-    end else begin
-      valid_q <= (valid_q << 1) | Stages'(valid_i);
-    end
-  end
-  assign valid_o = valid_q[Stages-1];
-
-  ////////////////
-  // Assertions //
-  ////////////////
-
-`ifndef SYNTHESIS
-  // Simulation-only: 1 from the first clock edge after a reset has been seen. The assertions use
-  // it instead of sampling rst_ni synchronously (rst_ni stays a purely asynchronous reset), and
-  // it keeps them quiet before the first reset, while the pipeline still holds X.
-  logic checks_on_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      checks_on_q <= 1'b0;
-    end else begin
-      checks_on_q <= 1'b1;
-    end
-  end
-
-  // The consumer qualifies res_o with valid_o, so valid_o must be known once out of reset.
-  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
-                                 !$isunknown(valid_o));
-  // A valid result must be fully determined by inputs that were known when they were valid.
-  ResKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
-                               valid_o |-> !$isunknown(res_o));
-`endif
+  rc_pipe_out #(
+    .Width   (W),
+    .DataRegs(OutRegs),
+    .Stages  (Stages)
+  ) u_out (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .data_i (res_d),
+    .valid_o,
+    .data_o (res_o)
+  );
 
 endmodule
