@@ -1,6 +1,7 @@
 # raycore: the commands people type. CMake does the build (in $(BUILD)); this is the front end.
 #   make              Release build in build/
 #   make test         everything through ctest, with a summary of the cases each test ran
+#   make render       the main job on the built-in default scene (out/default.png and stats)
 #   make lint         Verilator --lint-only -Wall over all RTL, plus a Yosys read of all RTL
 #   make synth-units  Yosys synth_ecp5 of each arithmetic unit: LUTs, flip-flops, multipliers
 #   make deps         installs the Debian/PyPI packages the project needs when they are missing
@@ -24,7 +25,7 @@ RTL_FILES  = $(patsubst build/%,$(BUILD)/%,$(shell grep -v '^\s*\#' rtl/rtl_file
 TB_RTL    := $(wildcard tests/rtl/*.sv)
 WAIVERS   := rtl/lint_waivers.vlt
 
-.PHONY: all build configure deps test lint synth-units format clean
+.PHONY: all build configure deps test render lint synth-units format clean
 
 all: build
 
@@ -52,6 +53,16 @@ test: build
 	echo "---- cases run (from $(BUILD)/Testing/Temporary/LastTest.log) ----"; \
 	grep -hE '^\[(cases|ulps|agreement)\]' Testing/Temporary/LastTest.log | sort; \
 	exit $$rc
+
+# The main job on the built-in default scene. Until the RTL core lands (issue 5) it renders with
+# the golden model only and says so; then it becomes --engine rtl --check.
+RENDER_OUT ?= out
+render: build
+	@mkdir -p $(RENDER_OUT)
+	@echo "make render: the RTL engine is not there yet (issue 5); rendering with the golden model, no RTL check"
+	$(BUILD)/tb/app/raycore render scenes/default.json --engine golden \
+	  -o $(RENDER_OUT)/default.png --hits $(RENDER_OUT)/default.hits --stats $(RENDER_OUT)/default.json
+	@echo "wrote $(RENDER_OUT)/default.png, $(RENDER_OUT)/default.hits, $(RENDER_OUT)/default.json"
 
 $(GEN_PKG): docs/spec.toml tb/gen_constants.py
 	$(PYTHON) tb/gen_constants.py docs/spec.toml $(BUILD)/gen
