@@ -4,3 +4,10 @@ rtl/fp/rc_fp_add.sv
 rtl/fp/rc_fp_mul.sv
 rtl/fp/rc_fp_div.sv
 rtl/fp/rc_fp_cmp.sv
+rtl/core/rc_credit_fifo.sv
+rtl/core/rc_fp_to_u8.sv
+rtl/core/rc_trav_step.sv
+rtl/core/rc_ray_setup.sv
+rtl/core/rc_shade_unit.sv
+rtl/core/rc_xform_unit.sv
+rtl/core/rc_isect_unit.sv

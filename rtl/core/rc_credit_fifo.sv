@@ -1,0 +1,151 @@
+// rc_credit_fifo: output FIFO with credit accounting, to put a ready/valid handshake around a
+// fixed-latency, valid-only pipeline that cannot stall.
+//
+// Contract
+// - Use: the owning unit drives take_i = valid_i & ready_o (an operation enters its pipeline) and
+//   uses credit_o as its ready_o. The pipeline's output (wr_valid_i, wr_data_i) is written into
+//   the FIFO; the FIFO drives the downstream handshake (valid_o, ready_i, data_o).
+// - Credits: cnt_q counts operations in flight in the pipeline plus entries held in the FIFO.
+//   credit_o = cnt_q < Depth, from a register only (it never depends on ready_i or valid_i). Since
+//   every operation in flight has a FIFO slot reserved, a write always finds room and nothing is
+//   dropped, whatever ready_i does.
+// - Handshake (downstream): valid_o/ready_i; an entry is popped when valid_o & ready_i. valid_o
+//   and data_o come from registers and stay stable until popped (valid_o never depends on
+//   ready_i).
+// - Latency: a write appears on valid_o/data_o the cycle after wr_valid_i (no bypass).
+// - Throughput: with a pipeline of latency L (take_i to wr_valid_i), an operation is counted in
+//   cnt_q for L + 1 cycles when ready_i is 1, and credit_o needs cnt_q < Depth, so Depth >= L + 2
+//   sustains one operation per cycle.
+// - Parameters: Width data bits (>= 1); Depth entries (>= 1).
+// - Illegal input: take_i while credit_o is 0; wr_valid_i for an operation that did not take a
+//   credit (more writes than takes). Both are caught by assertions.
+// - Reset: rst_ni (active low, asynchronous) clears the pointers and counters; the storage has no
+//   reset.
+module rc_credit_fifo #(
+  parameter int unsigned Width = 1,
+  parameter int unsigned Depth = 2
+) (
+  input  logic             clk_i,
+  input  logic             rst_ni,
+  // Credit side (upstream of the pipeline).
+  input  logic             take_i,
+  output logic             credit_o,
+  // Pipeline output.
+  input  logic             wr_valid_i,
+  input  logic [Width-1:0] wr_data_i,
+  // Downstream handshake.
+  output logic             valid_o,
+  input  logic             ready_i,
+  output logic [Width-1:0] data_o
+);
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  if (Width < 1 || Depth < 1) begin : g_param_check
+    $error("rc_credit_fifo: need Width >= 1 and Depth >= 1");
+  end
+
+  localparam int unsigned CntW = $clog2(Depth + 1);            // holds 0 .. Depth
+  localparam int unsigned PtrW = (Depth > 1) ? $clog2(Depth) : 1;
+  localparam logic [CntW-1:0] DepthCnt = CntW'(Depth);
+  localparam logic [PtrW-1:0] LastPtr  = PtrW'(Depth - 1);
+
+  //////////////
+  // Counters //
+  //////////////
+
+  logic            pop;
+  logic [CntW-1:0] cnt_d, cnt_q;  // credits in use: in flight + stored
+  logic [CntW-1:0] occ_d, occ_q;  // entries stored
+  logic [PtrW-1:0] wr_ptr_d, wr_ptr_q, rd_ptr_d, rd_ptr_q;
+
+  assign pop      = valid_o & ready_i;
+  assign credit_o = cnt_q < DepthCnt;
+  assign valid_o  = occ_q != '0;
+
+  always_comb begin
+    cnt_d = cnt_q;
+    if (take_i) cnt_d = cnt_d + CntW'(1);
+    if (pop)    cnt_d = cnt_d - CntW'(1);
+    occ_d = occ_q;
+    if (wr_valid_i) occ_d = occ_d + CntW'(1);
+    if (pop)        occ_d = occ_d - CntW'(1);
+    wr_ptr_d = wr_ptr_q;
+    if (wr_valid_i) wr_ptr_d = (wr_ptr_q == LastPtr) ? '0 : wr_ptr_q + PtrW'(1);
+    rd_ptr_d = rd_ptr_q;
+    if (pop)        rd_ptr_d = (rd_ptr_q == LastPtr) ? '0 : rd_ptr_q + PtrW'(1);
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      cnt_q    <= '0;
+      occ_q    <= '0;
+      wr_ptr_q <= '0;
+      rd_ptr_q <= '0;
+    end else begin
+      cnt_q    <= cnt_d;
+      occ_q    <= occ_d;
+      wr_ptr_q <= wr_ptr_d;
+      rd_ptr_q <= rd_ptr_d;
+    end
+  end
+
+  /////////////
+  // Storage //
+  /////////////
+
+  // Entry i at mem_q[i*Width +: Width] (flat vectors: Yosys 0.23 reads no multi-dimensional
+  // packed arrays).
+  logic [Depth*Width-1:0] mem_q;
+
+  always_ff @(posedge clk_i) begin
+    for (int unsigned i = 0; i < Depth; i++) begin
+      if (wr_valid_i && wr_ptr_q == PtrW'(i)) mem_q[i*Width +: Width] <= wr_data_i;
+    end
+  end
+
+  always_comb begin
+    data_o = '0;
+    for (int unsigned i = 0; i < Depth; i++) begin
+      if (rd_ptr_q == PtrW'(i)) data_o = mem_q[i*Width +: Width];
+    end
+  end
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  // Simulation-only: 1 from the first clock edge after a reset (see rc_fp_cmp for the pattern).
+  logic checks_on_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      checks_on_q <= 1'b0;
+    end else begin
+      checks_on_q <= 1'b1;
+    end
+  end
+
+  // An operation may only enter the pipeline with a credit, or its result could find no slot.
+  TakeHasCredit_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                    take_i |-> credit_o);
+  // Every write was reserved by a credit, so the FIFO is never full when a write arrives.
+  WriteHasRoom_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                   wr_valid_i |-> occ_q < DepthCnt);
+  // Stored entries are a subset of the credits in use (the rest are in flight).
+  OccWithinCredits_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                       occ_q <= cnt_q && cnt_q <= DepthCnt);
+  // Handshake outputs must be known once out of reset.
+  HandshakeKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                     !$isunknown({valid_o, credit_o}));
+  // A result offered downstream must be fully determined.
+  DataKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                valid_o |-> !$isunknown(data_o));
+  // The offered entry stays until it is taken (registered FIFO head).
+  ValidStable_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                  valid_o && !ready_i |=> valid_o && $stable(data_o));
+`endif
+
+endmodule

@@ -1,0 +1,424 @@
+// rc_isect_unit: the intersection unit, one ray against one triangle per cycle.
+//
+// Contract
+// - Function: exactly rc::intersect() (tb/golden/trace.hpp; docs/architecture.md, "Intersection
+//   (one ray, one triangle)"), every operation a correctly rounded format operation:
+//     o' = M (org, 1)  (rc_xform_unit, translate = 1)    d' = M dir  (rc_xform_unit, translate = 0)
+//     t  = (-o'z) / d'z          (negate = flip the sign bit)
+//     u  = o'x + t * d'x         v = o'y + t * d'y
+//     hit_o = lt(0, t) && le(0, u) && le(0, v) && le(u + v, 1.0)
+//             && (lt(t, best_t) || (eq(t, best_t) && $signed(tri) < $signed(best_tri)))
+//   t_o, u_o, v_o, dz_o (= d'z) are the computed values whether or not the hit is accepted;
+//   intersect() records them only for an accepted hit. tri_o and tag_o are tri_i and tag_i.
+// - Packing: a word is {sign, exp[ExpW-1:0], frac[FracW-1:0]}, W = 1 + ExpW + FracW bits.
+//   m_i[k*W +: W] = m_k (k = 0..11, row-major 3x4), org_i/dir_i[c*W +: W] = component c (x, y, z).
+//   tri_i and best_tri_i are 32-bit two's complement (best_tri_i = -1: no hit yet).
+// - Handshake: valid_i/ready_o at the input, valid_o/ready_i at the output, AXI-style (a transfer
+//   happens on a clock edge where valid and ready are both 1). valid_o never depends on ready_i,
+//   ready_o depends only on registered state, and once valid_o is 1 it stays 1 with all outputs
+//   stable until the transfer. Results leave in input order, none is lost or duplicated. The fp
+//   pipelines cannot stall, so the unit uses credits: an output FIFO of Depth = PipeLat + 2
+//   entries, and ready_o = credit_q < Depth, where credit_q = inputs accepted - outputs taken =
+//   operations in flight + FIFO occupancy (one registered counter), so the FIFO always has room
+//   for everything in flight. PipeLat + 2 is the least depth that sustains one input per cycle
+//   (in steady state PipeLat results are in flight and one waits in the FIFO).
+// - Latency: PipeLat = (MulStages + 3 * AddStages) + DivStages + MulStages + 2 * AddStages +
+//   CmpStages cycles through the arithmetic (11 + 5 + 2 + 6 + 1 = 25 at the defaults mul 2,
+//   add 3, div 5, cmp 1), plus the FIFO's output register: valid_o rises PipeLat + 1 = 26 cycles
+//   after an accepted input when ready_i is high and the FIFO is empty.
+// - Throughput: one ray-triangle pair per cycle (with ready_i held high, ready_o stays 1).
+// - Parameters: ExpW (>= 2), FracW (>= 1): the format; TagW (>= 1): width of the tag carried
+//   alongside; MulStages, AddStages, DivStages, CmpStages (>= 1): latencies of the rc_fp_*
+//   instances.
+// - Illegal input: none; every bit pattern of every input is legal.
+// - Reset: rst_ni (active low, asynchronous) clears control state only (valid pipelines, FIFO
+//   pointers and counters); data registers have no reset.
+//
+// Pipeline (cycle numbers at the defaults, counted from the accepted input):
+//   0   o' and d' transforms start (two rc_xform_unit, valid-only)
+//   11  t = -o'z / d'z starts; o'x, o'y, d'x, d'y, d'z and the side band wait DivStages
+//   16  t*d'x, t*d'y start; lt(0,t), lt(t,best_t), eq(t,best_t) start
+//   17  flag a = lt(0,t) && (lt(t,best_t) || (eq(t,best_t) && tri < best_tri))
+//   18  u = o'x + t*d'x, v = o'y + t*d'y start
+//   21  u + v starts; le(0,u), le(0,v) start
+//   22  flag b = flag a && le(0,u) && le(0,v)
+//   24  le(u+v, 1.0) starts
+//   25  hit = flag b && le(u+v, 1.0); the result enters the output FIFO
+//   26  valid_o
+module rc_isect_unit #(
+  parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW     = rc_pkg::Fp24FracW,
+  parameter int unsigned TagW      = 8,
+  parameter int unsigned MulStages = 2,
+  parameter int unsigned AddStages = 3,
+  parameter int unsigned DivStages = 5,
+  parameter int unsigned CmpStages = 1
+) (
+  input  logic                         clk_i,
+  input  logic                         rst_ni,
+  // Input
+  input  logic                         valid_i,
+  output logic                         ready_o,
+  input  logic [TagW-1:0]              tag_i,
+  input  logic [31:0]                  tri_i,
+  input  logic [12*(1+ExpW+FracW)-1:0] m_i,
+  input  logic [3*(1+ExpW+FracW)-1:0]  org_i,
+  input  logic [3*(1+ExpW+FracW)-1:0]  dir_i,
+  input  logic [ExpW+FracW:0]          best_t_i,
+  input  logic [31:0]                  best_tri_i,
+  // Output
+  output logic                         valid_o,
+  input  logic                         ready_i,
+  output logic [TagW-1:0]              tag_o,
+  output logic [31:0]                  tri_o,
+  output logic                         hit_o,
+  output logic [ExpW+FracW:0]          t_o,
+  output logic [ExpW+FracW:0]          u_o,
+  output logic [ExpW+FracW:0]          v_o,
+  output logic [ExpW+FracW:0]          dz_o
+);
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  if (ExpW < 2 || FracW < 1 || TagW < 1) begin : g_param_check
+    $error("rc_isect_unit: need ExpW >= 2, FracW >= 1, TagW >= 1");
+  end
+  if (MulStages < 1 || AddStages < 1 || DivStages < 1 || CmpStages < 1) begin : g_stages_check
+    $error("rc_isect_unit: every Stages parameter must be >= 1");
+  end
+
+  localparam int unsigned W        = 1 + ExpW + FracW;
+  localparam int unsigned XformLat = MulStages + 3 * AddStages;
+  localparam int unsigned PipeLat  = XformLat + DivStages + MulStages + 2 * AddStages + CmpStages;
+
+  localparam logic [W-1:0] Zero = '0;
+  // 1.0: sign 0, exponent field = bias, fraction 0.
+  localparam logic [W-1:0] One  = {1'b0, ExpW'((1 << (ExpW - 1)) - 1), {FracW{1'b0}}};
+
+  logic in_fire;
+  assign in_fire = valid_i & ready_o;
+
+  ///////////////////////////////
+  // Transforms: o' and d'     //
+  ///////////////////////////////
+
+  // Side band carried through the o' transform's tag: {tag, tri, best_t, tri < best_tri}.
+  localparam int unsigned SbW = TagW + 32 + W + 1;
+  logic           tri_lt;
+  logic [SbW-1:0] sb_x;
+  logic           xo_valid, xd_valid, xo_ready, xd_ready;
+  logic [3*W-1:0] xo, xd;
+  logic           xd_tag;
+
+  assign tri_lt = $signed(tri_i) < $signed(best_tri_i);
+
+  rc_xform_unit #(
+    .ExpW(ExpW), .FracW(FracW), .TagW(SbW), .MulStages(MulStages), .AddStages(AddStages),
+    .Backpressure(1'b0)
+  ) u_xform_org (
+    .clk_i, .rst_ni,
+    .valid_i(in_fire), .ready_o(xo_ready), .m_i, .v_i(org_i), .translate_i(1'b1),
+    .tag_i({tag_i, tri_i, best_t_i, tri_lt}),
+    .valid_o(xo_valid), .ready_i(1'b1), .r_o(xo), .tag_o(sb_x)
+  );
+
+  rc_xform_unit #(
+    .ExpW(ExpW), .FracW(FracW), .TagW(1), .MulStages(MulStages), .AddStages(AddStages),
+    .Backpressure(1'b0)
+  ) u_xform_dir (
+    .clk_i, .rst_ni,
+    .valid_i(in_fire), .ready_o(xd_ready), .m_i, .v_i(dir_i), .translate_i(1'b0),
+    .tag_i(1'b0),
+    .valid_o(xd_valid), .ready_i(1'b1), .r_o(xd), .tag_o(xd_tag)
+  );
+
+  ///////////////////////////////
+  // t = -o'z / d'z            //
+  ///////////////////////////////
+
+  logic [W-1:0] oz, neg_oz, t;
+  logic         t_valid;
+  assign oz     = xo[2*W +: W];
+  assign neg_oz = {~oz[W-1], oz[W-2:0]};
+
+  rc_fp_div #(.ExpW(ExpW), .FracW(FracW), .Stages(DivStages)) u_div_t (
+    .clk_i, .rst_ni, .valid_i(xo_valid), .a_i(neg_oz), .b_i(xd[2*W +: W]),
+    .valid_o(t_valid), .res_o(t)
+  );
+
+  // Waiting for t: {side band, d'z, d'y, d'x, o'y, o'x}.
+  localparam int unsigned D1W = SbW + 5 * W;
+  logic [DivStages*D1W-1:0] d1_q;
+  always_ff @(posedge clk_i) begin
+    d1_q <= (d1_q << D1W) | (DivStages * D1W)'({sb_x, xd, xo[2*W-1:0]});
+  end
+
+  logic [W-1:0]    ox1, oy1, dx1, dy1, dz1, best_t1;
+  logic [TagW-1:0] tag1;
+  logic [31:0]     tri_s1;
+  logic            tri_lt1;
+  assign {tag1, tri_s1, best_t1, tri_lt1, dz1, dy1, dx1, oy1, ox1} = d1_q[DivStages*D1W-1 -: D1W];
+
+  ///////////////////////////////////////////////
+  // t*d'x, t*d'y and the comparisons on t     //
+  ///////////////////////////////////////////////
+
+  logic [W-1:0] tdx, tdy;
+  logic         tdx_valid, tdy_valid;
+
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(MulStages)) u_mul_tdx (
+    .clk_i, .rst_ni, .valid_i(t_valid), .a_i(t), .b_i(dx1), .valid_o(tdx_valid), .res_o(tdx)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(MulStages)) u_mul_tdy (
+    .clk_i, .rst_ni, .valid_i(t_valid), .a_i(t), .b_i(dy1), .valid_o(tdy_valid), .res_o(tdy)
+  );
+
+  logic         c0t_valid, c0t_lt, c0t_le, c0t_eq;
+  logic         ctb_valid, ctb_lt, ctb_le, ctb_eq;
+  logic [W-1:0] c0t_min, c0t_max, ctb_min, ctb_max;
+
+  rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_0_t (
+    .clk_i, .rst_ni, .valid_i(t_valid), .a_i(Zero), .b_i(t), .valid_o(c0t_valid),
+    .lt_o(c0t_lt), .le_o(c0t_le), .eq_o(c0t_eq), .min_o(c0t_min), .max_o(c0t_max)
+  );
+  rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_t_best (
+    .clk_i, .rst_ni, .valid_i(t_valid), .a_i(t), .b_i(best_t1), .valid_o(ctb_valid),
+    .lt_o(ctb_lt), .le_o(ctb_le), .eq_o(ctb_eq), .min_o(ctb_min), .max_o(ctb_max)
+  );
+
+  // tri < best_tri waits for the comparator outputs.
+  logic [CmpStages-1:0] tri_lt_q;
+  always_ff @(posedge clk_i) begin
+    tri_lt_q <= (tri_lt_q << 1) | CmpStages'(tri_lt1);
+  end
+
+  // Flag a: positive distance and closer than the best hit (with the index tie break).
+  logic flag_a;
+  assign flag_a = c0t_lt & (ctb_lt | (ctb_eq & tri_lt_q[CmpStages-1]));
+
+  // Waiting for the products: {tag, tri, d'z, t, o'y, o'x}.
+  localparam int unsigned D2W = TagW + 32 + 4 * W;
+  logic [MulStages*D2W-1:0] d2_q;
+  always_ff @(posedge clk_i) begin
+    d2_q <= (d2_q << D2W) | (MulStages * D2W)'({tag1, tri_s1, dz1, t, oy1, ox1});
+  end
+
+  logic [W-1:0]    ox2, oy2, t2, dz2;
+  logic [TagW-1:0] tag2;
+  logic [31:0]     tri_s2;
+  assign {tag2, tri_s2, dz2, t2, oy2, ox2} = d2_q[MulStages*D2W-1 -: D2W];
+
+  ///////////////////////////////
+  // u = o'x + t*d'x, v         //
+  ///////////////////////////////
+
+  logic [W-1:0] u, v;
+  logic         u_valid, v_valid;
+
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(AddStages)) u_add_u (
+    .clk_i, .rst_ni, .valid_i(tdx_valid), .sub_i(1'b0), .a_i(ox2), .b_i(tdx),
+    .valid_o(u_valid), .res_o(u)
+  );
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(AddStages)) u_add_v (
+    .clk_i, .rst_ni, .valid_i(tdy_valid), .sub_i(1'b0), .a_i(oy2), .b_i(tdy),
+    .valid_o(v_valid), .res_o(v)
+  );
+
+  // Waiting for u and v: {tag, tri, d'z, t}.
+  localparam int unsigned D3W = TagW + 32 + 2 * W;
+  logic [AddStages*D3W-1:0] d3_q;
+  always_ff @(posedge clk_i) begin
+    d3_q <= (d3_q << D3W) | (AddStages * D3W)'({tag2, tri_s2, dz2, t2});
+  end
+
+  logic [W-1:0]    t3, dz3;
+  logic [TagW-1:0] tag3;
+  logic [31:0]     tri_s3;
+  assign {tag3, tri_s3, dz3, t3} = d3_q[AddStages*D3W-1 -: D3W];
+
+  // Flag a (ready CmpStages after t) waits until u and v's comparisons are done.
+  localparam int unsigned FaDly = MulStages + AddStages;
+  logic [FaDly-1:0] flag_a_q;
+  always_ff @(posedge clk_i) begin
+    flag_a_q <= (flag_a_q << 1) | FaDly'(flag_a);
+  end
+
+  ///////////////////////////////////////////
+  // u + v, le(0, u), le(0, v)             //
+  ///////////////////////////////////////////
+
+  logic [W-1:0] uv;
+  logic         uv_valid;
+
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(AddStages)) u_add_uv (
+    .clk_i, .rst_ni, .valid_i(u_valid), .sub_i(1'b0), .a_i(u), .b_i(v),
+    .valid_o(uv_valid), .res_o(uv)
+  );
+
+  logic         c0u_valid, c0u_lt, c0u_le, c0u_eq;
+  logic         c0v_valid, c0v_lt, c0v_le, c0v_eq;
+  logic [W-1:0] c0u_min, c0u_max, c0v_min, c0v_max;
+
+  rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_0_u (
+    .clk_i, .rst_ni, .valid_i(u_valid), .a_i(Zero), .b_i(u), .valid_o(c0u_valid),
+    .lt_o(c0u_lt), .le_o(c0u_le), .eq_o(c0u_eq), .min_o(c0u_min), .max_o(c0u_max)
+  );
+  rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_0_v (
+    .clk_i, .rst_ni, .valid_i(u_valid), .a_i(Zero), .b_i(v), .valid_o(c0v_valid),
+    .lt_o(c0v_lt), .le_o(c0v_le), .eq_o(c0v_eq), .min_o(c0v_min), .max_o(c0v_max)
+  );
+
+  // Flag b: flag a and both barycentrics non-negative.
+  logic flag_b;
+  assign flag_b = flag_a_q[FaDly-1] & c0u_le & c0v_le;
+
+  logic [AddStages-1:0] flag_b_q;
+  always_ff @(posedge clk_i) begin
+    flag_b_q <= (flag_b_q << 1) | AddStages'(flag_b);
+  end
+
+  // Waiting for the last comparison: {tag, tri, d'z, t, v, u}.
+  localparam int unsigned D4Dly = AddStages + CmpStages;
+  localparam int unsigned D4W   = TagW + 32 + 4 * W;
+  logic [D4Dly*D4W-1:0] d4_q;
+  always_ff @(posedge clk_i) begin
+    d4_q <= (d4_q << D4W) | (D4Dly * D4W)'({tag3, tri_s3, dz3, t3, v, u});
+  end
+
+  ///////////////////////////////
+  // le(u + v, 1.0) and the hit //
+  ///////////////////////////////
+
+  logic         c1_valid, c1_lt, c1_le, c1_eq;
+  logic [W-1:0] c1_min, c1_max;
+
+  rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_uv_1 (
+    .clk_i, .rst_ni, .valid_i(uv_valid), .a_i(uv), .b_i(One), .valid_o(c1_valid),
+    .lt_o(c1_lt), .le_o(c1_le), .eq_o(c1_eq), .min_o(c1_min), .max_o(c1_max)
+  );
+
+  logic            pipe_valid, pipe_hit;
+  logic [W-1:0]    pipe_t, pipe_u, pipe_v, pipe_dz;
+  logic [TagW-1:0] pipe_tag;
+  logic [31:0]     pipe_tri;
+
+  assign pipe_valid = c1_valid;
+  assign pipe_hit   = flag_b_q[AddStages-1] & c1_le;
+  assign {pipe_tag, pipe_tri, pipe_dz, pipe_t, pipe_v, pipe_u} = d4_q[D4Dly*D4W-1 -: D4W];
+
+  // Unused outputs of the shared building blocks (min/max, redundant valids and predicates).
+  logic unused_outputs;
+  assign unused_outputs = ^{xo_ready, xd_ready, xd_valid, xd_tag, v_valid,
+                            c0t_valid, c0t_le, c0t_eq, c0t_min, c0t_max,
+                            ctb_valid, ctb_le, ctb_min, ctb_max,
+                            c0u_valid, c0u_lt, c0u_eq, c0u_min, c0u_max,
+                            c0v_valid, c0v_lt, c0v_eq, c0v_min, c0v_max,
+                            c1_lt, c1_eq, c1_min, c1_max};
+
+  ////////////////////////////////////////
+  // Output FIFO with credit flow control //
+  ////////////////////////////////////////
+
+  localparam int unsigned Depth = PipeLat + 2;
+  localparam int unsigned PtrW  = $clog2(Depth);
+  localparam int unsigned CntW  = $clog2(Depth + 1);
+  localparam int unsigned DW    = TagW + 32 + 1 + 4 * W;
+
+  logic            push, pop;
+  logic [CntW-1:0] credit_q, credit_d;  // accepted inputs not yet taken at the output
+  logic [CntW-1:0] fill_q, fill_d;      // FIFO occupancy
+  logic [PtrW-1:0] wptr_q, wptr_d, rptr_q, rptr_d;
+  logic [DW-1:0]   mem_q [0:Depth-1];
+
+  assign push    = pipe_valid;
+  assign pop     = valid_o & ready_i;
+  assign ready_o = credit_q < CntW'(Depth);
+  assign valid_o = fill_q != '0;
+
+  always_comb begin
+    credit_d = credit_q;
+    if (in_fire && !pop) begin
+      credit_d = credit_q + 1'b1;
+    end else if (!in_fire && pop) begin
+      credit_d = credit_q - 1'b1;
+    end
+    fill_d = fill_q;
+    if (push && !pop) begin
+      fill_d = fill_q + 1'b1;
+    end else if (!push && pop) begin
+      fill_d = fill_q - 1'b1;
+    end
+    wptr_d = wptr_q;
+    if (push) begin
+      wptr_d = (wptr_q == PtrW'(Depth - 1)) ? '0 : wptr_q + 1'b1;
+    end
+    rptr_d = rptr_q;
+    if (pop) begin
+      rptr_d = (rptr_q == PtrW'(Depth - 1)) ? '0 : rptr_q + 1'b1;
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      credit_q <= '0;
+      fill_q   <= '0;
+      wptr_q   <= '0;
+      rptr_q   <= '0;
+    end else begin
+      credit_q <= credit_d;
+      fill_q   <= fill_d;
+      wptr_q   <= wptr_d;
+      rptr_q   <= rptr_d;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (push) begin
+      mem_q[wptr_q] <= {pipe_tag, pipe_tri, pipe_hit, pipe_dz, pipe_t, pipe_v, pipe_u};
+    end
+  end
+
+  assign {tag_o, tri_o, hit_o, dz_o, t_o, v_o, u_o} = mem_q[rptr_q];
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  logic checks_on_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      checks_on_q <= 1'b0;
+    end else begin
+      checks_on_q <= 1'b1;
+    end
+  end
+  // The credit scheme guarantees room: a push into a full FIFO would lose a result.
+  FifoNoOverflow_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                     push |-> fill_q < CntW'(Depth));
+  // Outstanding work never exceeds the FIFO depth (ready_o gates every new input).
+  CreditBound_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                  credit_q <= CntW'(Depth));
+  // Everything in the FIFO is also counted as outstanding.
+  FillWithinCredit_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                       fill_q <= credit_q);
+  // Valid/ready: once offered, a result stays offered and unchanged until it is taken.
+  OutStable_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                valid_o && !ready_i |=> valid_o &&
+                                $stable({tag_o, tri_o, hit_o, t_o, u_o, v_o, dz_o}));
+  // The parallel pipelines run in lockstep; diverging valids would mean misaligned delay lines.
+  Lockstep_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                               (xo_valid == xd_valid) && (tdx_valid == tdy_valid) &&
+                               (u_valid == v_valid) && (c0t_valid == ctb_valid) &&
+                               (c0u_valid == c0v_valid));
+  // The consumer qualifies everything with valid_o, so it must be known once out of reset.
+  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                 !$isunknown({valid_o, ready_o}));
+  // A valid result is fully determined by known inputs.
+  ResKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                               valid_o |-> !$isunknown({hit_o, t_o, u_o, v_o, dz_o}));
+`endif
+
+endmodule

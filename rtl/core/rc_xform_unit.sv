@@ -1,0 +1,296 @@
+// rc_xform_unit: the transform unit, a 3x4 matrix times a 3-vector, for the raycore number format.
+//
+// Contract
+// - Function: for each row r = 0..2, with x = v[0], y = v[1], z = v[2] and every operation a
+//   correctly rounded format operation (rc_fp_mul / rc_fp_add), exactly
+//     r_o[r] = ((m[4r] * x + m[4r+1] * y) + m[4r+2] * z)              when translate = 0
+//     r_o[r] = ((m[4r] * x + m[4r+1] * y) + m[4r+2] * z) + m[4r+3]    when translate = 1
+//   (docs/architecture.md, "Intersection"; tb/golden/trace.hpp intersect()). With translate = 0
+//   there is no final add at all (adding +0 would turn a -0 row result into +0).
+// - Packing: a word is {sign, exp[ExpW-1:0], frac[FracW-1:0]}, W = 1 + ExpW + FracW bits.
+//   m_i[k*W +: W] = m_k (k = 0..11, row-major), v_i[c*W +: W] = component c (x, y, z),
+//   r_o[r*W +: W] = row r. tag_i is carried unchanged to tag_o.
+// - Handshake (Backpressure = 1): valid_i/ready_o at the input, valid_o/ready_i at the output,
+//   AXI-style (a transfer happens on a clock edge where valid and ready are both 1). valid_o never
+//   depends on ready_i, ready_o depends only on registered state, and once valid_o is 1 it stays
+//   1 with r_o/tag_o stable until the transfer. Results leave in input order, none is lost or
+//   duplicated. The fp pipelines cannot stall, so the unit uses credits: an output FIFO of
+//   Depth = PipeLat + 2 entries, and ready_o = credit_q < Depth, where credit_q = inputs accepted
+//   - outputs taken = operations in flight + FIFO occupancy (one registered counter), so the FIFO
+//   always has room for everything in flight. PipeLat + 2 is the least depth that sustains one
+//   input per cycle (in steady state PipeLat results are in flight and one waits in the FIFO).
+//   Backpressure = 0: a bare valid-only pipeline for use inside other units: ready_o is always 1,
+//   ready_i is ignored, valid_o is valid_i delayed by exactly PipeLat cycles (no FIFO).
+// - Latency: PipeLat = MulStages + 3 * AddStages cycles through the arithmetic (11 at the
+//   defaults 2 and 3). Backpressure = 1 adds the FIFO's output register: valid_o rises
+//   PipeLat + 1 cycles (12 at the defaults) after an accepted input when ready_i is high.
+// - Throughput: one vector per cycle (with ready_i held high, ready_o stays 1).
+// - Parameters: ExpW (>= 2), FracW (>= 1): the format; TagW (>= 1): width of the tag carried
+//   alongside; MulStages, AddStages (>= 1): the latencies of the rc_fp_mul / rc_fp_add
+//   instances; Backpressure: 1 = valid/ready with the output FIFO, 0 = valid-only pipeline.
+// - Illegal input: none; every bit pattern of every input is legal.
+// - Reset: rst_ni (active low, asynchronous) clears control state only (valid pipelines, FIFO
+//   pointers and counters); data registers have no reset.
+//
+// Pipeline per row (all three rows in parallel; x = multiply, + = add):
+//   cycle 0            : the three products m0*x, m1*y, m2*z start together
+//   MulStages          : a = p0 + p1 starts; p2 waits AddStages cycles in a delay line
+//   MulStages + A      : b = a + p2 starts; m3 (delayed since cycle 0) waits here
+//   MulStages + 2A     : c = b + m3 starts; b waits AddStages cycles in a delay line
+//   MulStages + 3A     : r = translate ? c : b   (translate delayed alongside)
+module rc_xform_unit #(
+  parameter int unsigned ExpW         = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW        = rc_pkg::Fp24FracW,
+  parameter int unsigned TagW         = 8,
+  parameter int unsigned MulStages    = 2,
+  parameter int unsigned AddStages    = 3,
+  parameter bit          Backpressure = 1'b1
+) (
+  input  logic                         clk_i,
+  input  logic                         rst_ni,
+  // Input
+  input  logic                         valid_i,
+  output logic                         ready_o,
+  input  logic [12*(1+ExpW+FracW)-1:0] m_i,
+  input  logic [3*(1+ExpW+FracW)-1:0]  v_i,
+  input  logic                         translate_i,
+  input  logic [TagW-1:0]              tag_i,
+  // Output
+  output logic                         valid_o,
+  input  logic                         ready_i,
+  output logic [3*(1+ExpW+FracW)-1:0]  r_o,
+  output logic [TagW-1:0]              tag_o
+);
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  if (ExpW < 2 || FracW < 1 || TagW < 1) begin : g_param_check
+    $error("rc_xform_unit: need ExpW >= 2, FracW >= 1, TagW >= 1");
+  end
+  if (MulStages < 1 || AddStages < 1) begin : g_stages_check
+    $error("rc_xform_unit: MulStages and AddStages must be >= 1");
+  end
+
+  localparam int unsigned W       = 1 + ExpW + FracW;
+  localparam int unsigned PipeLat = MulStages + 3 * AddStages;
+  // Delay of m3 and translate from the input to the last add.
+  localparam int unsigned M3Dly   = MulStages + 2 * AddStages;
+
+  //////////////////////////////
+  // Input side of the credit //
+  //////////////////////////////
+
+  logic in_fire;
+  assign in_fire = valid_i & ready_o;
+
+  ////////////////
+  // Datapath   //
+  ////////////////
+
+  logic [2:0]     mul_valid, add_a_valid, add_b_valid, add_c_valid;
+  logic [3*W-1:0] res;
+
+  // Tag and translate flag ride along for the whole pipeline.
+  logic [PipeLat*TagW-1:0] tag_dly_q;
+  always_ff @(posedge clk_i) begin
+    tag_dly_q <= (tag_dly_q << TagW) | (PipeLat * TagW)'(tag_i);
+  end
+
+  logic [M3Dly-1:0] tr_dly_q;
+  always_ff @(posedge clk_i) begin
+    tr_dly_q <= (tr_dly_q << 1) | M3Dly'(translate_i);
+  end
+
+  // Delays translate a further AddStages cycles, to the row select at the end.
+  logic [AddStages-1:0] tr_end_q;
+  always_ff @(posedge clk_i) begin
+    tr_end_q <= (tr_end_q << 1) | AddStages'(tr_dly_q[M3Dly-1]);
+  end
+
+  for (genvar r = 0; r < 3; r++) begin : g_row
+    logic [W-1:0] p0, p1, p2, sum_a, sum_b, sum_c;
+    logic         mul1_valid, mul2_valid;
+    // The three multiplies of a row run in lockstep; only the first one's valid is used.
+    logic         unused_mul_valid;
+    assign unused_mul_valid = mul1_valid ^ mul2_valid;
+
+    rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(MulStages)) u_mul0 (
+      .clk_i, .rst_ni, .valid_i(in_fire), .a_i(m_i[(4*r+0)*W +: W]), .b_i(v_i[0*W +: W]),
+      .valid_o(mul_valid[r]), .res_o(p0)
+    );
+    rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(MulStages)) u_mul1 (
+      .clk_i, .rst_ni, .valid_i(in_fire), .a_i(m_i[(4*r+1)*W +: W]), .b_i(v_i[1*W +: W]),
+      .valid_o(mul1_valid), .res_o(p1)
+    );
+    rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(MulStages)) u_mul2 (
+      .clk_i, .rst_ni, .valid_i(in_fire), .a_i(m_i[(4*r+2)*W +: W]), .b_i(v_i[2*W +: W]),
+      .valid_o(mul2_valid), .res_o(p2)
+    );
+
+    // m_i3 waits until the last add.
+    logic [M3Dly*W-1:0] m3_dly_q;
+    always_ff @(posedge clk_i) begin
+      m3_dly_q <= (m3_dly_q << W) | (M3Dly * W)'(m_i[(4*r+3)*W +: W]);
+    end
+
+    // p2 waits for the first add.
+    logic [AddStages*W-1:0] p2_dly_q;
+    always_ff @(posedge clk_i) begin
+      p2_dly_q <= (p2_dly_q << W) | (AddStages * W)'(p2);
+    end
+
+    rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(AddStages)) u_add_a (
+      .clk_i, .rst_ni, .valid_i(mul_valid[r]), .sub_i(1'b0), .a_i(p0), .b_i(p1),
+      .valid_o(add_a_valid[r]), .res_o(sum_a)
+    );
+    rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(AddStages)) u_add_b (
+      .clk_i, .rst_ni, .valid_i(add_a_valid[r]), .sub_i(1'b0), .a_i(sum_a),
+      .b_i(p2_dly_q[AddStages*W-1 -: W]), .valid_o(add_b_valid[r]), .res_o(sum_b)
+    );
+    rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(AddStages)) u_add_c (
+      .clk_i, .rst_ni, .valid_i(add_b_valid[r]), .sub_i(1'b0), .a_i(sum_b),
+      .b_i(m3_dly_q[M3Dly*W-1 -: W]), .valid_o(add_c_valid[r]), .res_o(sum_c)
+    );
+
+    // Without translation the row result is sum_b itself, delayed to line up with sum_c.
+    logic [AddStages*W-1:0] b_dly_q;
+    always_ff @(posedge clk_i) begin
+      b_dly_q <= (b_dly_q << W) | (AddStages * W)'(sum_b);
+    end
+
+    assign res[r*W +: W] = tr_end_q[AddStages-1] ? sum_c : b_dly_q[AddStages*W-1 -: W];
+  end
+
+  logic            pipe_valid;
+  logic [TagW-1:0] pipe_tag;
+  assign pipe_valid = add_c_valid[0];
+  assign pipe_tag   = tag_dly_q[PipeLat*TagW-1 -: TagW];
+
+  // Only row 0's valid chain is used; the others are identical (checked below).
+  logic unused_valid;
+  assign unused_valid = ^{mul_valid[2:1], add_a_valid[2:1], add_b_valid[2:1], add_c_valid[2:1]};
+
+  ///////////////////////////////
+  // Output: credit FIFO or not //
+  ///////////////////////////////
+
+  if (Backpressure) begin : g_fifo
+    localparam int unsigned Depth = PipeLat + 2;
+    localparam int unsigned PtrW  = $clog2(Depth);
+    localparam int unsigned CntW  = $clog2(Depth + 1);
+    localparam int unsigned DW    = TagW + 3 * W;
+
+    logic            push, pop;
+    logic [CntW-1:0] credit_q, credit_d;  // accepted inputs not yet taken at the output
+    logic [CntW-1:0] fill_q, fill_d;      // FIFO occupancy
+    logic [PtrW-1:0] wptr_q, wptr_d, rptr_q, rptr_d;
+    logic [DW-1:0]   mem_q [0:Depth-1];
+
+    assign push    = pipe_valid;
+    assign pop     = valid_o & ready_i;
+    assign ready_o = credit_q < CntW'(Depth);
+    assign valid_o = fill_q != '0;
+
+    always_comb begin
+      credit_d = credit_q;
+      if (in_fire && !pop) begin
+        credit_d = credit_q + 1'b1;
+      end else if (!in_fire && pop) begin
+        credit_d = credit_q - 1'b1;
+      end
+      fill_d = fill_q;
+      if (push && !pop) begin
+        fill_d = fill_q + 1'b1;
+      end else if (!push && pop) begin
+        fill_d = fill_q - 1'b1;
+      end
+      wptr_d = wptr_q;
+      if (push) begin
+        wptr_d = (wptr_q == PtrW'(Depth - 1)) ? '0 : wptr_q + 1'b1;
+      end
+      rptr_d = rptr_q;
+      if (pop) begin
+        rptr_d = (rptr_q == PtrW'(Depth - 1)) ? '0 : rptr_q + 1'b1;
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        credit_q <= '0;
+        fill_q   <= '0;
+        wptr_q   <= '0;
+        rptr_q   <= '0;
+      end else begin
+        credit_q <= credit_d;
+        fill_q   <= fill_d;
+        wptr_q   <= wptr_d;
+        rptr_q   <= rptr_d;
+      end
+    end
+
+    always_ff @(posedge clk_i) begin
+      if (push) begin
+        mem_q[wptr_q] <= {pipe_tag, res};
+      end
+    end
+
+    assign {tag_o, r_o} = mem_q[rptr_q];
+
+`ifndef SYNTHESIS
+    logic checks_on_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        checks_on_q <= 1'b0;
+      end else begin
+        checks_on_q <= 1'b1;
+      end
+    end
+    // The credit scheme guarantees room: a push into a full FIFO would lose a result.
+    FifoNoOverflow_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                       push |-> fill_q < CntW'(Depth));
+    // Outstanding work never exceeds the FIFO depth (ready_o gates every new input).
+    CreditBound_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                    credit_q <= CntW'(Depth));
+    // Everything in the FIFO is also counted as outstanding.
+    FillWithinCredit_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                         fill_q <= credit_q);
+    // Valid/ready: once offered, a result stays offered and unchanged until it is taken.
+    OutStable_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+                                  valid_o && !ready_i |=> valid_o && $stable({tag_o, r_o}));
+`endif
+  end else begin : g_nofifo
+    assign ready_o = 1'b1;
+    assign valid_o = pipe_valid;
+    assign r_o     = res;
+    assign tag_o   = pipe_tag;
+    logic unused_ready;
+    assign unused_ready = ready_i;
+  end
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  logic chk_on_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      chk_on_q <= 1'b0;
+    end else begin
+      chk_on_q <= 1'b1;
+    end
+  end
+  // The three rows run in lockstep; diverging valids would mean misaligned delay lines.
+  RowsLockstep_A: assert property (@(posedge clk_i) disable iff (chk_on_q !== 1'b1)
+                                   (&add_c_valid || ~|add_c_valid) && (&mul_valid || ~|mul_valid));
+  // The consumer qualifies everything with valid_o, so it must be known once out of reset.
+  ValidKnown_A: assert property (@(posedge clk_i) disable iff (chk_on_q !== 1'b1)
+                                 !$isunknown({valid_o, ready_o}));
+  // A valid result is fully determined by known inputs.
+  ResKnown_A: assert property (@(posedge clk_i) disable iff (chk_on_q !== 1'b1)
+                               valid_o |-> !$isunknown(r_o));
+`endif
+
+endmodule

@@ -1,0 +1,728 @@
+// The core's datapath units (rtl/core/rc_trav_step.sv, rc_ray_setup.sv, rc_shade_unit.sv,
+// rc_fp_to_u8.sv), verilated at fp24, against the golden model functions they implement
+// (tb/golden/trace.hpp: trav_step, setup_ray, shade, to_u8), bit for bit.
+//
+// The handshake units are driven through their valid/ready ports with seeded random valid_i gaps
+// and seeded random ready_i low periods. Every operation carries a sequence number as its tag;
+// the harness keeps the expected results in a queue and checks every output against the queue's
+// head, so order, loss, duplication and spurious outputs are all caught (a result still missing
+// after a long idle time, or an output with nothing pending, is a mismatch).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "Vrc_fp_to_u8.h"
+#include "Vrc_ray_setup.h"
+#include "Vrc_shade_unit.h"
+#include "Vrc_trav_step.h"
+#include "fp.hpp"
+#include "fp_cases.hpp"
+#include "trace.hpp"
+#include "verilated.h"
+
+namespace rc::test {
+namespace {
+
+using T = fp24;
+constexpr int kW = T::kWidth;  // 24
+constexpr uint32_t kTagMask = 0xffff;
+
+T fb(uint32_t b) { return T::from_bits(b); }
+
+// Packed-array ports wider than 64 bits are VlWide words; element i of a [N][W] packed array sits
+// at bits [i*W +: W].
+template <class Wide>
+void put_bits(Wide& w, int lsb, uint32_t v) {
+  for (int i = 0; i < kW; ++i) {
+    const int b = lsb + i;
+    const uint32_t m = 1u << (b % 32);
+    w[b / 32] = ((v >> i) & 1u) ? (w[b / 32] | m) : (w[b / 32] & ~m);
+  }
+}
+template <class Wide>
+uint32_t get_bits(const Wide& w, int lsb) {
+  uint32_t v = 0;
+  for (int i = 0; i < kW; ++i) {
+    const int b = lsb + i;
+    v |= ((w[b / 32] >> (b % 32)) & 1u) << i;
+  }
+  return v;
+}
+
+////////////////////////
+// Value generators   //
+////////////////////////
+
+class Gen {
+ public:
+  explicit Gen(uint64_t seed) : rng_(seed), specials_(special_values<T>()) {}
+
+  uint32_t u(uint32_t n) { return static_cast<uint32_t>(rng_() % n); }
+  bool chance(uint32_t one_in) { return u(one_in) == 0; }
+  double unit() { return std::uniform_real_distribution<double>(0.0, 1.0)(rng_); }
+
+  T any() { return fb(static_cast<uint32_t>(rng_())); }
+  T special() { return specials_[u(static_cast<uint32_t>(specials_.size()))]; }
+  // A normal number with exponent within +-span of 1.0, random sign unless positive.
+  T moderate(uint32_t span = 8, bool positive = false) {
+    const uint32_t e = T::kBias - span + u(2 * span + 1);
+    const uint32_t s = (!positive && (rng_() & 1)) ? T::kSignBit : 0;
+    return fb(s | (e << T::kFracW) | (static_cast<uint32_t>(rng_()) & T::kFracMask));
+  }
+  // x or one of its encoding neighbours (+-1, +-2 in the bit pattern), the other zero, etc.
+  T near(T x) {
+    switch (u(8)) {
+      case 0:
+      case 1:
+      case 2: return x;
+      case 3: return fb((x.bits() + 1) & T::kMask);
+      case 4: return fb((x.bits() - 1) & T::kMask);
+      case 5: return fb((x.bits() + 2) & T::kMask);
+      case 6: return x.is_zero() ? fb(x.bits() ^ T::kSignBit) : fb((x.bits() - 2) & T::kMask);
+      default: return x.is_zero() ? fb(x.bits() | (1u + u(T::kFracMask))) : x;  // subnormal enc.
+    }
+  }
+  // A zero: +-0 or a subnormal encoding of either sign.
+  T zero_enc() {
+    const uint32_t s = (rng_() & 1) ? T::kSignBit : 0;
+    return fb(s | (chance(2) ? 0 : 1u + u(T::kFracMask)));
+  }
+
+ private:
+  std::mt19937_64 rng_;
+  std::vector<T> specials_;
+};
+
+////////////////////////////////////////
+// Handshake harness (valid/ready)    //
+////////////////////////////////////////
+
+// Unit traits: In, Out, drive(V&, In), read(V&) -> Out, golden(In) -> Out, show(In, Out, Out).
+template <class V, class U>
+class StreamHarness {
+ public:
+  using In = typename U::In;
+  using Out = typename U::Out;
+
+  StreamHarness(uint64_t seed, bool stalls)
+      : ctx_(std::make_unique<VerilatedContext>()), rng_(seed), stalls_(stalls) {
+    ctx_->assertOn(true);
+    dut_ = std::make_unique<V>(ctx_.get());
+    U::init(*dut_);
+    dut_->clk_i = 0;
+    dut_->rst_ni = 0;
+    dut_->valid_i = 0;
+    dut_->ready_i = 0;
+    dut_->eval();
+    for (int i = 0; i < 4; ++i) tick();
+    dut_->rst_ni = 1;
+    tick();
+  }
+  ~StreamHarness() { dut_->final(); }
+
+  // Presents one operation (after a seeded random gap) and holds it until it is taken.
+  void push(const In& in) {
+    if (stalls_ && (rng_() & 7) == 0) {
+      const int gap = 1 + static_cast<int>(rng_() % 6);
+      dut_->valid_i = 0;
+      for (int i = 0; i < gap; ++i) tick();
+    }
+    dut_->valid_i = 1;
+    dut_->tag_i = static_cast<uint16_t>(seq_ & kTagMask);
+    U::drive(*dut_, in);
+    q_.push_back({in, U::golden(in), static_cast<uint32_t>(seq_ & kTagMask)});
+    ++seq_;
+    ++cases_;
+    uint64_t waited = 0;
+    while (!tick()) {
+      if (++waited > 100000) {
+        fail("ready_o stuck low");
+        break;
+      }
+    }
+    dut_->valid_i = 0;
+  }
+
+  // Idles until every result is out (ready_i keeps its random pattern), then some more cycles to
+  // catch spurious outputs.
+  void drain() {
+    dut_->valid_i = 0;
+    for (int i = 0; i < 100000 && !q_.empty(); ++i) tick();
+    if (!q_.empty()) fail(std::to_string(q_.size()) + " results missing after 100000 idle cycles");
+    for (int i = 0; i < 200; ++i) tick();
+  }
+
+  // Clock cycle: ready_i pattern, output check and input acceptance (sampled before the edge).
+  // Returns whether the presented operation was taken.
+  bool tick() {
+    dut_->ready_i = next_ready();
+    dut_->eval();
+    const bool taken = dut_->valid_i && dut_->ready_o;
+    if (dut_->valid_o && dut_->ready_i) check_output();
+    if (dut_->valid_o && first_out_cycle_ < 0) first_out_cycle_ = static_cast<int64_t>(cycle_);
+    if (taken && first_take_cycle_ < 0) first_take_cycle_ = static_cast<int64_t>(cycle_);
+    dut_->clk_i = 1;
+    dut_->eval();
+    ctx_->timeInc(1);
+    dut_->clk_i = 0;
+    dut_->eval();
+    ctx_->timeInc(1);
+    ++cycle_;
+    return taken;
+  }
+
+  void set_ready_mode(int mode) { ready_mode_ = mode; }  // 0 random, 1 always, 2 never
+  V& dut() { return *dut_; }
+  uint64_t cases() const { return cases_; }
+  uint64_t mismatches() const { return mismatches_; }
+  uint64_t cycle() const { return cycle_; }
+  uint64_t outputs() const { return outputs_; }
+  int64_t latency() const { return first_out_cycle_ - first_take_cycle_; }
+  size_t pending() const { return q_.size(); }
+
+ private:
+  struct Expect {
+    In in;
+    Out want;
+    uint32_t tag;
+  };
+
+  bool next_ready() {
+    if (ready_mode_ == 1) return true;
+    if (ready_mode_ == 2) return false;
+    if (!stalls_) return true;
+    // Bursts: ready_i low for 1..40 cycles now and then, high otherwise.
+    if (ready_low_left_ > 0) {
+      --ready_low_left_;
+      return false;
+    }
+    if ((rng_() % 16) == 0) {
+      ready_low_left_ = static_cast<int>(rng_() % 40);
+      return false;
+    }
+    return true;
+  }
+
+  void fail(const std::string& what) {
+    if (++mismatches_ <= 10) ADD_FAILURE() << what;
+  }
+
+  void check_output() {
+    ++outputs_;
+    if (q_.empty()) {
+      fail("valid_o with nothing pending (spurious or duplicated result), tag " +
+           std::to_string(dut_->tag_o));
+      return;
+    }
+    const Expect e = q_.front();
+    q_.pop_front();
+    const Out got = U::read(*dut_);
+    if (dut_->tag_o != e.tag) {
+      fail("tag " + std::to_string(dut_->tag_o) + ", expected " + std::to_string(e.tag) +
+           " (order, loss or duplication)");
+    } else if (!(got == e.want)) {
+      fail(U::show(e.in, got, e.want));
+    }
+  }
+
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<V> dut_;
+  std::mt19937_64 rng_;
+  bool stalls_;
+  std::deque<Expect> q_;
+  uint64_t seq_ = 0, cases_ = 0, mismatches_ = 0, cycle_ = 0, outputs_ = 0;
+  int64_t first_out_cycle_ = -1, first_take_cycle_ = -1;
+  int ready_low_left_ = 0;
+  int ready_mode_ = 0;
+};
+
+////////////////////////
+// rc_trav_step       //
+////////////////////////
+
+struct TravUnit {
+  struct In {
+    T split, org, inv, tmin, tmax;
+  };
+  struct Out {
+    uint32_t t, which;
+    bool operator==(const Out& o) const { return t == o.t && which == o.which; }
+  };
+  static void init(Vrc_trav_step&) {}
+  static void drive(Vrc_trav_step& d, const In& in) {
+    d.split_i = in.split.bits();
+    d.org_i = in.org.bits();
+    d.inv_i = in.inv.bits();
+    d.tmin_i = in.tmin.bits();
+    d.tmax_i = in.tmax.bits();
+  }
+  static Out read(const Vrc_trav_step& d) { return {d.t_o, d.case_o}; }
+  static Out golden(const In& in) {
+    const StepResult<T> r = trav_step<T>(in.split, in.org, in.inv, in.tmin, in.tmax);
+    return {r.t.bits(), static_cast<uint32_t>(r.which)};
+  }
+  static std::string show(const In& in, const Out& got, const Out& want) {
+    return "trav_step(split " + in.split.hex() + ", org " + in.org.hex() + ", inv " + in.inv.hex() +
+           ", tmin " + in.tmin.hex() + ", tmax " + in.tmax.hex() + "): rtl t " + fb(got.t).hex() +
+           " case " + std::to_string(got.which) + ", golden t " + fb(want.t).hex() + " case " +
+           std::to_string(want.which);
+  }
+};
+
+TravUnit::In trav_case(Gen& g) {
+  TravUnit::In in;
+  in.split = g.moderate();
+  // Origin: random, exactly on the split plane, or next to it.
+  switch (g.u(6)) {
+    case 0: in.org = in.split; break;
+    case 1: in.org = g.near(in.split); break;
+    case 2: in.org = g.any(); break;
+    default: in.org = g.moderate(); break;
+  }
+  // Reciprocal direction: of a random direction, of a zero (+-inf), or anything.
+  switch (g.u(8)) {
+    case 0: in.inv = T::from_double(1.0) / g.zero_enc(); break;
+    case 1: in.inv = g.special(); break;
+    case 2: in.inv = g.any(); break;
+    default: in.inv = T::from_double(1.0) / g.moderate(); break;
+  }
+  if (g.chance(16)) in.split = g.special();
+  if (g.chance(32)) in.org = g.special();
+  const T t = (in.split - in.org) * in.inv;
+  // Interval: around t (equal, neighbours, +-0), random, or special.
+  const auto pick = [&](bool low) -> T {
+    switch (g.u(10)) {
+      case 0:
+      case 1:
+      case 2:
+      case 3: return g.near(t);
+      case 4: return g.special();
+      case 5: return low ? T::zero(g.chance(2)) : T::inf();
+      case 6: return g.any();
+      default: {
+        const T m = g.moderate();
+        return low ? (t.is_nan() ? m : min(t, m)) : (t.is_nan() ? m : max(t, m));
+      }
+    }
+  };
+  in.tmin = pick(true);
+  in.tmax = pick(false);
+  if (g.chance(8)) in.tmax = in.tmin;
+  return in;
+}
+
+////////////////////////
+// rc_ray_setup       //
+////////////////////////
+
+struct SetupUnit {
+  struct In {
+    std::array<T, 3> org, dir;
+    std::array<T, 6> bounds;
+  };
+  struct Out {
+    std::array<uint32_t, 3> inv;
+    uint32_t tmin, tmax;
+    bool active;
+    bool operator==(const Out& o) const {
+      return inv == o.inv && tmin == o.tmin && tmax == o.tmax && active == o.active;
+    }
+  };
+  static void init(Vrc_ray_setup&) {}
+  static void drive(Vrc_ray_setup& d, const In& in) {
+    for (int a = 0; a < 3; ++a) {
+      put_bits(d.org_i, a * kW, in.org[a].bits());
+      put_bits(d.dir_i, a * kW, in.dir[a].bits());
+    }
+    for (int i = 0; i < 6; ++i) put_bits(d.bounds_i, i * kW, in.bounds[i].bits());
+  }
+  static Out read(const Vrc_ray_setup& d) {
+    Out o;
+    for (int a = 0; a < 3; ++a) o.inv[a] = get_bits(d.inv_o, a * kW);
+    o.tmin = d.tmin_o;
+    o.tmax = d.tmax_o;
+    o.active = d.active_o;
+    return o;
+  }
+  static Out golden(const In& in) {
+    Ray<T> r{in.org, in.dir, T::from_double(1.0)};
+    const RaySetup<T> s = setup_ray<T>(r, in.bounds);
+    return {{s.inv[0].bits(), s.inv[1].bits(), s.inv[2].bits()},
+            s.tmin.bits(),
+            s.tmax.bits(),
+            s.active};
+  }
+  static std::string show(const In& in, const Out& got, const Out& want) {
+    std::ostringstream s;
+    s << "setup_ray(org";
+    for (T v : in.org) s << ' ' << v.hex();
+    s << ", dir";
+    for (T v : in.dir) s << ' ' << v.hex();
+    s << ", bounds";
+    for (T v : in.bounds) s << ' ' << v.hex();
+    const auto out = [&](const char* who, const Out& o) {
+      s << "; " << who << " inv";
+      for (uint32_t v : o.inv) s << ' ' << fb(v).hex();
+      s << " tmin " << fb(o.tmin).hex() << " tmax " << fb(o.tmax).hex() << " active " << o.active;
+    };
+    s << ")";
+    out("rtl", got);
+    out("golden", want);
+    return s.str();
+  }
+};
+
+SetupUnit::In setup_case(Gen& g) {
+  SetupUnit::In in;
+  const uint32_t box_kind = g.u(16);
+  for (int a = 0; a < 3; ++a) {
+    T lo = g.moderate(6), hi = lo + g.moderate(6, true);
+    if (box_kind == 0) lo = T::inf(true), hi = T::inf();  // unbounded
+    if (box_kind == 1 && g.chance(2)) hi = lo;            // flat box
+    if (box_kind == 2 && g.chance(2)) std::swap(lo, hi);  // inverted axis
+    if (box_kind == 3 && g.chance(3)) (g.chance(2) ? lo : hi) = g.special();
+    in.bounds[a] = lo;
+    in.bounds[a + 3] = hi;
+  }
+  const uint32_t org_kind = g.u(8);
+  for (int a = 0; a < 3; ++a) {
+    const T lo = in.bounds[a], hi = in.bounds[a + 3];
+    T o;
+    switch (org_kind) {
+      case 0: o = g.chance(2) ? lo : hi; break;                  // on a face plane
+      case 1: o = g.chance(2) ? g.near(lo) : g.near(hi); break;  // next to it
+      case 2: o = g.moderate(8); break;                          // anywhere (outside)
+      case 3: o = g.chance(4) ? g.special() : g.moderate(); break;
+      default: o = lo + (hi - lo) * T::from_double(g.unit()); break;  // inside
+    }
+    if (g.chance(6)) o = g.chance(2) ? lo : hi;
+    in.org[a] = o;
+  }
+  const uint32_t dir_kind = g.u(8);
+  for (int a = 0; a < 3; ++a) {
+    T d = g.moderate(4);
+    if (dir_kind < 3 && g.chance(2)) d = g.zero_enc();  // +-0, subnormal encodings
+    if (dir_kind == 3 && g.chance(3)) d = g.special();
+    if (dir_kind == 4 && g.chance(3)) d = g.any();
+    in.dir[a] = d;
+  }
+  return in;
+}
+
+////////////////////////
+// rc_shade_unit      //
+////////////////////////
+
+const T kAmbient = T::from_double(static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
+const T kDiffuse = T::from_double(1.0 - static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
+
+struct ShadeUnit {
+  struct In {
+    T dz, nlen, inv_len;
+    std::array<T, 3> kd;
+  };
+  struct Out {
+    std::array<uint32_t, 3> rgb;
+    bool operator==(const Out& o) const { return rgb == o.rgb; }
+  };
+  static void init(Vrc_shade_unit& d) {
+    d.ambient_i = kAmbient.bits();
+    d.diffuse_i = kDiffuse.bits();
+  }
+  static void drive(Vrc_shade_unit& d, const In& in) {
+    d.dz_i = in.dz.bits();
+    d.nlen_i = in.nlen.bits();
+    d.inv_len_i = in.inv_len.bits();
+    for (int k = 0; k < 3; ++k) put_bits(d.kd_i, k * kW, in.kd[k].bits());
+  }
+  static Out read(const Vrc_shade_unit& d) {
+    return {{d.rgb_o & 0xffu, (d.rgb_o >> 8) & 0xffu, (d.rgb_o >> 16) & 0xffu}};
+  }
+  // shade() itself, on a one-triangle geometry (triangle 0, material 0).
+  static Out golden(const In& in) {
+    static Geometry<T> geo = [] {
+      Geometry<T> g;
+      g.normal_len = {T::zero()};
+      g.material = {0};
+      g.kd = {{T::zero(), T::zero(), T::zero()}};
+      return g;
+    }();
+    geo.normal_len[0] = in.nlen;
+    geo.kd[0] = in.kd;
+    Ray<T> r{};
+    r.inv_len = in.inv_len;
+    Hit<T> h;
+    h.tri = 0;
+    h.dz = in.dz;
+    const std::array<uint8_t, 3> b = shade<T>(geo, r, h);
+    return {{b[0], b[1], b[2]}};
+  }
+  static std::string show(const In& in, const Out& got, const Out& want) {
+    return "shade(dz " + in.dz.hex() + ", nlen " + in.nlen.hex() + ", inv_len " + in.inv_len.hex() +
+           ", kd " + in.kd[0].hex() + " " + in.kd[1].hex() + " " + in.kd[2].hex() + "): rtl " +
+           std::to_string(got.rgb[0]) + "," + std::to_string(got.rgb[1]) + "," +
+           std::to_string(got.rgb[2]) + ", golden " + std::to_string(want.rgb[0]) + "," +
+           std::to_string(want.rgb[1]) + "," + std::to_string(want.rgb[2]);
+  }
+};
+
+// Whether to_u8(x) meets an exact x.5 tie (the value it rounds, min(max(x, 0), 1) * 255).
+bool is_tie(T x) {
+  T v = max(x, T::zero());
+  if (v.is_nan()) return false;
+  v = min(v, T::from_double(1.0)) * T::from_double(255.0);
+  const double dv = v.to_double();
+  return dv - std::floor(dv) == 0.5;
+}
+
+ShadeUnit::In shade_case(Gen& g) {
+  ShadeUnit::In in;
+  in.dz = g.moderate(6);  // both signs
+  in.nlen = g.moderate(6, true);
+  const uint32_t c_kind = g.u(8);
+  if (c_kind < 4) {
+    // c near 1: inv_len ~ 1 / |dz * nlen|, with the encoding nudged around it.
+    const T p = (in.dz * in.nlen).abs();
+    in.inv_len = g.near(T::from_double(1.0) / p);
+  } else if (c_kind < 6) {
+    in.inv_len = g.moderate(3, true);
+  } else if (c_kind == 6) {
+    in.inv_len = g.special();
+  } else {
+    in.dz = g.chance(2) ? g.special() : g.zero_enc();
+    in.inv_len = g.moderate(3, true);
+  }
+  if (g.chance(32)) in.nlen = g.special();
+  // f as the unit will compute it, to aim kd at ties.
+  const T c = min(((in.dz * in.nlen) * in.inv_len).abs(), T::from_double(1.0));
+  const T f = kAmbient + kDiffuse * c;
+  for (int k = 0; k < 3; ++k) {
+    switch (g.u(8)) {
+      case 0:
+      case 1:
+      case 2: in.kd[k] = T::from_double(g.unit()); break;                // [0, 1]
+      case 3: in.kd[k] = T::from_double(-0.05 + 1.1 * g.unit()); break;  // slightly outside
+      case 4: in.kd[k] = g.special(); break;
+      default: {
+        // kd * f * 255 at or next to n + 0.5
+        const double target = (static_cast<double>(g.u(255)) + 0.5) / 255.0;
+        const double fd = f.to_double();
+        in.kd[k] = g.near(T::from_double(std::isfinite(fd) && fd != 0.0 ? target / fd : target));
+        break;
+      }
+    }
+  }
+  return in;
+}
+
+/////////////////////////////
+// Runners                 //
+/////////////////////////////
+
+// cover(in) is called for every case (coverage counters of the caller).
+template <class V, class U, class CaseFn, class CoverFn>
+void run_random(const char* unit, const char* function, uint64_t n, uint64_t seed, CaseFn make,
+                CoverFn cover) {
+  StreamHarness<V, U> h(seed, true);
+  Gen g(seed * 0x9e3779b97f4a7c15ull + 1);
+  for (uint64_t i = 0; i < n; ++i) {
+    const typename U::In in = make(g);
+    cover(in);
+    h.push(in);
+  }
+  h.drain();
+  const std::string what = std::string("rtl ") + unit + " vs golden " + function +
+                           " (random, seeded, valid_i gaps and ready_i stalls)";
+  report_cases(what.c_str(), h.cases(), h.mismatches());
+  EXPECT_EQ(h.mismatches(), 0u);
+  EXPECT_EQ(h.outputs(), h.cases());
+}
+
+// Latency, full throughput and the credit limit: back to back with ready_i high, then with
+// ready_i low until ready_o drops.
+template <class V, class U, class CaseFn>
+void run_timing(const char* unit, int64_t want_latency, uint64_t want_depth, CaseFn make) {
+  StreamHarness<V, U> h(7, false);
+  Gen g(8);
+  h.set_ready_mode(1);
+  const uint64_t n = 1000;
+  const uint64_t start = h.cycle();
+  for (uint64_t i = 0; i < n; ++i) h.push(make(g));  // each push takes exactly one cycle
+  const uint64_t cycles = h.cycle() - start;
+  EXPECT_EQ(cycles, n) << unit << ": not one operation per cycle";
+  h.drain();
+  EXPECT_EQ(h.latency(), want_latency) << unit << ": latency";
+  // ready_i low: the unit must take exactly its FIFO depth of operations, then hold ready_o low.
+  h.set_ready_mode(2);
+  h.dut().valid_i = 1;
+  uint64_t taken = 0;
+  for (int c = 0; c < 200; ++c) {
+    h.dut().tag_i = 0;
+    if (h.dut().ready_o) {
+      // Present a real operation whenever the unit is ready.
+      h.push(make(g));
+      ++taken;
+    } else {
+      h.tick();
+    }
+  }
+  EXPECT_EQ(taken, want_depth) << unit << ": credits";
+  h.set_ready_mode(0);
+  h.drain();
+  EXPECT_EQ(h.mismatches(), 0u);
+  EXPECT_EQ(h.pending(), 0u);
+  std::printf(
+      "[timing] %s: latency %lld cycles, %llu operations taken in %llu cycles, %llu "
+      "credits\n",
+      unit, static_cast<long long>(h.latency()), static_cast<unsigned long long>(n),
+      static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(taken));
+}
+
+TEST(CoreUnits, TravStepRandom) {
+  std::array<uint64_t, 4> cases{};
+  uint64_t t_eq_bound = 0, zero_t = 0;
+  run_random<Vrc_trav_step, TravUnit>(
+      "rc_trav_step", "trav_step<fp24>", 1'000'000, 101, trav_case, [&](const TravUnit::In& in) {
+        const TravUnit::Out o = TravUnit::golden(in);
+        ++cases[o.which];
+        t_eq_bound += (eq(fb(o.t), in.tmin) || eq(fb(o.t), in.tmax)) ? 1 : 0;
+        zero_t += fb(o.t).is_zero() ? 1 : 0;
+      });
+  std::printf(
+      "[info] rc_trav_step coverage: BothWhole %llu, NearOnly %llu, FarOnly %llu, "
+      "BothSplit %llu; t equal to tmin or tmax %llu; t = +-0 %llu\n",
+      static_cast<unsigned long long>(cases[0]), static_cast<unsigned long long>(cases[1]),
+      static_cast<unsigned long long>(cases[2]), static_cast<unsigned long long>(cases[3]),
+      static_cast<unsigned long long>(t_eq_bound), static_cast<unsigned long long>(zero_t));
+  for (uint64_t c : cases) EXPECT_GT(c, 50'000u);
+}
+
+TEST(CoreUnits, TravStepTiming) {
+  run_timing<Vrc_trav_step, TravUnit>("rc_trav_step", 7, 8, trav_case);
+}
+
+TEST(CoreUnits, RaySetupRandom) {
+  uint64_t active = 0, skipped_axes = 0, neg_zero_tmax = 0, zero_dir = 0;
+  run_random<Vrc_ray_setup, SetupUnit>(
+      "rc_ray_setup", "setup_ray<fp24>", 1'000'000, 202, setup_case, [&](const SetupUnit::In& in) {
+        const SetupUnit::Out o = SetupUnit::golden(in);
+        active += o.active ? 1 : 0;
+        neg_zero_tmax += o.tmax == T::kSignBit ? 1 : 0;
+        for (int a = 0; a < 3; ++a) {
+          const T inv = fb(o.inv[a]);
+          const T t0 = (in.bounds[a] - in.org[a]) * inv, t1 = (in.bounds[a + 3] - in.org[a]) * inv;
+          skipped_axes += (t0.is_nan() || t1.is_nan()) ? 1 : 0;
+          zero_dir += in.dir[a].is_zero() ? 1 : 0;
+        }
+      });
+  std::printf(
+      "[info] rc_ray_setup coverage: active %llu of 1000000; skipped (NaN) axes %llu; "
+      "zero direction components %llu; tmax = -0 %llu\n",
+      static_cast<unsigned long long>(active), static_cast<unsigned long long>(skipped_axes),
+      static_cast<unsigned long long>(zero_dir), static_cast<unsigned long long>(neg_zero_tmax));
+  EXPECT_GT(active, 100'000u);
+  EXPECT_LT(active, 900'000u);
+  EXPECT_GT(skipped_axes, 10'000u);
+}
+
+TEST(CoreUnits, RaySetupTiming) {
+  run_timing<Vrc_ray_setup, SetupUnit>("rc_ray_setup", 13, 14, setup_case);
+}
+
+TEST(CoreUnits, ShadeRandom) {
+  uint64_t ties = 0;
+  run_random<Vrc_shade_unit, ShadeUnit>(
+      "rc_shade_unit", "shade<fp24>", 1'000'000, 303, shade_case, [&](const ShadeUnit::In& in) {
+        const T c = min(((in.dz * in.nlen) * in.inv_len).abs(), T::from_double(1.0));
+        const T f = kAmbient + kDiffuse * c;
+        for (T kd : in.kd) ties += is_tie(kd * f) ? 1 : 0;
+      });
+  std::printf("[info] rc_shade_unit: %llu channels met an exact x.5 tie in to_u8\n",
+              static_cast<unsigned long long>(ties));
+  EXPECT_GT(ties, 1000u);
+}
+
+TEST(CoreUnits, ShadeTiming) {
+  run_timing<Vrc_shade_unit, ShadeUnit>("rc_shade_unit", 18, 19, shade_case);
+}
+
+// rc_fp_to_u8 (valid-only, latency 5) against to_u8<fp24>() for every fp24 encoding.
+TEST(CoreUnits, ToU8Exhaustive) {
+  auto ctx = std::make_unique<VerilatedContext>();
+  ctx->assertOn(true);
+  auto dut = std::make_unique<Vrc_fp_to_u8>(ctx.get());
+  std::mt19937_64 rng(404);
+  const auto tick = [&] {
+    dut->clk_i = 1;
+    dut->eval();
+    dut->clk_i = 0;
+    dut->eval();
+  };
+  dut->clk_i = 0;
+  dut->rst_ni = 0;
+  dut->valid_i = 0;
+  dut->eval();
+  tick();
+  tick();
+  dut->rst_ni = 1;
+  tick();
+  struct Expect {
+    uint32_t x;
+    uint8_t want;
+    uint64_t due;
+  };
+  std::deque<Expect> q;
+  uint64_t cycle = 0, cases = 0, mismatches = 0;
+  const auto fail = [&](const std::string& what) {
+    if (++mismatches <= 10) ADD_FAILURE() << what;
+  };
+  const auto check = [&] {
+    dut->eval();
+    if (dut->valid_o) {
+      if (q.empty()) {
+        fail("valid_o with nothing pending");
+      } else {
+        const Expect e = q.front();
+        q.pop_front();
+        if (e.due != cycle) fail("latency: result of " + fb(e.x).hex() + " not 5 cycles late");
+        if (dut->byte_o != e.want)
+          fail("to_u8(" + fb(e.x).hex() + "): rtl " + std::to_string(dut->byte_o) + ", golden " +
+               std::to_string(e.want));
+      }
+    }
+  };
+  for (uint32_t x = 0; x <= T::kMask;) {
+    const bool idle = (rng() & 15) == 0;
+    dut->valid_i = !idle;
+    dut->x_i = x;
+    if (!idle) {
+      q.push_back({x, to_u8<T>(fb(x)), cycle + 5});
+      ++cases;
+      ++x;
+    }
+    check();
+    tick();
+    ++cycle;
+  }
+  dut->valid_i = 0;
+  for (int i = 0; i < 20; ++i) {
+    check();
+    tick();
+    ++cycle;
+  }
+  if (!q.empty()) fail("results missing");
+  dut->final();
+  report_cases("rtl rc_fp_to_u8 vs golden to_u8<fp24>: every fp24 encoding", cases, mismatches);
+  EXPECT_EQ(mismatches, 0u);
+}
+
+}  // namespace
+}  // namespace rc::test
