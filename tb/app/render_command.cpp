@@ -40,21 +40,31 @@ void parse_size(const std::string& text, uint32_t& w, uint32_t& h) {
 }
 
 nlohmann::json counters_json(const Counters& c) {
-  return {{"packets", c.packets},
-          {"rays", c.rays},
-          {"nodes_fetched", c.nodes_fetched},
-          {"inner_visits", c.inner_visits},
-          {"traversal_steps", c.traversal_steps},
-          {"leaf_visits", c.leaf_visits},
-          {"empty_leaf_visits", c.empty_leaves},
-          {"list_entries", c.list_entries},
-          {"triangle_tests", c.triangle_tests},
-          {"stack_pushes", c.stack_pushes},
-          {"stack_pops", c.stack_pops},
-          {"culled_pops", c.culled_pops},
-          {"max_stack", c.max_stack},
-          {"failed_packets", c.errors},
-          {"error_bits", c.error_bits}};
+  const auto per_packet = [&](uint64_t v) {
+    return c.packets ? static_cast<double>(v) / static_cast<double>(c.packets) : 0.0;
+  };
+  nlohmann::json means = {{"nodes_fetched", per_packet(c.nodes_fetched)},
+                          {"traversal_steps", per_packet(c.traversal_steps)},
+                          {"leaf_visits", per_packet(c.leaf_visits)},
+                          {"list_entries", per_packet(c.list_entries)},
+                          {"triangle_tests", per_packet(c.triangle_tests)}};
+  nlohmann::json totals = {{"packets", c.packets},
+                           {"rays", c.rays},
+                           {"nodes_fetched", c.nodes_fetched},
+                           {"inner_visits", c.inner_visits},
+                           {"traversal_steps", c.traversal_steps},
+                           {"leaf_visits", c.leaf_visits},
+                           {"empty_leaf_visits", c.empty_leaves},
+                           {"list_entries", c.list_entries},
+                           {"triangle_tests", c.triangle_tests},
+                           {"stack_pushes", c.stack_pushes},
+                           {"stack_pops", c.stack_pops},
+                           {"culled_pops", c.culled_pops},
+                           {"max_stack", c.max_stack},
+                           {"failed_packets", c.errors},
+                           {"error_bits", c.error_bits}};
+  totals["per_packet_mean"] = means;
+  return totals;
 }
 
 template <class T>
