@@ -16,14 +16,18 @@
 // - Throughput: with a pipeline of latency L (take_i to wr_valid_i), an operation is counted in
 //   cnt_q for L + 1 cycles when ready_i is 1, and credit_o needs cnt_q < Depth, so Depth >= L + 2
 //   sustains one operation per cycle.
-// - Parameters: Width data bits (>= 1); Depth entries (>= 1).
+// - Parameters: Width data bits (>= 1); Depth entries (>= 1); MemArray: 0 = storage in a flat
+//   register vector with a read multiplexer (flip-flops), 1 = storage as a memory array written
+//   at wr_ptr and read asynchronously at rd_ptr, which synthesis can map to distributed RAM
+//   (e.g. ECP5 DPR16X4): the better choice for deep or wide FIFOs. Same behaviour either way.
 // - Illegal input: take_i while credit_o is 0; wr_valid_i for an operation that did not take a
 //   credit (more writes than takes). Both are caught by assertions.
 // - Reset: rst_ni (active low, asynchronous) clears the pointers and counters; the storage has no
 //   reset.
 module rc_credit_fifo #(
-  parameter int unsigned Width = 1,
-  parameter int unsigned Depth = 2
+  parameter int unsigned Width    = 1,
+  parameter int unsigned Depth    = 2,
+  parameter bit          MemArray = 1'b0
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,
@@ -96,20 +100,31 @@ module rc_credit_fifo #(
   // Storage //
   /////////////
 
-  // Entry i at mem_q[i*Width +: Width] (flat vectors: Yosys 0.23 reads no multi-dimensional
-  // packed arrays).
-  logic [Depth*Width-1:0] mem_q;
+  if (MemArray) begin : g_mem_array
+    // Write port at wr_ptr_q, asynchronous read at rd_ptr_q (distributed RAM).
+    logic [Width-1:0] mem_q [0:Depth-1];
 
-  always_ff @(posedge clk_i) begin
-    for (int unsigned i = 0; i < Depth; i++) begin
-      if (wr_valid_i && wr_ptr_q == PtrW'(i)) mem_q[i*Width +: Width] <= wr_data_i;
+    always_ff @(posedge clk_i) begin
+      if (wr_valid_i) mem_q[wr_ptr_q] <= wr_data_i;
     end
-  end
 
-  always_comb begin
-    data_o = '0;
-    for (int unsigned i = 0; i < Depth; i++) begin
-      if (rd_ptr_q == PtrW'(i)) data_o = mem_q[i*Width +: Width];
+    assign data_o = mem_q[rd_ptr_q];
+  end else begin : g_mem_flat
+    // Entry i at mem_q[i*Width +: Width] (flat vectors: Yosys 0.23 reads no multi-dimensional
+    // packed arrays).
+    logic [Depth*Width-1:0] mem_q;
+
+    always_ff @(posedge clk_i) begin
+      for (int unsigned i = 0; i < Depth; i++) begin
+        if (wr_valid_i && wr_ptr_q == PtrW'(i)) mem_q[i*Width +: Width] <= wr_data_i;
+      end
+    end
+
+    always_comb begin
+      data_o = '0;
+      for (int unsigned i = 0; i < Depth; i++) begin
+        if (rd_ptr_q == PtrW'(i)) data_o = mem_q[i*Width +: Width];
+      end
     end
   end
 

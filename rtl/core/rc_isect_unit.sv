@@ -17,11 +17,11 @@
 //   happens on a clock edge where valid and ready are both 1). valid_o never depends on ready_i,
 //   ready_o depends only on registered state, and once valid_o is 1 it stays 1 with all outputs
 //   stable until the transfer. Results leave in input order, none is lost or duplicated. The fp
-//   pipelines cannot stall, so the unit uses credits: an output FIFO of Depth = PipeLat + 2
-//   entries, and ready_o = credit_q < Depth, where credit_q = inputs accepted - outputs taken =
-//   operations in flight + FIFO occupancy (one registered counter), so the FIFO always has room
-//   for everything in flight. PipeLat + 2 is the least depth that sustains one input per cycle
-//   (in steady state PipeLat results are in flight and one waits in the FIFO).
+//   pipelines cannot stall, so the unit uses credits (rc_credit_fifo): an output FIFO of
+//   Depth = PipeLat + 2 entries, and ready_o = credits < Depth, where credits = inputs accepted -
+//   outputs taken = operations in flight + FIFO occupancy (one registered counter), so the FIFO
+//   always has room for everything in flight. PipeLat + 2 is the least depth that sustains one
+//   input per cycle (in steady state PipeLat results are in flight and one waits in the FIFO).
 // - Latency: PipeLat = (MulStages + 3 * AddStages) + DivStages + MulStages + 2 * AddStages +
 //   CmpStages cycles through the arithmetic (11 + 5 + 2 + 6 + 1 = 25 at the defaults mul 2,
 //   add 3, div 5, cmp 1), plus the FIFO's output register: valid_o rises PipeLat + 1 = 26 cycles
@@ -321,66 +321,15 @@ module rc_isect_unit #(
   // Output FIFO with credit flow control //
   ////////////////////////////////////////
 
-  localparam int unsigned Depth = PipeLat + 2;
-  localparam int unsigned PtrW  = $clog2(Depth);
-  localparam int unsigned CntW  = $clog2(Depth + 1);
-  localparam int unsigned DW    = TagW + 32 + 1 + 4 * W;
-
-  logic            push, pop;
-  logic [CntW-1:0] credit_q, credit_d;  // accepted inputs not yet taken at the output
-  logic [CntW-1:0] fill_q, fill_d;      // FIFO occupancy
-  logic [PtrW-1:0] wptr_q, wptr_d, rptr_q, rptr_d;
-  logic [DW-1:0]   mem_q [0:Depth-1];
-
-  assign push    = pipe_valid;
-  assign pop     = valid_o & ready_i;
-  assign ready_o = credit_q < CntW'(Depth);
-  assign valid_o = fill_q != '0;
-
-  always_comb begin
-    credit_d = credit_q;
-    if (in_fire && !pop) begin
-      credit_d = credit_q + 1'b1;
-    end else if (!in_fire && pop) begin
-      credit_d = credit_q - 1'b1;
-    end
-    fill_d = fill_q;
-    if (push && !pop) begin
-      fill_d = fill_q + 1'b1;
-    end else if (!push && pop) begin
-      fill_d = fill_q - 1'b1;
-    end
-    wptr_d = wptr_q;
-    if (push) begin
-      wptr_d = (wptr_q == PtrW'(Depth - 1)) ? '0 : wptr_q + 1'b1;
-    end
-    rptr_d = rptr_q;
-    if (pop) begin
-      rptr_d = (rptr_q == PtrW'(Depth - 1)) ? '0 : rptr_q + 1'b1;
-    end
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      credit_q <= '0;
-      fill_q   <= '0;
-      wptr_q   <= '0;
-      rptr_q   <= '0;
-    end else begin
-      credit_q <= credit_d;
-      fill_q   <= fill_d;
-      wptr_q   <= wptr_d;
-      rptr_q   <= rptr_d;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (push) begin
-      mem_q[wptr_q] <= {pipe_tag, pipe_tri, pipe_hit, pipe_dz, pipe_t, pipe_v, pipe_u};
-    end
-  end
-
-  assign {tag_o, tri_o, hit_o, dz_o, t_o, v_o, u_o} = mem_q[rptr_q];
+  // The credit counter, FIFO pointers and their checks (credit bound, room for every write,
+  // stable output until taken) live in rc_credit_fifo. Depth = PipeLat + 2 sustains one
+  // ray-triangle pair per cycle; the deep, wide FIFO (27 x 137 bits at the defaults) is kept in
+  // distributed RAM (MemArray).
+  rc_credit_fifo #(.Width(TagW + 32 + 1 + 4 * W), .Depth(PipeLat + 2), .MemArray(1'b1)) u_fifo (
+    .clk_i, .rst_ni, .take_i(in_fire), .credit_o(ready_o), .wr_valid_i(pipe_valid),
+    .wr_data_i({pipe_tag, pipe_tri, pipe_hit, pipe_dz, pipe_t, pipe_v, pipe_u}),
+    .valid_o, .ready_i, .data_o({tag_o, tri_o, hit_o, dz_o, t_o, v_o, u_o})
+  );
 
   ////////////////
   // Assertions //
@@ -395,19 +344,6 @@ module rc_isect_unit #(
       checks_on_q <= 1'b1;
     end
   end
-  // The credit scheme guarantees room: a push into a full FIFO would lose a result.
-  FifoNoOverflow_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
-                                     push |-> fill_q < CntW'(Depth));
-  // Outstanding work never exceeds the FIFO depth (ready_o gates every new input).
-  CreditBound_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
-                                  credit_q <= CntW'(Depth));
-  // Everything in the FIFO is also counted as outstanding.
-  FillWithinCredit_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
-                                       fill_q <= credit_q);
-  // Valid/ready: once offered, a result stays offered and unchanged until it is taken.
-  OutStable_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
-                                valid_o && !ready_i |=> valid_o &&
-                                $stable({tag_o, tri_o, hit_o, t_o, u_o, v_o, dz_o}));
   // The parallel pipelines run in lockstep; diverging valids would mean misaligned delay lines.
   Lockstep_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
                                (xo_valid == xd_valid) && (tdx_valid == tdy_valid) &&
