@@ -20,7 +20,6 @@ struct Frame {
   std::vector<int32_t> hit_tri;  // -1 for a miss
   std::vector<float> hit_t;      // hit distance (0 for a miss)
   Counters counters;
-  uint32_t error_bits = 0;
   double seconds = 0.0;
 };
 
