@@ -76,15 +76,14 @@ Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& 
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (uint32_t x = 0; x < opt.width; ++x) {
-      const RayD rd = gen.ray(x, y);
+      const Ray<T> cr = core_ray<T>(gen.ray(x, y));  // widened to float32 exactly below
       RTCRayHit rh{};
-      // the ray as the core sees it (rounded to T), widened exactly to float32
-      rh.ray.org_x = T::from_double(rd.org.x).to_float();
-      rh.ray.org_y = T::from_double(rd.org.y).to_float();
-      rh.ray.org_z = T::from_double(rd.org.z).to_float();
-      rh.ray.dir_x = T::from_double(rd.dir.x).to_float();
-      rh.ray.dir_y = T::from_double(rd.dir.y).to_float();
-      rh.ray.dir_z = T::from_double(rd.dir.z).to_float();
+      rh.ray.org_x = cr.org[0].to_float();
+      rh.ray.org_y = cr.org[1].to_float();
+      rh.ray.org_z = cr.org[2].to_float();
+      rh.ray.dir_x = cr.dir[0].to_float();
+      rh.ray.dir_y = cr.dir[1].to_float();
+      rh.ray.dir_z = cr.dir[2].to_float();
       rh.ray.tnear = 0.0f;
       rh.ray.tfar = std::numeric_limits<float>::infinity();
       rh.ray.mask = 0xffffffffu;

@@ -31,6 +31,18 @@ struct RenderOptions {
   bool progress = true;  // progress bar on stderr for renders longer than a second
 };
 
+// A generated ray as the core sees it: each component rounded to the format once.
+template <class T>
+Ray<T> core_ray(const RayD& d) {
+  Ray<T> r;
+  for (int a = 0; a < 3; ++a) {
+    r.org[a] = T::from_double(d.org[a]);
+    r.dir[a] = T::from_double(d.dir[a]);
+  }
+  r.inv_len = T::from_double(d.inv_len);
+  return r;
+}
+
 // The four rays of packet (px, py): pixels (2px + (r & 1), 2py + (r >> 1)) for r = 0..3; a ray
 // whose pixel lies outside the image is absent (its mask bit is 0).
 template <class T>
@@ -41,12 +53,7 @@ uint32_t make_packet(const RayGenerator& gen, uint32_t px, uint32_t py,
     const uint32_t x = 2 * px + (static_cast<uint32_t>(r) & 1u);
     const uint32_t y = 2 * py + (static_cast<uint32_t>(r) >> 1);
     if (x >= gen.width() || y >= gen.height()) continue;
-    const RayD d = gen.ray(x, y);
-    for (int a = 0; a < 3; ++a) {
-      rays[r].org[a] = T::from_double(d.org[a]);
-      rays[r].dir[a] = T::from_double(d.dir[a]);
-    }
-    rays[r].inv_len = T::from_double(d.inv_len);
+    rays[r] = core_ray<T>(gen.ray(x, y));
     mask |= 1u << r;
   }
   return mask;
