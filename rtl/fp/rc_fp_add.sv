@@ -61,9 +61,6 @@ module rc_fp_add #(
   // Unbounded result exponent, two's complement: holds -(SumW) .. 2^ExpW.
   localparam int unsigned ExW   = ((ExpW > LzW) ? ExpW : LzW) + 2;
 
-  localparam logic [ExpW-1:0] ExpOnes = {ExpW{1'b1}};
-  localparam logic [W-1:0]    QNaN    = (W'(ExpOnes) << FracW) | (W'(1) << (FracW - 1));
-
   // Cut placement (see the header).
   localparam bit          Cut1    = Stages >= 3;  // between segment 0 and segment 1
   localparam bit          Cut2    = Stages >= 2;  // between segment 1 and segment 2
@@ -193,38 +190,37 @@ module rc_fp_add #(
 
   logic [SumW-1:0] norm;
   logic [ManW-1:0] man;
-  logic            round_bit, sticky_bit, round_up, sum_zero, exp_uflow, exp_oflow;
-  logic [ManW:0]   man_rounded;
-  logic [ExW-1:0]  exp_rounded;
+  logic            round_bit, sticky_bit, round_up, sum_zero;
+  logic [ExW-1:0]  exp_norm;
   logic [W-1:0]    res_d;
 
-  assign norm        = sum_s2 << lz_s2;  // leading one to the top bit
-  assign man         = norm[SumW-1 -: ManW];
-  assign round_bit   = norm[3];
-  assign sticky_bit  = |norm[2:0];
-  assign round_up    = round_bit & (sticky_bit | man[0]);
-  assign man_rounded = {1'b0, man} + (ManW + 1)'(round_up);
+  assign norm       = sum_s2 << lz_s2;  // leading one to the top bit
+  assign man        = norm[SumW-1 -: ManW];
+  assign round_bit  = norm[3];
+  assign sticky_bit = |norm[2:0];
+  assign round_up   = round_bit & (sticky_bit | man[0]);
   // The leading one of the sum sits at bit SumW-2 for an unshifted big operand, so the result
-  // exponent is big_exp + 1 - lz, plus one when rounding carries out of the significand.
-  assign exp_rounded = ExW'(big_exp_s2) + ExW'(1) - ExW'(lz_s2) + ExW'(man_rounded[ManW]);
-  assign sum_zero    = lz_s2 == LzW'(SumW);
-  assign exp_uflow   = exp_rounded[ExW-1] | ~|exp_rounded;
-  assign exp_oflow   = ~exp_rounded[ExW-1] & (exp_rounded >= ExW'(ExpOnes));
+  // exponent is big_exp + 1 - lz (rc_fp_round_pack adds one when rounding carries out).
+  assign exp_norm   = ExW'(big_exp_s2) + ExW'(1) - ExW'(lz_s2);
+  // An exact zero sum has exp_norm <= big_exp - 5 < all ones and no rounding carry, so gating
+  // the overflow with zero_i inside rc_fp_round_pack changes nothing here.
+  assign sum_zero   = lz_s2 == LzW'(SumW);
 
-  always_comb begin
-    if (spec_nan_s2) begin
-      res_d = QNaN;
-    end else if (spec_inf_s2 || exp_oflow) begin
-      res_d = {big_sign_s2, ExpOnes, {FracW{1'b0}}};
-    end else if (sum_zero) begin
-      res_d = {zero_sign_s2, {(W - 1){1'b0}}};
-    end else if (exp_uflow) begin
-      res_d = {big_sign_s2, {(W - 1){1'b0}}};
-    end else begin
-      // On a carry out man_rounded is 10...0, so its low FracW bits are the right fraction (0).
-      res_d = {big_sign_s2, exp_rounded[ExpW-1:0], man_rounded[FracW-1:0]};
-    end
-  end
+  rc_fp_round_pack #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .ExW  (ExW)
+  ) u_round_pack (
+    .nan_i      (spec_nan_s2),
+    .inf_i      (spec_inf_s2),
+    .zero_i     (sum_zero),
+    .zero_sign_i(zero_sign_s2),
+    .sign_i     (big_sign_s2),
+    .exp_i      (exp_norm),
+    .man_i      (man),
+    .round_up_i (round_up),
+    .res_o      (res_d)
+  );
 
   ///////////////////////////////
   // Output and valid pipeline //

@@ -66,9 +66,6 @@ module rc_fp_div #(
   localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
   localparam int unsigned OutRegs = Stages - ((Slots - 1) * Se) / Slots;
 
-  localparam logic [ExpW-1:0] ExpOnes = {ExpW{1'b1}};
-  localparam logic [W-1:0]    QNaN    = (W'(ExpOnes) << FracW) | (W'(1) << (FracW - 1));
-
   // Per-operation flags carried down the pipeline: {spec_nan, spec_inf, spec_zero, sign}.
   localparam int unsigned MetaW = 4;
   localparam int unsigned HdrW  = MetaW + ExW;
@@ -177,34 +174,32 @@ module rc_fp_div #(
   ///////////////////////////////////////////////
 
   logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
-  logic [ExW-1:0]  exp_f, exp_rounded;
+  logic [ExW-1:0]  exp_f;
   logic [RemW-1:0] rem_f;
   logic [N-1:0]    quo_f;
   logic [ManW-1:0] man;
-  logic            round_up, exp_uflow, exp_oflow;
-  logic [ManW:0]   man_rounded;
+  logic            round_up;
   logic [W-1:0]    res_d;
 
   assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, rem_f, quo_f} = fin_q;
-  assign man         = quo_f[N-1:1];
-  assign round_up    = quo_f[0] & ((|rem_f) | man[0]);
-  assign man_rounded = {1'b0, man} + (ManW + 1)'(round_up);
-  assign exp_rounded = exp_f + ExW'(man_rounded[ManW]);
-  assign exp_uflow   = exp_rounded[ExW-1] | ~|exp_rounded;
-  assign exp_oflow   = ~exp_rounded[ExW-1] & (exp_rounded >= ExW'(ExpOnes));
+  assign man      = quo_f[N-1:1];
+  assign round_up = quo_f[0] & ((|rem_f) | man[0]);
 
-  always_comb begin
-    if (spec_nan_f) begin
-      res_d = QNaN;
-    end else if (spec_inf_f || (!spec_zero_f && exp_oflow)) begin
-      res_d = {sign_f, ExpOnes, {FracW{1'b0}}};
-    end else if (spec_zero_f || exp_uflow) begin
-      res_d = {sign_f, {(W - 1){1'b0}}};
-    end else begin
-      // On a carry out man_rounded is 10...0, so its low FracW bits are the right fraction (0).
-      res_d = {sign_f, exp_rounded[ExpW-1:0], man_rounded[FracW-1:0]};
-    end
-  end
+  rc_fp_round_pack #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .ExW  (ExW)
+  ) u_round_pack (
+    .nan_i      (spec_nan_f),
+    .inf_i      (spec_inf_f),
+    .zero_i     (spec_zero_f),
+    .zero_sign_i(sign_f),
+    .sign_i     (sign_f),
+    .exp_i      (exp_f),
+    .man_i      (man),
+    .round_up_i (round_up),
+    .res_o      (res_d)
+  );
 
   ///////////////////////////////
   // Output and valid pipeline //

@@ -58,9 +58,6 @@ module rc_fp_mul #(
   localparam int unsigned ExW   = ExpW + 2;           // unbounded exponent, two's complement
   localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
 
-  localparam logic [ExpW-1:0] ExpOnes = {ExpW{1'b1}};
-  localparam logic [W-1:0]    QNaN    = (W'(ExpOnes) << FracW) | (W'(1) << (FracW - 1));
-
   localparam bit          CutA    = Stages >= 3;
   localparam bit          CutB    = Stages >= 2;
   localparam bit          CutC    = Stages >= 4;
@@ -190,29 +187,25 @@ module rc_fp_mul #(
   ////////////////////////////////////////////
 
   logic            spec_nan_s3, spec_inf_s3, spec_zero_s3, sign_s3;
-  logic [ManW:0]   man_rounded;
-  logic [ExW-1:0]  exp_rounded;
-  logic            exp_uflow, exp_oflow;
   logic [W-1:0]    res_d;
 
   assign {spec_nan_s3, spec_inf_s3, spec_zero_s3, sign_s3} = meta_s3;
-  assign man_rounded = {1'b0, man_s3} + (ManW + 1)'(round_up_s3);
-  assign exp_rounded = exp_s3 + ExW'(man_rounded[ManW]);
-  assign exp_uflow   = exp_rounded[ExW-1] | ~|exp_rounded;
-  assign exp_oflow   = ~exp_rounded[ExW-1] & (exp_rounded >= ExW'(ExpOnes));
 
-  always_comb begin
-    if (spec_nan_s3) begin
-      res_d = QNaN;
-    end else if (spec_inf_s3 || (!spec_zero_s3 && exp_oflow)) begin
-      res_d = {sign_s3, ExpOnes, {FracW{1'b0}}};
-    end else if (spec_zero_s3 || exp_uflow) begin
-      res_d = {sign_s3, {(W - 1){1'b0}}};
-    end else begin
-      // On a carry out man_rounded is 10...0, so its low FracW bits are the right fraction (0).
-      res_d = {sign_s3, exp_rounded[ExpW-1:0], man_rounded[FracW-1:0]};
-    end
-  end
+  rc_fp_round_pack #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .ExW  (ExW)
+  ) u_round_pack (
+    .nan_i      (spec_nan_s3),
+    .inf_i      (spec_inf_s3),
+    .zero_i     (spec_zero_s3),
+    .zero_sign_i(sign_s3),
+    .sign_i     (sign_s3),
+    .exp_i      (exp_s3),
+    .man_i      (man_s3),
+    .round_up_i (round_up_s3),
+    .res_o      (res_d)
+  );
 
   ///////////////////////////////
   // Output and valid pipeline //
