@@ -133,33 +133,31 @@ module rc_credit_fifo #(
   ////////////////
 
 `ifndef SYNTHESIS
-  // Simulation-only: 1 from the first clock edge after a reset (see rc_fp_cmp for the pattern).
-  logic checks_on_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      checks_on_q <= 1'b0;
-    end else begin
-      checks_on_q <= 1'b1;
-    end
-  end
+  // Simulation-only: 1 from the first clock edge after a reset (rc_checks_on).
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
 
   // An operation may only enter the pipeline with a credit, or its result could find no slot.
-  TakeHasCredit_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  TakeHasCredit_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     take_i |-> credit_o);
   // Every write was reserved by a credit, so the FIFO is never full when a write arrives.
-  WriteHasRoom_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  WriteHasRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    wr_valid_i |-> occ_q < DepthCnt);
   // Stored entries are a subset of the credits in use (the rest are in flight).
-  OccWithinCredits_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  OccWithinCredits_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                        occ_q <= cnt_q && cnt_q <= DepthCnt);
   // Handshake outputs must be known once out of reset.
-  HandshakeKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  HandshakeKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                      !$isunknown({valid_o, credit_o}));
   // A result offered downstream must be fully determined.
-  DataKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  DataKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 valid_o |-> !$isunknown(data_o));
   // The offered entry stays until it is taken (registered FIFO head).
-  ValidStable_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ValidStable_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   valid_o && !ready_i |=> valid_o && $stable(data_o));
 `endif
 

@@ -184,28 +184,26 @@ module rc_fp_to_u8 #(
   ////////////////
 
 `ifndef SYNTHESIS
-  // Simulation-only: 1 from the first clock edge after a reset (see rc_fp_cmp for the pattern).
-  logic checks_on_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      checks_on_q <= 1'b0;
-    end else begin
-      checks_on_q <= 1'b1;
-    end
-  end
+  // Simulation-only: 1 from the first clock edge after a reset (rc_checks_on).
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
 
   // min(max(x, 0), 1) * 255 is at most 255, so the shift never exceeds 8 and rounding never
   // carries out of the byte; a NaN can only come from a NaN v.
-  InRange_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  InRange_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               mul_valid && !nan_q[NanDly-1] && !below_half |->
                               sh_full <= ExpW'(8) && !rounded[8]);
   // v >= +0 (max with +0 turns -0 into +0) and the canonical NaN is positive, so p has no sign.
-  PositiveProduct_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  PositiveProduct_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                       mul_valid |-> !p[W-1]);
   // The output qualifies with valid_o, so it must be known once out of reset.
-  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(valid_o));
-  ByteKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ByteKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 valid_o |-> !$isunknown(byte_o));
 `endif
 

@@ -336,24 +336,22 @@ module rc_isect_unit #(
   ////////////////
 
 `ifndef SYNTHESIS
-  logic checks_on_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      checks_on_q <= 1'b0;
-    end else begin
-      checks_on_q <= 1'b1;
-    end
-  end
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
   // The parallel pipelines run in lockstep; diverging valids would mean misaligned delay lines.
-  Lockstep_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  Lockstep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                (xo_valid == xd_valid) && (tdx_valid == tdy_valid) &&
                                (u_valid == v_valid) && (c0t_valid == ctb_valid) &&
                                (c0u_valid == c0v_valid));
   // The consumer qualifies everything with valid_o, so it must be known once out of reset.
-  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown({valid_o, ready_o}));
   // A valid result is fully determined by known inputs.
-  ResKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ResKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                valid_o |-> !$isunknown({hit_o, t_o, u_o, v_o, dz_o}));
 `endif
 

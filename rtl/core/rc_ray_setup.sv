@@ -371,28 +371,26 @@ module rc_ray_setup #(
   ////////////////
 
 `ifndef SYNTHESIS
-  // Simulation-only: 1 from the first clock edge after a reset (see rc_fp_cmp for the pattern).
-  logic checks_on_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      checks_on_q <= 1'b0;
-    end else begin
-      checks_on_q <= 1'b1;
-    end
-  end
+  // Simulation-only: 1 from the first clock edge after a reset (rc_checks_on).
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
 
   // The three axes' units run in lock step; their valid chains must agree.
-  AxesLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  AxesLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    (&div_valid == |div_valid) && (&mm_valid == |mm_valid));
   // The divider and the subtracts are aligned (same Stages), so their results meet.
-  SubDivAligned_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  SubDivAligned_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     div_valid == unused_sub_lo_valid &&
                                     div_valid == unused_sub_hi_valid);
   // tmin starts at +0 and only grows through non-NaN values, so it is never NaN.
-  TminNotNan_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  TminNotNan_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  le_valid |-> !is_nan(tmin_f[W-2:0]) && !is_nan(tmax_f[W-2:0]));
   // ready_o must be known once out of reset (upstream acts on it).
-  ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));
 `endif
 

@@ -254,15 +254,13 @@ module rc_shade_unit #(
   ////////////////
 
 `ifndef SYNTHESIS
-  // Simulation-only: 1 from the first clock edge after a reset (see rc_fp_cmp for the pattern).
-  logic checks_on_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      checks_on_q <= 1'b0;
-    end else begin
-      checks_on_q <= 1'b1;
-    end
-  end
+  // Simulation-only: 1 from the first clock edge after a reset (rc_checks_on).
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
 
   // Operations between the taking edge and the FIFO write (simulation-only bookkeeping).
   logic [$clog2(PipeLat + 2)-1:0] inflight_q;
@@ -276,13 +274,13 @@ module rc_shade_unit #(
 
   // ambient_i and diffuse_i are sampled mid-pipeline: changing them with operations in flight
   // would shade those operations with a mix of old and new constants.
-  ConstantsQuasiStatic_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ConstantsQuasiStatic_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                            !$stable({ambient_i, diffuse_i}) |-> inflight_q == '0);
   // The three channels run in lock step.
-  ChannelsLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ChannelsLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                        (&ch_valid == |ch_valid) && (&u8_valid == |u8_valid));
   // ready_o must be known once out of reset (upstream acts on it).
-  ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));
 `endif
 

@@ -232,25 +232,23 @@ module rc_trav_step #(
   ////////////////
 
 `ifndef SYNTHESIS
-  // Simulation-only: 1 from the first clock edge after a reset (see rc_fp_cmp for the pattern).
-  logic checks_on_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      checks_on_q <= 1'b0;
-    end else begin
-      checks_on_q <= 1'b1;
-    end
-  end
+  // Simulation-only: 1 from the first clock edge after a reset (rc_checks_on).
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
 
   // The two compare units run in lock step, so their valid chains must agree.
-  CmpLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  CmpLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   cmp_valid == unused_hi_valid);
   // A NaN t compares false both ways; beyond and behind at once would mean tmin > tmax, which is
   // legal input, so only the NaN implication is checked.
-  NanComparesFalse_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  NanComparesFalse_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                        cmp_valid && t_nan |-> !beyond && !behind);
   // ready_o must be known once out of reset (upstream acts on it).
-  ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));
 `endif
 

@@ -129,7 +129,7 @@ module rc_fp_cmp #(
 `ifndef SYNTHESIS
   // le is lt or eq, and lt excludes eq: a cheap internal consistency check (checked once u_out's
   // own checks are on, i.e. after the first reset).
-  LeConsistent_A: assert property (@(posedge clk_i) disable iff (u_out.checks_on_q !== 1'b1)
+  LeConsistent_A: assert property (@(posedge clk_i) disable iff (u_out.checks_on !== 1'b1)
                                    valid_o |-> (le_o == (lt_o | eq_o)) && !(lt_o && eq_o));
 `endif
 

@@ -45,23 +45,19 @@ module rc_pipe_out #(
   assign valid_o = valid_q[Stages-1];
 
 `ifndef SYNTHESIS
-  // Simulation-only: 1 from the first clock edge after a reset has been seen. The assertions use
-  // it instead of sampling rst_ni synchronously (rst_ni stays a purely asynchronous reset), and
-  // it keeps them quiet before the first reset, while the pipeline still holds X.
-  logic checks_on_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      checks_on_q <= 1'b0;
-    end else begin
-      checks_on_q <= 1'b1;
-    end
-  end
+  // Simulation-only: 1 from the first clock edge after a reset (rc_checks_on).
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
 
   // The consumer qualifies data_o with valid_o, so valid_o must be known once out of reset.
-  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  ValidKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(valid_o));
   // A valid result must be fully determined by inputs that were known when they were valid.
-  DataKnown_A: assert property (@(posedge clk_i) disable iff (checks_on_q !== 1'b1)
+  DataKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 valid_o |-> !$isunknown(data_o));
 `endif
 
