@@ -191,6 +191,9 @@ TEST(FpModel, Fp24UnaryExhaustive) {
   using T = fp24;
   Mpfr<T> ref;
   const T one = T::from_double(1.0);
+  EXPECT_EQ(T::one().bits(), one.bits());
+  EXPECT_EQ(fp_reduced::one().bits(), fp_reduced::from_double(1.0).bits());
+  EXPECT_EQ(fp32ftz::one().bits(), fp32ftz::from_double(1.0).bits());
   uint64_t bad = 0, reported = 0;
   const uint32_t n = 1u << T::kWidth;
   const auto fail = [&](const char* what, T x) {

@@ -54,6 +54,7 @@ class Fp {
   static constexpr Fp zero(bool neg = false) { return Fp(neg ? kSignBit : 0); }
   static constexpr Fp inf(bool neg = false) { return Fp(kInfBits | (neg ? kSignBit : 0)); }
   static constexpr Fp nan() { return Fp(kQNaNBits); }
+  static constexpr Fp one() { return Fp(static_cast<uint32_t>(kBias) << F); }  // {0, bias, 0}
   static constexpr Fp max_normal(bool neg = false) {
     return Fp(kMaxNormalBits | (neg ? kSignBit : 0));
   }

@@ -115,7 +115,7 @@ bool intersect(const std::array<T, 12>& m, const Ray<T>& r, int32_t tri, const H
   const T t = (-oz) / dz;
   const T u = ox + t * dx;
   const T v = oy + t * dy;
-  const T zero = T::zero(), one = T::from_double(1.0);
+  const T zero = T::zero(), one = T::one();
   if (!(lt(zero, t) && le(zero, u) && le(zero, v) && le(u + v, one))) return false;
   if (!(lt(t, best.t) || (eq(t, best.t) && tri < best.tri))) return false;
   h.tri = tri;
@@ -141,7 +141,7 @@ struct RaySetup {
 template <class T>
 RaySetup<T> setup_ray(const Ray<T>& r, const std::array<T, 6>& bounds) {
   RaySetup<T> s;
-  const T one = T::from_double(1.0);
+  const T one = T::one();
   for (int a = 0; a < 3; ++a) s.inv[a] = one / r.dir[a];
   s.tmin = T::zero();
   s.tmax = T::inf();
@@ -290,7 +290,7 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
 //   byte = round_to_nearest_even(min(max(channel, 0), 1) * 255).
 template <class T>
 uint8_t to_u8(T x) {
-  const T zero = T::zero(), one = T::from_double(1.0);
+  const T zero = T::zero(), one = T::one();
   T v = max(x, zero);
   if (v.is_nan()) return 0;
   v = min(v, one) * T::from_double(255.0);
@@ -306,7 +306,7 @@ template <class T>
 std::array<uint8_t, 3> shade(const Geometry<T>& g, const Ray<T>& r, const Hit<T>& h) {
   const T ambient = T::from_double(static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
   const T diffuse = T::from_double(1.0 - static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
-  const T c = min(((h.dz * g.normal_len[h.tri]) * r.inv_len).abs(), T::from_double(1.0));
+  const T c = min(((h.dz * g.normal_len[h.tri]) * r.inv_len).abs(), T::one());
   const T f = ambient + diffuse * c;
   const auto& kd = g.kd[g.material[h.tri]];
   return {to_u8(kd[0] * f), to_u8(kd[1] * f), to_u8(kd[2] * f)};
