@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Synthesize each arithmetic unit with Yosys synth_ecp5 and print its utilisation.
 
-Usage: synth_units.py --build BUILD_DIR [--markdown] [--param NAME=VALUE ...] RTL_FILE...
+Usage: synth_units.py --build BUILD_DIR [--units A,B] [--markdown] [--param NAME=VALUE ...] RTL_FILE...
 
-For every unit in UNITS this runs `yosys synth_ecp5 -top <unit>` on the given RTL files (the file
+For every unit in UNITS (or --units, e.g. --units rc_core for the whole core) this runs `yosys synth_ecp5 -top <unit>` on the given RTL files (the file
 list of rtl/rtl_files.f) at its default parameters (fp24), reads `stat -json`, and prints LUT4s,
 flip-flops, 18x18 multipliers, carry cells and block RAMs. Logs and JSON go to BUILD_DIR/synth/.
 Exits non-zero when Yosys fails or reports a latch.
@@ -54,6 +54,7 @@ def main():
     ap.add_argument("--build", default="build")
     ap.add_argument("--markdown", action="store_true", help="print a Markdown table")
     ap.add_argument("--param", action="append", default=[], help="NAME=VALUE for every unit")
+    ap.add_argument("--units", default=",".join(UNITS), help="comma-separated top modules")
     ap.add_argument("files", nargs="+")
     args = ap.parse_args()
     params = [p.split("=", 1) for p in args.param]
@@ -61,7 +62,7 @@ def main():
     out_dir.mkdir(parents=True, exist_ok=True)
 
     rows = []
-    for unit in UNITS:
+    for unit in [u for u in args.units.split(",") if u]:
         result = synth(unit, args.files, out_dir, params)
         if result is None:
             return 1
@@ -80,6 +81,12 @@ def main():
         print("  ".join(h.rjust(w) for h, w in zip(heads, widths)))
         for r in table:
             print("  ".join(c.rjust(w) for c, w in zip(r, widths)))
+    # The share of the ECP5 LFE5U-85F (ULX3S): 83,640 LUT4 and flip-flops, 156 MULT18X18D, 208 DP16KD.
+    device = {"LUT4": 83640, "flip-flops": 83640, "MULT18X18D": 156, "block RAM (DP16KD)": 208}
+    for unit, counts, _ in rows:
+        shares = [f"{h} {100.0 * c / device[h]:.1f}%" for (h, _), c in zip(COLUMNS, counts)
+                  if h in device]
+        print(f"{unit} on the LFE5U-85F: " + ", ".join(shares))
     print(f"(Yosys synth_ecp5, default parameters{', ' if params else ''}"
           f"{', '.join(f'{k}={v}' for k, v in params)}; logs in {out_dir})")
     return 0

@@ -13,3 +13,5 @@ rtl/core/rc_ray_setup.sv
 rtl/core/rc_shade_unit.sv
 rtl/core/rc_xform_unit.sv
 rtl/core/rc_isect_unit.sv
+rtl/core/rc_rr_pick.sv
+rtl/core/rc_core.sv

@@ -1,0 +1,1439 @@
+// rc_core: the ray tracing core. Traces four-ray packets through the kd-tree of a memory image and
+// shades their closest hits, exactly by the rules of docs/architecture.md (rc::trace_packet() and
+// rc::shade() of tb/golden/trace.hpp), with up to Threads packets in flight.
+//
+// Contract
+// - Configuration inputs (bounds_i, *_count_i, ambient_i, diffuse_i, background_i) are
+//   quasi-static: change them only while idle_o is 1 and no packet is offered.
+//   bounds_i: the header's root box (lo x, y, z, hi x, y, z); node/list/tri_count_i: the record
+//   counts of those sections (the core's malformed-node and bad-address checks use them);
+//   ambient_i/diffuse_i: the format values of ambient and 1 - ambient; background_i: the miss
+//   colour, R [7:0], G [15:8], B [23:16].
+// - Packet input: valid/ready. pkt_mask_i bit r: ray r exists. Per ray r: origin and direction
+//   component a at [(3r + a)*W +: W], inv_len at [r*W +: W], pixel id at [r*32 +: 32]. A packet
+//   is taken when a thread is free; its rays then pass ray set-up one per cycle.
+// - Framebuffer write port: valid/ready, one write per existing ray of every packet, in no
+//   particular order: fb_pixel_o (the ray's pixel id), fb_rgb_o, and the ray's hit record
+//   (fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o; zero on a miss). A packet that met an error
+//   writes the background with no hit for every ray.
+// - Memory ports node_, list_, tri_, shd_, mat_: the protocol of docs/architecture.md ("Memory
+//   ports"): request (index, tag) and response (tag, data, error) handshakes, responses in any
+//   order after any delay. Records: node 64 bits, list entry 32, triangle 12*W, shading record
+//   32 + 4*W, material 96 (the material record's kd field: three 32-bit slots). Tags are
+//   CoreTagBits wide; the core never has two requests with the same tag outstanding on a port.
+// - Status: idle_o = no packet in flight and no write pending. error_o (sticky until reset):
+//   CoreStatus* bits: malformed node, bad address (also any error response), stack overflow,
+//   watchdog (work held and no handshake completed for WatchdogCycles cycles).
+// - Performance counters: perf_o = counter number perf_sel_i (CoreStatus/CorePerf* of rc_pkg),
+//   combinational from registers; numbers >= CorePerfCount read 0.
+// - Handshakes: valid never depends on ready on any port; a valid with its payload stays until
+//   taken.
+// - Illegal input: configuration changes while busy; a response with a tag that is not
+//   outstanding, or two responses for one request (assertions catch both).
+// - Reset: rst_ni, active low, asynchronous; clears all control state.
+module rc_core #(
+  parameter int unsigned ExpW           = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW          = rc_pkg::Fp24FracW,
+  parameter int unsigned Threads        = rc_pkg::CoreThreads,
+  parameter int unsigned StackDepth     = rc_pkg::KdtreeStackDepth,
+  parameter int unsigned ListTags       = rc_pkg::CoreListTags,
+  parameter int unsigned WatchdogCycles = rc_pkg::CoreWatchdogCycles,
+  // Derived (do not override).
+  parameter int unsigned W              = 1 + ExpW + FracW,
+  parameter int unsigned TagW           = rc_pkg::CoreTagBits,
+  parameter int unsigned StatusW        = rc_pkg::CoreStatusBits
+) (
+  input  logic              clk_i,
+  input  logic              rst_ni,
+
+  // Configuration (quasi-static).
+  input  logic [6*W-1:0]    bounds_i,
+  input  logic [31:0]       node_count_i,
+  input  logic [31:0]       list_count_i,
+  input  logic [31:0]       tri_count_i,
+  input  logic [W-1:0]      ambient_i,
+  input  logic [W-1:0]      diffuse_i,
+  input  logic [23:0]       background_i,
+
+  // Packet input.
+  input  logic              pkt_valid_i,
+  output logic              pkt_ready_o,
+  input  logic [3:0]        pkt_mask_i,
+  input  logic [12*W-1:0]   pkt_org_i,
+  input  logic [12*W-1:0]   pkt_dir_i,
+  input  logic [4*W-1:0]    pkt_inv_len_i,
+  input  logic [127:0]      pkt_pixel_i,
+
+  // Framebuffer write port.
+  output logic              fb_valid_o,
+  input  logic              fb_ready_i,
+  output logic [31:0]       fb_pixel_o,
+  output logic [23:0]       fb_rgb_o,
+  output logic              fb_hit_o,
+  output logic [31:0]       fb_tri_o,
+  output logic [W-1:0]      fb_t_o,
+  output logic [W-1:0]      fb_u_o,
+  output logic [W-1:0]      fb_v_o,
+
+  // Memory port: kd nodes.
+  output logic              node_req_valid_o,
+  input  logic              node_req_ready_i,
+  output logic [TagW-1:0]   node_req_tag_o,
+  output logic [31:0]       node_req_index_o,
+  input  logic              node_rsp_valid_i,
+  output logic              node_rsp_ready_o,
+  input  logic [TagW-1:0]   node_rsp_tag_i,
+  input  logic [63:0]       node_rsp_data_i,
+  input  logic              node_rsp_error_i,
+
+  // Memory port: leaf lists.
+  output logic              list_req_valid_o,
+  input  logic              list_req_ready_i,
+  output logic [TagW-1:0]   list_req_tag_o,
+  output logic [31:0]       list_req_index_o,
+  input  logic              list_rsp_valid_i,
+  output logic              list_rsp_ready_o,
+  input  logic [TagW-1:0]   list_rsp_tag_i,
+  input  logic [31:0]       list_rsp_data_i,
+  input  logic              list_rsp_error_i,
+
+  // Memory port: triangles (unit-triangle transforms).
+  output logic              tri_req_valid_o,
+  input  logic              tri_req_ready_i,
+  output logic [TagW-1:0]   tri_req_tag_o,
+  output logic [31:0]       tri_req_index_o,
+  input  logic              tri_rsp_valid_i,
+  output logic              tri_rsp_ready_o,
+  input  logic [TagW-1:0]   tri_rsp_tag_i,
+  input  logic [12*W-1:0]   tri_rsp_data_i,
+  input  logic              tri_rsp_error_i,
+
+  // Memory port: shading records.
+  output logic              shd_req_valid_o,
+  input  logic              shd_req_ready_i,
+  output logic [TagW-1:0]   shd_req_tag_o,
+  output logic [31:0]       shd_req_index_o,
+  input  logic              shd_rsp_valid_i,
+  output logic              shd_rsp_ready_o,
+  input  logic [TagW-1:0]   shd_rsp_tag_i,
+  input  logic [32+4*W-1:0] shd_rsp_data_i,
+  input  logic              shd_rsp_error_i,
+
+  // Memory port: materials (kd).
+  output logic              mat_req_valid_o,
+  input  logic              mat_req_ready_i,
+  output logic [TagW-1:0]   mat_req_tag_o,
+  output logic [31:0]       mat_req_index_o,
+  input  logic              mat_rsp_valid_i,
+  output logic              mat_rsp_ready_o,
+  input  logic [TagW-1:0]   mat_rsp_tag_i,
+  input  logic [95:0]       mat_rsp_data_i,
+  input  logic              mat_rsp_error_i,
+
+  // Status and counters.
+  output logic              idle_o,
+  output logic [StatusW-1:0] error_o,
+  input  logic [7:0]        perf_sel_i,
+  output logic [63:0]       perf_o
+);
+
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  localparam int unsigned ThrW    = (Threads > 1) ? $clog2(Threads) : 1;
+  localparam int unsigned RidW    = ThrW + 2;                    // ray id {thread, ray}
+  localparam int unsigned NodeW   = rc_pkg::KdNodeIndexBits;
+  localparam int unsigned SpW     = $clog2(StackDepth + 1);      // holds 0 .. StackDepth
+  localparam int unsigned SpIdxW  = (StackDepth > 1) ? $clog2(StackDepth) : 1;
+  localparam int unsigned EntryW  = NodeW + 4 + 8 * W;           // stack entry
+  localparam int unsigned LtW     = (ListTags > 1) ? $clog2(ListTags) : 1;
+  localparam int unsigned NPerf   = rc_pkg::CorePerfCount;
+
+  if (Threads < 1 || Threads > rc_pkg::CoreMaxThreads || RidW > TagW || LtW > TagW ||
+      ThrW + 3 > 16 || StackDepth < 1 || (1 << SpIdxW) != StackDepth || ListTags < 2 ||
+      W > 32 || FracW < 7 || WatchdogCycles < 2) begin : g_param_check
+    $error("rc_core: need 1 <= Threads <= CoreMaxThreads, StackDepth a power of two, ListTags >= 2 and at most 2^TagW, an fp format of at most 32 bits with FracW >= 7");
+  end
+
+  // Thread states (one per thread; exactly one unit owns a thread at a time).
+  localparam logic [3:0] StFree    = 4'd0;  // no packet
+  localparam logic [3:0] StSetup   = 4'd1;  // rays in ray set-up
+  localparam logic [3:0] StFetch   = 4'd2;  // waiting to fetch its current node
+  localparam logic [3:0] StNode    = 4'd3;  // node requested, or in the traversal sub-units
+  localparam logic [3:0] StLeaf    = 4'd4;  // leaf waiting for the list unit
+  localparam logic [3:0] StLeafRun = 4'd5;  // leaf triangles in the list/intersection units
+  localparam logic [3:0] StPop     = 4'd6;  // waiting to pop
+  localparam logic [3:0] StPopping = 4'd7;  // stack entry read and culled
+  localparam logic [3:0] StDone    = 4'd8;  // traced, waiting for shading
+  localparam logic [3:0] StShade   = 4'd9;  // rays in shading / framebuffer writes
+
+  localparam logic [W-1:0] FpInf = {1'b0, {ExpW{1'b1}}, {FracW{1'b0}}};
+  localparam int unsigned  ErrMalformed = rc_pkg::CoreStatusMalformedNode;
+  localparam int unsigned  ErrBadAddr   = rc_pkg::CoreStatusBadAddress;
+  localparam int unsigned  ErrOverflow  = rc_pkg::CoreStatusStackOverflow;
+  localparam int unsigned  ErrWatchdog  = rc_pkg::CoreStatusWatchdog;
+
+  //////////////////////////
+  // Per-thread state     //
+  //////////////////////////
+
+  // Control state with reset, as flat vectors (thread t at [t*X +: X]).
+  logic [Threads*4-1:0]   st_q, st_d;
+  logic [Threads*4-1:0]   mask_q, mask_d;      // active rays of the current entry
+  logic [Threads*4-1:0]   vmask_q, vmask_d;    // rays that exist
+  logic [Threads*4-1:0]   bhit_q, bhit_d;      // ray has a hit
+  logic [Threads*SpW-1:0] sp_q, sp_d;          // stack entries
+  logic [Threads*3-1:0]   err_q, err_d;        // error bits 0..2
+  logic [Threads*3-1:0]   fbw_q, fbw_d;        // framebuffer writes still due
+  logic [Threads*4-1:0]   serr_q, serr_d;      // shading-side memory error per ray
+
+  // Data arrays (no reset; RAM-friendly: whole-word writes, one word per thread).
+  logic [12*W-1:0]   org_m  [0:Threads-1];     // ray r component a at [(3r+a)*W +: W]
+  logic [12*W-1:0]   dir_m  [0:Threads-1];
+  logic [12*W-1:0]   inv_m  [0:Threads-1];
+  logic [4*W-1:0]    ilen_m [0:Threads-1];
+  logic [127:0]      pix_m  [0:Threads-1];
+  logic [NodeW-1:0]  node_m [0:Threads-1];     // current node
+  logic [4*W-1:0]    tmin_m [0:Threads-1];     // current intervals
+  logic [4*W-1:0]    tmax_m [0:Threads-1];
+  logic [NodeW-1:0]  nidx_m [0:Threads-1];     // inner node in the traversal sub-units
+  logic [1:0]        nax_m  [0:Threads-1];
+  logic [31:0]       loff_m [0:Threads-1];     // leaf list offset and count
+  logic [31:0]       lcnt_m [0:Threads-1];
+  logic [31:0]       pend_m [0:Threads-1];     // leaf triangles not yet finished
+  logic [4*W-1:0]    bt_m   [0:Threads-1];     // best hits
+  logic [4*W-1:0]    bu_m   [0:Threads-1];
+  logic [4*W-1:0]    bv_m   [0:Threads-1];
+  logic [4*W-1:0]    bdz_m  [0:Threads-1];
+  logic [127:0]      btri_m [0:Threads-1];
+  logic [W-1:0]      nlen_m [0:Threads*4-1];   // |n| of the hit triangle, per ray id
+  logic [EntryW-1:0] stack_m [0:Threads*StackDepth-1];
+
+  // The state vectors of the schedulers.
+  logic [Threads-1:0] free_vec, fetch_vec, leaf_vec, pop_vec, done_vec;
+  always_comb begin
+    for (int unsigned t = 0; t < Threads; t++) begin
+      free_vec[t]  = st_q[t*4 +: 4] == StFree;
+      fetch_vec[t] = st_q[t*4 +: 4] == StFetch;
+      leaf_vec[t]  = st_q[t*4 +: 4] == StLeaf;
+      pop_vec[t]   = st_q[t*4 +: 4] == StPop;
+      done_vec[t]  = st_q[t*4 +: 4] == StDone;
+    end
+  end
+
+  function automatic logic [2:0] popcount4(input logic [3:0] m);
+    popcount4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
+  endfunction
+
+  // Lowest set bit of a 4-bit mask (0 for an empty mask).
+  function automatic logic [1:0] lowest4(input logic [3:0] m);
+    if (m[0]) begin
+      lowest4 = 2'd0;
+    end else if (m[1]) begin
+      lowest4 = 2'd1;
+    end else if (m[2]) begin
+      lowest4 = 2'd2;
+    end else begin
+      lowest4 = m[3] ? 2'd3 : 2'd0;
+    end
+  endfunction
+
+  //////////////////
+  // Packet input //
+  //////////////////
+
+  logic            acc_any, acc_take;
+  logic [ThrW-1:0] acc_thr;
+  logic            feed_busy_q;
+  logic [ThrW-1:0] feed_thr_q;
+  logic [1:0]      feed_r_q;
+
+  rc_rr_pick #(
+    .N   (Threads),
+    .IdxW(ThrW)
+  ) u_pick_free (
+    .clk_i,
+    .rst_ni,
+    .req_i  (free_vec),
+    .take_i (acc_take),
+    .valid_o(acc_any),
+    .idx_o  (acc_thr)
+  );
+
+  // Ready from registers only: a free thread and an idle set-up feeder.
+  assign pkt_ready_o = acc_any & ~feed_busy_q;
+  assign acc_take    = pkt_valid_i & pkt_ready_o;
+
+  /////////////////////////////////////////
+  // Ray set-up: one ray per cycle       //
+  /////////////////////////////////////////
+
+  logic            su_ready, su_take, su_v, su_active;
+  logic [RidW-1:0] su_tag;
+  logic [3*W-1:0]  su_org, su_dir, su_inv;
+  logic [W-1:0]    su_tmin, su_tmax;
+  logic [ThrW-1:0] su_thr;
+  logic [1:0]      su_r;
+  logic [3:0]      su_mask_new;
+  logic            su_last;
+
+  assign su_org  = org_m[feed_thr_q][feed_r_q*3*W +: 3*W];
+  assign su_dir  = dir_m[feed_thr_q][feed_r_q*3*W +: 3*W];
+  assign su_take = feed_busy_q & su_ready;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      feed_busy_q <= 1'b0;
+      feed_thr_q  <= '0;
+      feed_r_q    <= '0;
+    end else if (acc_take) begin
+      feed_busy_q <= 1'b1;
+      feed_thr_q  <= acc_thr;
+      feed_r_q    <= '0;
+    end else if (su_take) begin
+      feed_r_q <= feed_r_q + 2'd1;
+      if (feed_r_q == 2'd3) feed_busy_q <= 1'b0;
+    end
+  end
+
+  rc_ray_setup #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .TagW (RidW)
+  ) u_setup (
+    .clk_i,
+    .rst_ni,
+    .valid_i (feed_busy_q),
+    .ready_o (su_ready),
+    .tag_i   ({feed_thr_q, feed_r_q}),
+    .org_i   (su_org),
+    .dir_i   (su_dir),
+    .bounds_i(bounds_i),
+    .valid_o (su_v),
+    .ready_i (1'b1),
+    .tag_o   (su_tag),
+    .inv_o   (su_inv),
+    .tmin_o  (su_tmin),
+    .tmax_o  (su_tmax),
+    .active_o(su_active)
+  );
+
+  assign su_thr  = su_tag[RidW-1:2];
+  assign su_r    = su_tag[1:0];
+  assign su_last = su_v & (su_r == 2'd3);
+  always_comb begin
+    su_mask_new = mask_q[su_thr*4 +: 4];
+    su_mask_new[su_r] = su_active & vmask_q[32'(su_thr)*4 + 32'(su_r)];
+  end
+
+  ////////////////////////////////////////
+  // Node fetch                         //
+  ////////////////////////////////////////
+
+  logic             fe_any, fe_take, fe_bad;
+  logic [ThrW-1:0]  fe_thr;
+  logic [NodeW-1:0] fe_node;
+  logic             nreq_free;
+  logic             node_req_valid_q;
+  logic [ThrW-1:0]  node_req_thr_q;
+  logic [NodeW-1:0] node_req_node_q;
+
+  rc_rr_pick #(
+    .N   (Threads),
+    .IdxW(ThrW)
+  ) u_pick_fetch (
+    .clk_i,
+    .rst_ni,
+    .req_i  (fetch_vec),
+    .take_i (fe_take),
+    .valid_o(fe_any),
+    .idx_o  (fe_thr)
+  );
+
+  assign nreq_free = ~node_req_valid_q | node_req_ready_i;
+  assign fe_take   = fe_any & nreq_free;
+  assign fe_node   = node_m[fe_thr];
+  assign fe_bad    = {{(32 - NodeW){1'b0}}, fe_node} >= node_count_i;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      node_req_valid_q <= 1'b0;
+      node_req_thr_q   <= '0;
+      node_req_node_q  <= '0;
+    end else begin
+      if (node_req_valid_q && node_req_ready_i) node_req_valid_q <= 1'b0;
+      if (fe_take && !fe_bad) begin
+        node_req_valid_q <= 1'b1;
+        node_req_thr_q   <= fe_thr;
+        node_req_node_q  <= fe_node;
+      end
+    end
+  end
+
+  assign node_req_valid_o = node_req_valid_q;
+  assign node_req_tag_o   = TagW'(node_req_thr_q);
+  assign node_req_index_o = {{(32 - NodeW){1'b0}}, node_req_node_q};
+
+  ////////////////////////////////////////
+  // Node response and decode           //
+  ////////////////////////////////////////
+
+  logic             trav_ready, nr_take, nr_leaf, nr_malformed, nr_leaf_bad, nr_inner_ok;
+  logic [ThrW-1:0]  nr_thr;
+  logic [1:0]       nr_kind, nr_axis;
+  logic [NodeW-1:0] nr_idx;
+  logic [31:0]      nr_upper;
+  logic [3:0]       nr_mask;
+  logic [12*W-1:0]  nr_org_all, nr_inv_all;
+  logic [4*W-1:0]   nr_org, nr_inv;
+
+  assign node_rsp_ready_o = trav_ready;
+  assign nr_take  = node_rsp_valid_i & trav_ready;
+  assign nr_thr   = node_rsp_tag_i[ThrW-1:0];
+  assign nr_kind  = node_rsp_data_i[rc_pkg::KdNodeKindLsb +: 2];
+  assign nr_idx   = node_rsp_data_i[rc_pkg::KdNodeIndexLsb +: NodeW];
+  assign nr_upper = node_rsp_data_i[rc_pkg::KdNodeValueLsb +: 32];
+  assign nr_leaf  = nr_kind == 2'(rc_pkg::KdNodeKindLeaf);
+  assign nr_axis  = nr_leaf ? 2'd0 : nr_kind;
+  assign nr_mask  = mask_q[nr_thr*4 +: 4];
+
+  // The golden model's checks (trace_packet): a split wider than the format, NaN or infinite;
+  // children not after the parent, or the right child outside the node section.
+  logic nr_split_wide, nr_split_special;
+  if (W < 32) begin : g_split_wide
+    assign nr_split_wide = |nr_upper[31:W];
+  end else begin : g_split_fits
+    assign nr_split_wide = 1'b0;
+  end
+  assign nr_split_special = &nr_upper[W-2 -: ExpW];
+  assign nr_malformed = nr_split_wide | nr_split_special |
+                        (nr_idx <= node_m[nr_thr]) |
+                        ({{(33 - NodeW){1'b0}}, nr_idx} + 33'd1 >= {1'b0, node_count_i});
+  assign nr_leaf_bad  = {{(33 - NodeW){1'b0}}, nr_idx} + {1'b0, nr_upper} > {1'b0, list_count_i};
+  assign nr_inner_ok  = node_rsp_valid_i & ~node_rsp_error_i & ~nr_leaf & ~nr_malformed;
+
+  assign nr_org_all = org_m[nr_thr];
+  assign nr_inv_all = inv_m[nr_thr];
+  always_comb begin
+    for (int unsigned r = 0; r < 4; r++) begin
+      nr_org[r*W +: W] = nr_org_all[(3 * r + 32'(nr_axis)) * W +: W];
+      nr_inv[r*W +: W] = nr_inv_all[(3 * r + 32'(nr_axis)) * W +: W];
+    end
+  end
+
+  ////////////////////////////////////////
+  // Traversal: four sub-units          //
+  ////////////////////////////////////////
+
+  logic [3:0]       trav_ready_all, trav_v_all;
+  logic [4*ThrW-1:0] trav_tag_all;
+  logic [4*W-1:0]   trav_t;
+  logic [7:0]       trav_case;
+  logic [4*W-1:0]   nr_tmin, nr_tmax;
+
+  assign nr_tmin = tmin_m[nr_thr];
+  assign nr_tmax = tmax_m[nr_thr];
+
+  for (genvar r = 0; r < 4; r++) begin : g_trav
+    rc_trav_step #(
+      .ExpW (ExpW),
+      .FracW(FracW),
+      .TagW (ThrW)
+    ) u_step (
+      .clk_i,
+      .rst_ni,
+      .valid_i(nr_inner_ok),
+      .ready_o(trav_ready_all[r]),
+      .tag_i  (nr_thr),
+      .split_i(nr_upper[W-1:0]),
+      .org_i  (nr_org[r*W +: W]),
+      .inv_i  (nr_inv[r*W +: W]),
+      .tmin_i (nr_tmin[r*W +: W]),
+      .tmax_i (nr_tmax[r*W +: W]),
+      .valid_o(trav_v_all[r]),
+      .ready_i(1'b1),
+      .tag_o  (trav_tag_all[r*ThrW +: ThrW]),
+      .t_o    (trav_t[r*W +: W]),
+      .case_o (trav_case[r*2 +: 2])
+    );
+  end
+  // The four sub-units take the same operations, so their credits agree (asserted below).
+  assign trav_ready = trav_ready_all[0];
+
+  // Traversal result: the packet's two children.
+  logic             tr_v, tr_push, tr_overflow;
+  logic [ThrW-1:0]  tr_thr;
+  logic [1:0]       tr_axis, tr_lead;
+  logic [NodeW-1:0] tr_idx, tr_first, tr_second;
+  logic [3:0]       tr_mask, tr_sign, tr_a_mask, tr_b_mask;
+  logic [4*W-1:0]   tr_lo, tr_hi, tr_a_tmin, tr_a_tmax, tr_b_tmin, tr_b_tmax;
+  logic [12*W-1:0]  tr_dir;
+  logic [SpW-1:0]   tr_sp;
+
+  assign tr_v    = trav_v_all[0];
+  assign tr_thr  = trav_tag_all[0 +: ThrW];
+  assign tr_axis = nax_m[tr_thr];
+  assign tr_idx  = nidx_m[tr_thr];
+  assign tr_mask = mask_q[tr_thr*4 +: 4];
+  assign tr_lo   = tmin_m[tr_thr];
+  assign tr_hi   = tmax_m[tr_thr];
+  assign tr_dir  = dir_m[tr_thr];
+  assign tr_sp   = sp_q[tr_thr*SpW +: SpW];
+  assign tr_lead = lowest4(tr_mask);
+
+  always_comb begin
+    for (int unsigned r = 0; r < 4; r++) begin
+      tr_sign[r] = tr_dir[(3 * r + 32'(tr_axis)) * W + W - 1];
+    end
+  end
+  // The lead ray's near child first (left child when its direction sign bit is 0).
+  assign tr_first  = tr_sign[tr_lead] ? tr_idx + NodeW'(1) : tr_idx;
+  assign tr_second = tr_sign[tr_lead] ? tr_idx : tr_idx + NodeW'(1);
+
+  always_comb begin
+    for (int unsigned r = 0; r < 4; r++) begin
+      logic       same, to_near, to_far, spl;
+      logic [1:0] c;
+      logic [W-1:0] t, lo, hi;
+      c       = trav_case[r*2 +: 2];
+      t       = trav_t[r*W +: W];
+      lo      = tr_lo[r*W +: W];
+      hi      = tr_hi[r*W +: W];
+      same    = tr_sign[r] == tr_sign[tr_lead];
+      to_near = c != 2'd2;   // not kFarOnly
+      to_far  = c != 2'd1;   // not kNearOnly
+      spl     = c == 2'd3;   // kBothSplit
+      tr_a_mask[r]         = tr_mask[r] & (same ? to_near : to_far);
+      tr_b_mask[r]         = tr_mask[r] & (same ? to_far : to_near);
+      tr_a_tmin[r*W +: W]  = (!same && spl) ? t : lo;
+      tr_a_tmax[r*W +: W]  = (same && spl) ? t : hi;
+      tr_b_tmin[r*W +: W]  = (same && spl) ? t : lo;
+      tr_b_tmax[r*W +: W]  = (!same && spl) ? t : hi;
+    end
+  end
+  assign tr_push     = (|tr_a_mask) & (|tr_b_mask);
+  assign tr_overflow = tr_push & (tr_sp == SpW'(StackDepth));
+
+  ////////////////////////////////////////
+  // Pop: stack read, cull, continue    //
+  ////////////////////////////////////////
+
+  logic             pp_any, pp_end;
+  logic [ThrW-1:0]  pp_thr;
+  logic [SpW-1:0]   pp_sp;
+  logic             pop1_v_q, pop2_v;
+  logic [ThrW-1:0]  pop1_thr_q, pop2_thr_q;
+  logic [EntryW-1:0] pop1_entry_q, pop2_entry_q;
+  logic [3:0]       pop_le, pop2_mask;
+  logic [4*W-1:0]   pop1_best_t;
+
+  rc_rr_pick #(
+    .N   (Threads),
+    .IdxW(ThrW)
+  ) u_pick_pop (
+    .clk_i,
+    .rst_ni,
+    .req_i  (pop_vec),
+    .take_i (pp_any),
+    .valid_o(pp_any),
+    .idx_o  (pp_thr)
+  );
+
+  assign pp_sp  = sp_q[pp_thr*SpW +: SpW];
+  assign pp_end = (|err_q[pp_thr*3 +: 3]) | (pp_sp == '0);
+
+  // Stack entry: {node, mask, tmin[4], tmax[4]}; read one cycle after the pop is chosen.
+  always_ff @(posedge clk_i) begin
+    if (pp_any && !pp_end) begin
+      pop1_entry_q <= stack_m[32'(pp_thr)*StackDepth + 32'(SpIdxW'(pp_sp - SpW'(1)))];
+    end
+    pop1_thr_q   <= pp_thr;
+    pop2_thr_q   <= pop1_thr_q;
+    pop2_entry_q <= pop1_entry_q;
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pop1_v_q <= 1'b0;
+    end else begin
+      pop1_v_q <= pp_any & ~pp_end;
+    end
+  end
+
+  // Cull: ray r stays only if le(tmin_r, best_t_r), by the format's comparison.
+  assign pop1_best_t = bt_m[pop1_thr_q];
+  logic [3:0] pop_cmp_v;
+  for (genvar r = 0; r < 4; r++) begin : g_pop_cmp
+    logic unused_lt, unused_eq;
+    logic [W-1:0] unused_min, unused_max;
+    rc_fp_cmp #(
+      .ExpW  (ExpW),
+      .FracW (FracW),
+      .Stages(1)
+    ) u_cmp (
+      .clk_i,
+      .rst_ni,
+      .valid_i(pop1_v_q),
+      .a_i    (pop1_entry_q[4*W + r*W +: W]),
+      .b_i    (pop1_best_t[r*W +: W]),
+      .valid_o(pop_cmp_v[r]),
+      .lt_o   (unused_lt),
+      .le_o   (pop_le[r]),
+      .eq_o   (unused_eq),
+      .min_o  (unused_min),
+      .max_o  (unused_max)
+    );
+  end
+  assign pop2_v    = pop_cmp_v[0];
+  assign pop2_mask = pop2_entry_q[8*W +: 4] & pop_le;
+
+  ////////////////////////////////////////
+  // List unit and the tag pool         //
+  ////////////////////////////////////////
+
+  // Tags of outstanding list entries: a list request takes a tag; the same tag then names the
+  // entry's triangle request; the tag is free again when the triangle response is taken (or the
+  // entry fails). tp_thr_m / tp_tri_m hold each tag's thread and triangle index.
+  logic [ListTags-1:0] tf_q, tf_d;             // free tags
+  logic [ThrW-1:0]     tp_thr_m [0:ListTags-1];
+  logic [31:0]         tp_tri_m [0:ListTags-1];
+  logic                tag_avail;
+  logic [LtW-1:0]      tag_new;
+
+  always_comb begin
+    tag_avail = 1'b0;
+    tag_new   = '0;
+    for (int unsigned i = 0; i < ListTags; i++) begin
+      if (!tag_avail && tf_q[i]) begin
+        tag_avail = 1'b1;
+        tag_new   = LtW'(i);
+      end
+    end
+  end
+
+  logic            lp_any, lp_take;
+  logic [ThrW-1:0] lp_thr;
+  logic            lu_busy_q;
+  logic [ThrW-1:0] lu_thr_q;
+  logic [31:0]     lu_idx_q, lu_left_q;
+  logic            lreq_free, li_take;
+  logic            list_req_valid_q;
+  logic [LtW-1:0]  list_req_tag_q;
+  logic [31:0]     list_req_index_q;
+
+  rc_rr_pick #(
+    .N   (Threads),
+    .IdxW(ThrW)
+  ) u_pick_leaf (
+    .clk_i,
+    .rst_ni,
+    .req_i  (leaf_vec),
+    .take_i (lp_take),
+    .valid_o(lp_any),
+    .idx_o  (lp_thr)
+  );
+
+  assign lp_take   = lp_any & ~lu_busy_q;
+  assign lreq_free = ~list_req_valid_q | list_req_ready_i;
+  assign li_take   = lu_busy_q & tag_avail & lreq_free;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      lu_busy_q        <= 1'b0;
+      lu_thr_q         <= '0;
+      lu_idx_q         <= '0;
+      lu_left_q        <= '0;
+      list_req_valid_q <= 1'b0;
+      list_req_tag_q   <= '0;
+      list_req_index_q <= '0;
+    end else begin
+      if (lp_take) begin
+        lu_busy_q <= 1'b1;
+        lu_thr_q  <= lp_thr;
+        lu_idx_q  <= loff_m[lp_thr];
+        lu_left_q <= lcnt_m[lp_thr];
+      end
+      if (list_req_valid_q && list_req_ready_i) list_req_valid_q <= 1'b0;
+      if (li_take) begin
+        list_req_valid_q <= 1'b1;
+        list_req_tag_q   <= tag_new;
+        list_req_index_q <= lu_idx_q;
+        lu_idx_q         <= lu_idx_q + 32'd1;
+        lu_left_q        <= lu_left_q - 32'd1;
+        if (lu_left_q == 32'd1) lu_busy_q <= 1'b0;
+      end
+    end
+  end
+
+  assign list_req_valid_o = list_req_valid_q;
+  assign list_req_tag_o   = TagW'(list_req_tag_q);
+  assign list_req_index_o = list_req_index_q;
+
+  // List response: the entry's triangle request, or a bad address.
+  logic            tbuf_free, lr_take, lr_bad;
+  logic [LtW-1:0]  lr_tag;
+  logic [ThrW-1:0] lr_thr;
+  logic            tri_req_valid_q;
+  logic [LtW-1:0]  tri_req_tag_q;
+  logic [31:0]     tri_req_index_q;
+
+  assign tbuf_free        = ~tri_req_valid_q | tri_req_ready_i;
+  assign list_rsp_ready_o = tbuf_free;
+  assign lr_take          = list_rsp_valid_i & tbuf_free;
+  assign lr_tag           = list_rsp_tag_i[LtW-1:0];
+  assign lr_thr           = tp_thr_m[lr_tag];
+  assign lr_bad           = list_rsp_error_i | (list_rsp_data_i >= tri_count_i);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      tri_req_valid_q <= 1'b0;
+      tri_req_tag_q   <= '0;
+      tri_req_index_q <= '0;
+    end else begin
+      if (tri_req_valid_q && tri_req_ready_i) tri_req_valid_q <= 1'b0;
+      if (lr_take && !lr_bad) begin
+        tri_req_valid_q <= 1'b1;
+        tri_req_tag_q   <= lr_tag;
+        tri_req_index_q <= list_rsp_data_i;
+      end
+    end
+  end
+
+  assign tri_req_valid_o = tri_req_valid_q;
+  assign tri_req_tag_o   = TagW'(tri_req_tag_q);
+  assign tri_req_index_o = tri_req_index_q;
+
+  always_ff @(posedge clk_i) begin
+    if (li_take) tp_thr_m[tag_new] <= lu_thr_q;
+    if (lr_take && !lr_bad) tp_tri_m[lr_tag] <= list_rsp_data_i;
+  end
+
+  ////////////////////////////////////////
+  // Intersection: each triangle        //
+  // against the active rays in turn    //
+  ////////////////////////////////////////
+
+  logic            is_ready, is_valid, is_take, ti_err_take, ti_last;
+  logic [LtW-1:0]  ti_tag;
+  logic [ThrW-1:0] ti_thr;
+  logic [31:0]     ti_tri;
+  logic [3:0]      ti_mask, ti_rem, ifd_done_q;
+  logic [1:0]      ti_r;
+  logic [12*W-1:0] ti_org_all, ti_dir_all;
+  logic [4*W-1:0]  ti_bt;
+  logic [127:0]    ti_btri;
+
+  assign ti_tag  = tri_rsp_tag_i[LtW-1:0];
+  assign ti_thr  = tp_thr_m[ti_tag];
+  assign ti_tri  = tp_tri_m[ti_tag];
+  assign ti_mask = mask_q[ti_thr*4 +: 4];
+  assign ti_rem  = ti_mask & ~ifd_done_q;
+  assign ti_r    = lowest4(ti_rem);
+  assign ti_last = (ti_rem & ~(4'd1 << ti_r)) == 4'd0;
+
+  assign is_valid        = tri_rsp_valid_i & ~tri_rsp_error_i;
+  assign is_take         = is_valid & is_ready;
+  assign ti_err_take     = tri_rsp_valid_i & tri_rsp_error_i;
+  assign tri_rsp_ready_o = tri_rsp_error_i | (is_ready & ti_last);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ifd_done_q <= '0;
+    end else if (is_take) begin
+      ifd_done_q <= ti_last ? 4'd0 : (ifd_done_q | (4'd1 << ti_r));
+    end
+  end
+
+  assign ti_org_all = org_m[ti_thr];
+  assign ti_dir_all = dir_m[ti_thr];
+  assign ti_bt      = bt_m[ti_thr];
+  assign ti_btri    = btri_m[ti_thr];
+
+  logic              io_v, io_hit;
+  logic [ThrW+2:0]   io_tag;
+  logic [31:0]       io_tri;
+  logic [W-1:0]      io_t, io_u, io_v_bits, io_dz;
+
+  rc_isect_unit #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .TagW (ThrW + 3)
+  ) u_isect (
+    .clk_i,
+    .rst_ni,
+    .valid_i   (is_valid),
+    .ready_o   (is_ready),
+    .tag_i     ({ti_last, ti_r, ti_thr}),
+    .tri_i     (ti_tri),
+    .m_i       (tri_rsp_data_i),
+    .org_i     (ti_org_all[ti_r*3*W +: 3*W]),
+    .dir_i     (ti_dir_all[ti_r*3*W +: 3*W]),
+    .best_t_i  (ti_bt[ti_r*W +: W]),
+    .best_tri_i(ti_btri[ti_r*32 +: 32]),
+    .valid_o   (io_v),
+    .ready_i   (1'b1),
+    .tag_o     (io_tag),
+    .tri_o     (io_tri),
+    .hit_o     (io_hit),
+    .t_o       (io_t),
+    .u_o       (io_u),
+    .v_o       (io_v_bits),
+    .dz_o      (io_dz)
+  );
+
+  // Write-back: the hit replaces the ray's best if (t, tri) is smaller, compared again here
+  // because other tests of the same ray may have finished since this one read its best. Accepted
+  // t are positive and finite, so their encodings order like their values.
+  logic            wb_last, wb_better;
+  logic [1:0]      wb_r;
+  logic [ThrW-1:0] wb_thr;
+  logic [W-1:0]    wb_bt;
+  logic [31:0]     wb_btri;
+  logic [4*W-1:0]  wb_bt_all;
+  logic [127:0]    wb_btri_all;
+
+  assign wb_last     = io_tag[ThrW+2];
+  assign wb_r        = io_tag[ThrW +: 2];
+  assign wb_thr      = io_tag[ThrW-1:0];
+  assign wb_bt_all   = bt_m[wb_thr];
+  assign wb_btri_all = btri_m[wb_thr];
+  assign wb_bt       = wb_bt_all[wb_r*W +: W];
+  assign wb_btri     = wb_btri_all[wb_r*32 +: 32];
+  assign wb_better   = io_v & io_hit & ((io_t < wb_bt) | ((io_t == wb_bt) & (io_tri < wb_btri)));
+
+  ////////////////////////////////////////
+  // Shading and framebuffer writes     //
+  ////////////////////////////////////////
+
+  logic            shp_any, shp_take, shp_none;
+  logic [ThrW-1:0] shp_thr;
+  logic            sh_busy_q;
+  logic [ThrW-1:0] sh_thr_q;
+  logic [1:0]      sh_r_q;
+  logic            sh_valid_r, sh_hit_r, sh_adv, sh_to_shd, sh_to_miss;
+  logic            sreq_free, mreq_free, miss_free, miss_take;
+  logic            shd_req_valid_q, mat_req_valid_q, miss_v_q;
+  logic [RidW-1:0] shd_req_rid_q, mat_req_rid_q, miss_rid_q;
+  logic [31:0]     shd_req_index_q, mat_req_index_q;
+  logic [127:0]    sh_btri;
+
+  rc_rr_pick #(
+    .N   (Threads),
+    .IdxW(ThrW)
+  ) u_pick_done (
+    .clk_i,
+    .rst_ni,
+    .req_i  (done_vec),
+    .take_i (shp_take),
+    .valid_o(shp_any),
+    .idx_o  (shp_thr)
+  );
+
+  assign shp_take = shp_any & ~sh_busy_q;
+  assign shp_none = vmask_q[shp_thr*4 +: 4] == 4'd0;
+
+  assign sh_valid_r = vmask_q[sh_thr_q*4 + 32'(sh_r_q)];
+  assign sh_hit_r   = bhit_q[sh_thr_q*4 + 32'(sh_r_q)] & ~(|err_q[sh_thr_q*3 +: 3]);
+  assign sreq_free  = ~shd_req_valid_q | shd_req_ready_i;
+  assign sh_to_shd  = sh_busy_q & sh_valid_r & sh_hit_r & sreq_free;
+  assign sh_to_miss = sh_busy_q & sh_valid_r & ~sh_hit_r & miss_free;
+  assign sh_adv     = sh_busy_q & (~sh_valid_r | sh_to_shd | sh_to_miss);
+  assign sh_btri    = btri_m[sh_thr_q];
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      sh_busy_q       <= 1'b0;
+      sh_thr_q        <= '0;
+      sh_r_q          <= '0;
+      shd_req_valid_q <= 1'b0;
+      shd_req_rid_q   <= '0;
+      shd_req_index_q <= '0;
+      miss_v_q        <= 1'b0;
+      miss_rid_q      <= '0;
+    end else begin
+      if (shp_take && !shp_none) begin
+        sh_busy_q <= 1'b1;
+        sh_thr_q  <= shp_thr;
+        sh_r_q    <= '0;
+      end
+      if (sh_adv) begin
+        sh_r_q <= sh_r_q + 2'd1;
+        if (sh_r_q == 2'd3) sh_busy_q <= 1'b0;
+      end
+      if (shd_req_valid_q && shd_req_ready_i) shd_req_valid_q <= 1'b0;
+      if (sh_to_shd) begin
+        shd_req_valid_q <= 1'b1;
+        shd_req_rid_q   <= {sh_thr_q, sh_r_q};
+        shd_req_index_q <= sh_btri[sh_r_q*32 +: 32];
+      end
+      if (miss_take) miss_v_q <= 1'b0;
+      if (sh_to_miss) begin
+        miss_v_q   <= 1'b1;
+        miss_rid_q <= {sh_thr_q, sh_r_q};
+      end
+    end
+  end
+
+  assign shd_req_valid_o = shd_req_valid_q;
+  assign shd_req_tag_o   = TagW'(shd_req_rid_q);
+  assign shd_req_index_o = shd_req_index_q;
+
+  // Shading record -> material request (an error response shades with kd = 0: black).
+  logic            sr_take;
+  logic [RidW-1:0] sr_rid;
+  localparam int unsigned NlenLsb = 8 * rc_pkg::ImageShadingFirstValue +
+                                    rc_pkg::ImageShadingNormalLen * W;
+
+  assign mreq_free       = ~mat_req_valid_q | mat_req_ready_i;
+  assign shd_rsp_ready_o = mreq_free;
+  assign sr_take         = shd_rsp_valid_i & mreq_free;
+  assign sr_rid          = shd_rsp_tag_i[RidW-1:0];
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      mat_req_valid_q <= 1'b0;
+      mat_req_rid_q   <= '0;
+      mat_req_index_q <= '0;
+    end else begin
+      if (mat_req_valid_q && mat_req_ready_i) mat_req_valid_q <= 1'b0;
+      if (sr_take) begin
+        mat_req_valid_q <= 1'b1;
+        mat_req_rid_q   <= sr_rid;
+        mat_req_index_q <= shd_rsp_error_i ? 32'd0 :
+                           shd_rsp_data_i[8 * rc_pkg::ImageShadingMaterial +: 32];
+      end
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (sr_take) nlen_m[32'(sr_rid)] <= shd_rsp_data_i[NlenLsb +: W];
+  end
+
+  assign mat_req_valid_o = mat_req_valid_q;
+  assign mat_req_tag_o   = TagW'(mat_req_rid_q);
+  assign mat_req_index_o = mat_req_index_q;
+
+  // Material -> shading unit.
+  logic            sh_ready, sh_in_take, mr_bad, sho_v, fbb_free;
+  logic [RidW-1:0] mr_rid, sho_rid;
+  logic [ThrW-1:0] mr_thr;
+  logic [1:0]      mr_r;
+  logic [3*W-1:0]  mr_kd;
+  logic [4*W-1:0]  mr_dz_all, mr_ilen_all;
+  logic [23:0]     sho_rgb;
+
+  assign mr_rid          = mat_rsp_tag_i[RidW-1:0];
+  assign mr_thr          = mr_rid[RidW-1:2];
+  assign mr_r            = mr_rid[1:0];
+  assign mr_bad          = mat_rsp_error_i | serr_q[32'(mr_rid)];
+  assign mat_rsp_ready_o = sh_ready;
+  assign sh_in_take      = mat_rsp_valid_i & sh_ready;
+  assign mr_dz_all       = bdz_m[mr_thr];
+  assign mr_ilen_all     = ilen_m[mr_thr];
+  assign mr_kd = mr_bad ? '0 : {mat_rsp_data_i[64 +: W], mat_rsp_data_i[32 +: W],
+                                mat_rsp_data_i[0 +: W]};
+
+  rc_shade_unit #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .TagW (RidW)
+  ) u_shade (
+    .clk_i,
+    .rst_ni,
+    .valid_i  (mat_rsp_valid_i),
+    .ready_o  (sh_ready),
+    .tag_i    (mr_rid),
+    .dz_i     (mr_dz_all[mr_r*W +: W]),
+    .nlen_i   (nlen_m[32'(mr_rid)]),
+    .inv_len_i(mr_ilen_all[mr_r*W +: W]),
+    .kd_i     (mr_kd),
+    .ambient_i(ambient_i),
+    .diffuse_i(diffuse_i),
+    .valid_o  (sho_v),
+    .ready_i  (fbb_free),
+    .tag_o    (sho_rid),
+    .rgb_o    (sho_rgb)
+  );
+
+  // Framebuffer write register: shaded rays first, then misses.
+  logic            fb_valid_q, fb_hit_q, fb_take;
+  logic [RidW-1:0] fb_rid_q;
+  logic [23:0]     fb_rgb_q;
+  logic [ThrW-1:0] fb_thr;
+  logic [1:0]      fb_r;
+  logic [127:0]    fb_pix_all, fb_btri_all;
+  logic [4*W-1:0]  fb_bt_all, fb_bu_all, fb_bv_all;
+
+  assign fbb_free  = ~fb_valid_q | fb_ready_i;
+  assign miss_take = miss_v_q & fbb_free & ~sho_v;
+  assign miss_free = ~miss_v_q | miss_take;
+  assign fb_take   = fb_valid_q & fb_ready_i;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      fb_valid_q <= 1'b0;
+      fb_hit_q   <= 1'b0;
+      fb_rid_q   <= '0;
+      fb_rgb_q   <= '0;
+    end else if (fbb_free) begin
+      fb_valid_q <= sho_v | miss_v_q;
+      if (sho_v) begin
+        fb_hit_q <= 1'b1;
+        fb_rid_q <= sho_rid;
+        fb_rgb_q <= sho_rgb;
+      end else if (miss_v_q) begin
+        fb_hit_q <= 1'b0;
+        fb_rid_q <= miss_rid_q;
+        fb_rgb_q <= background_i;
+      end
+    end
+  end
+
+  assign fb_thr      = fb_rid_q[RidW-1:2];
+  assign fb_r        = fb_rid_q[1:0];
+  assign fb_pix_all  = pix_m[fb_thr];
+  assign fb_btri_all = btri_m[fb_thr];
+  assign fb_bt_all   = bt_m[fb_thr];
+  assign fb_bu_all   = bu_m[fb_thr];
+  assign fb_bv_all   = bv_m[fb_thr];
+
+  assign fb_valid_o = fb_valid_q;
+  assign fb_pixel_o = fb_pix_all[fb_r*32 +: 32];
+  assign fb_rgb_o   = fb_rgb_q;
+  assign fb_hit_o   = fb_hit_q;
+  assign fb_tri_o   = fb_hit_q ? fb_btri_all[fb_r*32 +: 32] : 32'd0;
+  assign fb_t_o     = fb_hit_q ? fb_bt_all[fb_r*W +: W] : '0;
+  assign fb_u_o     = fb_hit_q ? fb_bu_all[fb_r*W +: W] : '0;
+  assign fb_v_o     = fb_hit_q ? fb_bv_all[fb_r*W +: W] : '0;
+
+  ////////////////////////////////////////
+  // Thread state updates               //
+  ////////////////////////////////////////
+
+  logic            lr_dec, te_dec, io_dec;
+  logic [2:0]      ev_err;                    // error bits raised this cycle (any thread)
+  logic [Threads-1:0] pend_zero;
+
+  assign lr_dec = lr_take & lr_bad;
+  assign te_dec = ti_err_take;
+  assign io_dec = io_v & wb_last;
+
+  always_comb begin
+    st_d    = st_q;
+    mask_d  = mask_q;
+    vmask_d = vmask_q;
+    bhit_d  = bhit_q;
+    sp_d    = sp_q;
+    err_d   = err_q;
+    fbw_d   = fbw_q;
+    serr_d  = serr_q;
+    ev_err  = '0;
+
+    // A packet enters a free thread.
+    if (acc_take) begin
+      st_d[acc_thr*4 +: 4]     = StSetup;
+      mask_d[acc_thr*4 +: 4]   = '0;
+      vmask_d[acc_thr*4 +: 4]  = pkt_mask_i;
+      bhit_d[acc_thr*4 +: 4]   = '0;
+      sp_d[acc_thr*SpW +: SpW] = '0;
+      err_d[acc_thr*3 +: 3]    = '0;
+    end
+
+    // Ray set-up results; after the fourth ray the packet starts at the root (or has no ray in
+    // the scene box and goes straight to the pop, which ends it).
+    if (su_v) begin
+      mask_d[su_thr*4 +: 4] = su_mask_new;
+      if (su_last) st_d[su_thr*4 +: 4] = (|su_mask_new) ? StFetch : StPop;
+    end
+
+    // Node fetch.
+    if (fe_take) begin
+      if (fe_bad) begin
+        err_d[fe_thr*3 + ErrMalformed] = 1'b1;
+        ev_err[ErrMalformed]           = 1'b1;
+        st_d[fe_thr*4 +: 4]            = StPop;
+      end else begin
+        st_d[fe_thr*4 +: 4] = StNode;
+      end
+    end
+
+    // Node response: an inner node stays in StNode for the traversal sub-units.
+    if (nr_take) begin
+      if (node_rsp_error_i) begin
+        err_d[nr_thr*3 + ErrBadAddr] = 1'b1;
+        ev_err[ErrBadAddr]           = 1'b1;
+        st_d[nr_thr*4 +: 4]          = StPop;
+      end else if (nr_leaf) begin
+        if (nr_leaf_bad) begin
+          err_d[nr_thr*3 + ErrBadAddr] = 1'b1;
+          ev_err[ErrBadAddr]           = 1'b1;
+          st_d[nr_thr*4 +: 4]          = StPop;
+        end else if (nr_upper == 32'd0) begin
+          st_d[nr_thr*4 +: 4] = StPop;
+        end else begin
+          st_d[nr_thr*4 +: 4] = StLeaf;
+        end
+      end else if (nr_malformed) begin
+        err_d[nr_thr*3 + ErrMalformed] = 1'b1;
+        ev_err[ErrMalformed]           = 1'b1;
+        st_d[nr_thr*4 +: 4]            = StPop;
+      end
+    end
+
+    // Traversal result: push the second child if both got rays, continue in the first.
+    if (tr_v) begin
+      if (tr_overflow) begin
+        err_d[tr_thr*3 + ErrOverflow] = 1'b1;
+        ev_err[ErrOverflow]           = 1'b1;
+        st_d[tr_thr*4 +: 4]           = StPop;
+      end else begin
+        st_d[tr_thr*4 +: 4]   = StFetch;
+        mask_d[tr_thr*4 +: 4] = (|tr_a_mask) ? tr_a_mask : tr_b_mask;
+        if (tr_push) sp_d[tr_thr*SpW +: SpW] = tr_sp + SpW'(1);
+      end
+    end
+
+    // The list unit takes a leaf.
+    if (lp_take) st_d[lp_thr*4 +: 4] = StLeafRun;
+
+    // Failed list entries and triangle reads.
+    if (lr_dec) begin
+      err_d[lr_thr*3 + ErrBadAddr] = 1'b1;
+      ev_err[ErrBadAddr]           = 1'b1;
+    end
+    if (te_dec) begin
+      err_d[ti_thr*3 + ErrBadAddr] = 1'b1;
+      ev_err[ErrBadAddr]           = 1'b1;
+    end
+    // A leaf is done when its last triangle has been tested against all active rays.
+    for (int unsigned t = 0; t < Threads; t++) begin
+      if (pend_zero[t]) st_d[t*4 +: 4] = StPop;
+    end
+
+    // Pop.
+    if (pp_any) begin
+      if (pp_end) begin
+        st_d[pp_thr*4 +: 4] = StDone;
+      end else begin
+        st_d[pp_thr*4 +: 4]     = StPopping;
+        sp_d[pp_thr*SpW +: SpW] = pp_sp - SpW'(1);
+      end
+    end
+    if (pop2_v) begin
+      if (|pop2_mask) begin
+        st_d[pop2_thr_q*4 +: 4]   = StFetch;
+        mask_d[pop2_thr_q*4 +: 4] = pop2_mask;
+      end else begin
+        st_d[pop2_thr_q*4 +: 4] = StPop;
+      end
+    end
+
+    // Hits.
+    if (wb_better) bhit_d[wb_thr*4 + 32'(wb_r)] = 1'b1;
+
+    // Shading: a traced packet's rays, then its framebuffer writes; the last write frees it.
+    if (shp_take) begin
+      st_d[shp_thr*4 +: 4]  = shp_none ? StFree : StShade;
+      fbw_d[shp_thr*3 +: 3] = popcount4(vmask_q[shp_thr*4 +: 4]);
+    end
+    if (sr_take) begin
+      serr_d[32'(sr_rid)] = shd_rsp_error_i;
+      if (shd_rsp_error_i) ev_err[ErrBadAddr] = 1'b1;
+    end
+    if (sh_in_take && mat_rsp_error_i) ev_err[ErrBadAddr] = 1'b1;
+    if (fb_take) begin
+      fbw_d[fb_thr*3 +: 3] = fbw_q[fb_thr*3 +: 3] - 3'd1;
+      if (fbw_q[fb_thr*3 +: 3] == 3'd1) st_d[fb_thr*4 +: 4] = StFree;
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      st_q    <= {Threads{StFree}};
+      mask_q  <= '0;
+      vmask_q <= '0;
+      bhit_q  <= '0;
+      sp_q    <= '0;
+      err_q   <= '0;
+      fbw_q   <= '0;
+      serr_q  <= '0;
+    end else begin
+      st_q    <= st_d;
+      mask_q  <= mask_d;
+      vmask_q <= vmask_d;
+      bhit_q  <= bhit_d;
+      sp_q    <= sp_d;
+      err_q   <= err_d;
+      fbw_q   <= fbw_d;
+      serr_q  <= serr_d;
+    end
+  end
+
+  // Leaf triangles outstanding per thread: up to three finish in one cycle (a failed list
+  // entry, a failed triangle read and an intersection result).
+  logic [2*Threads-1:0] pend_dec;                // thread t at [2t +: 2]
+  always_comb begin
+    for (int unsigned t = 0; t < Threads; t++) begin
+      pend_dec[2*t +: 2] = 2'(lr_dec && lr_thr == ThrW'(t)) + 2'(te_dec && ti_thr == ThrW'(t)) +
+                    2'(io_dec && wb_thr == ThrW'(t));
+      pend_zero[t] = (pend_dec[2*t +: 2] != 2'd0) && (pend_m[t] == 32'(pend_dec[2*t +: 2]));
+    end
+  end
+
+  // Merged words (one ray's slot replaced).
+  logic [12*W-1:0] su_inv_new;
+  logic [4*W-1:0]  su_tmin_new, su_tmax_new, wb_bt_new, wb_bu_new, wb_bv_new, wb_bdz_new;
+  logic [127:0]    wb_btri_new;
+  always_comb begin
+    su_inv_new  = inv_m[su_thr];
+    su_tmin_new = tmin_m[su_thr];
+    su_tmax_new = tmax_m[su_thr];
+    su_inv_new[su_r*3*W +: 3*W] = su_inv;
+    su_tmin_new[su_r*W +: W]    = su_tmin;
+    su_tmax_new[su_r*W +: W]    = su_tmax;
+    wb_bt_new   = wb_bt_all;
+    wb_bu_new   = bu_m[wb_thr];
+    wb_bv_new   = bv_m[wb_thr];
+    wb_bdz_new  = bdz_m[wb_thr];
+    wb_btri_new = wb_btri_all;
+    wb_bt_new[wb_r*W +: W]      = io_t;
+    wb_bu_new[wb_r*W +: W]      = io_u;
+    wb_bv_new[wb_r*W +: W]      = io_v_bits;
+    wb_bdz_new[wb_r*W +: W]     = io_dz;
+    wb_btri_new[wb_r*32 +: 32]  = io_tri;
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (acc_take) begin
+      org_m[acc_thr]  <= pkt_org_i;
+      dir_m[acc_thr]  <= pkt_dir_i;
+      ilen_m[acc_thr] <= pkt_inv_len_i;
+      pix_m[acc_thr]  <= pkt_pixel_i;
+      node_m[acc_thr] <= '0;
+      bt_m[acc_thr]   <= {4{FpInf}};
+      btri_m[acc_thr] <= '1;
+      bu_m[acc_thr]   <= '0;
+      bv_m[acc_thr]   <= '0;
+      bdz_m[acc_thr]  <= '0;
+    end
+    if (su_v) begin
+      inv_m[su_thr]  <= su_inv_new;
+      tmin_m[su_thr] <= su_tmin_new;
+      tmax_m[su_thr] <= su_tmax_new;
+    end
+    if (nr_take && nr_inner_ok) begin
+      nidx_m[nr_thr] <= nr_idx;
+      nax_m[nr_thr]  <= nr_kind;
+    end
+    if (nr_take && !node_rsp_error_i && nr_leaf) begin
+      loff_m[nr_thr] <= {{(32 - NodeW){1'b0}}, nr_idx};
+      lcnt_m[nr_thr] <= nr_upper;
+      pend_m[nr_thr] <= nr_upper;
+    end
+    if (tr_v && !tr_overflow) begin
+      node_m[tr_thr] <= ((|tr_a_mask) ? tr_first : tr_second);
+      tmin_m[tr_thr] <= (|tr_a_mask) ? tr_a_tmin : tr_b_tmin;
+      tmax_m[tr_thr] <= (|tr_a_mask) ? tr_a_tmax : tr_b_tmax;
+      if (tr_push) begin
+        stack_m[32'(tr_thr)*StackDepth + 32'(tr_sp[SpIdxW-1:0])] <= {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
+      end
+    end
+    if (pop2_v && (|pop2_mask)) begin
+      node_m[pop2_thr_q] <= pop2_entry_q[8*W+4 +: NodeW];
+      tmin_m[pop2_thr_q] <= pop2_entry_q[4*W +: 4*W];
+      tmax_m[pop2_thr_q] <= pop2_entry_q[0 +: 4*W];
+    end
+    if (wb_better) begin
+      bt_m[wb_thr]   <= wb_bt_new;
+      bu_m[wb_thr]   <= wb_bu_new;
+      bv_m[wb_thr]   <= wb_bv_new;
+      bdz_m[wb_thr]  <= wb_bdz_new;
+      btri_m[wb_thr] <= wb_btri_new;
+    end
+    for (int unsigned t = 0; t < Threads; t++) begin
+      if (pend_dec[2*t +: 2] != 2'd0) pend_m[t] <= pend_m[t] - 32'(pend_dec[2*t +: 2]);
+    end
+  end
+
+  // Tag pool.
+  always_comb begin
+    tf_d = tf_q;
+    if (li_take) tf_d[tag_new] = 1'b0;
+    if (lr_dec) tf_d[lr_tag] = 1'b1;
+    if (tri_rsp_valid_i && tri_rsp_ready_o) tf_d[ti_tag] = 1'b1;
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      tf_q <= '1;
+    end else begin
+      tf_q <= tf_d;
+    end
+  end
+
+  ////////////////////////////////////////
+  // Status                             //
+  ////////////////////////////////////////
+
+  logic            idle, progress, wd_fire;
+  logic [31:0]     wd_q;
+  logic [StatusW-1:0] error_q;
+
+  assign idle     = (&free_vec) & ~feed_busy_q;
+  assign progress = acc_take | fb_take |
+                    (node_req_valid_q & node_req_ready_i) | nr_take |
+                    (list_req_valid_q & list_req_ready_i) | lr_take |
+                    (tri_req_valid_q & tri_req_ready_i) | (tri_rsp_valid_i & tri_rsp_ready_o) |
+                    (shd_req_valid_q & shd_req_ready_i) | sr_take |
+                    (mat_req_valid_q & mat_req_ready_i) | sh_in_take;
+  assign wd_fire  = wd_q == 32'(WatchdogCycles);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      wd_q    <= '0;
+      error_q <= '0;
+    end else begin
+      if (idle || progress) begin
+        wd_q <= '0;
+      end else if (!wd_fire) begin
+        wd_q <= wd_q + 32'd1;
+      end
+      error_q[2:0] <= error_q[2:0] | ev_err;
+      if (wd_fire) error_q[ErrWatchdog] <= 1'b1;
+    end
+  end
+
+  assign idle_o  = idle;
+  assign error_o = error_q;
+
+  ////////////////////////////////////////
+  // Performance counters               //
+  ////////////////////////////////////////
+
+  logic [NPerf*64-1:0] perf_q;
+  logic [3*NPerf-1:0]  perf_inc;                 // counter k at [3k +: 3]
+
+  always_comb begin
+    perf_inc = '0;
+    perf_inc[3*rc_pkg::CorePerfCycles +: 3]           = 3'd1;
+    perf_inc[3*rc_pkg::CorePerfBusyCycles +: 3]       = 3'(!idle);
+    perf_inc[3*rc_pkg::CorePerfPackets +: 3]          = 3'(acc_take);
+    perf_inc[3*rc_pkg::CorePerfRays +: 3]             = acc_take ? popcount4(pkt_mask_i) : 3'd0;
+    perf_inc[3*rc_pkg::CorePerfNodesFetched +: 3]     = 3'(fe_take && !fe_bad);
+    perf_inc[3*rc_pkg::CorePerfInnerVisits +: 3]      = 3'(nr_take && nr_inner_ok);
+    perf_inc[3*rc_pkg::CorePerfTraversalSteps +: 3]   = (nr_take && nr_inner_ok) ? popcount4(nr_mask) : 3'd0;
+    perf_inc[3*rc_pkg::CorePerfLeafVisits +: 3]       = 3'(nr_take && !node_rsp_error_i && nr_leaf);
+    perf_inc[3*rc_pkg::CorePerfEmptyLeaves +: 3]      = 3'(nr_take && !node_rsp_error_i && nr_leaf &&
+                                                    nr_upper == 32'd0);
+    perf_inc[3*rc_pkg::CorePerfListEntries +: 3]      = 3'(lr_take);
+    perf_inc[3*rc_pkg::CorePerfTriangleTests +: 3]    = 3'(is_take);
+    perf_inc[3*rc_pkg::CorePerfStackPushes +: 3]      = 3'(tr_v && tr_push && !tr_overflow);
+    perf_inc[3*rc_pkg::CorePerfStackPops +: 3]        = 3'(pp_any && !pp_end);
+    perf_inc[3*rc_pkg::CorePerfCulledPops +: 3]       = 3'(pop2_v && pop2_mask == 4'd0);
+    perf_inc[3*rc_pkg::CorePerfFailedPackets +: 3]    = 3'(pp_any && (|err_q[pp_thr*3 +: 3]));
+    perf_inc[3*rc_pkg::CorePerfSetupBusy +: 3]        = 3'(su_take);
+    perf_inc[3*rc_pkg::CorePerfTravBusy +: 3]         = 3'(nr_take && nr_inner_ok);
+    perf_inc[3*rc_pkg::CorePerfListBusy +: 3]         = 3'(li_take);
+    perf_inc[3*rc_pkg::CorePerfIsectBusy +: 3]        = 3'(is_take);
+    perf_inc[3*rc_pkg::CorePerfShadeBusy +: 3]        = 3'(sh_in_take);
+    perf_inc[3*rc_pkg::CorePerfNodeRequests +: 3]     = 3'(node_req_valid_q && node_req_ready_i);
+    perf_inc[3*rc_pkg::CorePerfListRequests +: 3]     = 3'(list_req_valid_q && list_req_ready_i);
+    perf_inc[3*rc_pkg::CorePerfTriRequests +: 3]      = 3'(tri_req_valid_q && tri_req_ready_i);
+    perf_inc[3*rc_pkg::CorePerfShadingRequests +: 3]  = 3'(shd_req_valid_q && shd_req_ready_i);
+    perf_inc[3*rc_pkg::CorePerfMaterialRequests +: 3] = 3'(mat_req_valid_q && mat_req_ready_i);
+    perf_inc[3*rc_pkg::CorePerfFbWrites +: 3]         = 3'(fb_take);
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      perf_q <= '0;
+    end else begin
+      for (int unsigned k = 0; k < NPerf; k++) begin
+        if (k == rc_pkg::CorePerfMaxStack) begin
+          if (tr_v && tr_push && !tr_overflow &&
+              64'(tr_sp) + 64'd1 > perf_q[k*64 +: 64]) begin
+            perf_q[k*64 +: 64] <= 64'(tr_sp) + 64'd1;
+          end
+        end else begin
+          perf_q[k*64 +: 64] <= perf_q[k*64 +: 64] + 64'(perf_inc[3*k +: 3]);
+        end
+      end
+    end
+  end
+
+  assign perf_o = (32'(perf_sel_i) < NPerf) ? perf_q[32'(perf_sel_i)*64 +: 64] : 64'd0;
+
+  // Bits the core does not use: tag bits above its own tags, the shading record's unit normal,
+  // the upper byte of each kd slot, the lock-step copies of the traversal tags and valids.
+  logic unused_bits;
+  assign unused_bits = ^{node_rsp_tag_i, list_rsp_tag_i, tri_rsp_tag_i, shd_rsp_tag_i,
+                         shd_rsp_data_i, mat_rsp_tag_i, mat_rsp_data_i, trav_tag_all, pop_cmp_v};
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+  logic [31:0] wb_pend;
+  assign wb_pend = pend_m[wb_thr];
+
+  // The four traversal sub-units take the same operations, so they stay in lock step.
+  TravLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                   (&trav_ready_all || ~|trav_ready_all) &&
+                                   (&trav_v_all || ~|trav_v_all));
+  // A node response answers the node request of a thread that waits for it.
+  NodeRspOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                   nr_take |-> st_q[nr_thr*4 +: 4] == StNode);
+  // Traversal results belong to threads in the traversal sub-units.
+  TravOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                tr_v |-> st_q[tr_thr*4 +: 4] == StNode);
+  // Ray set-up results belong to threads in set-up.
+  SetupOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 su_v |-> st_q[su_thr*4 +: 4] == StSetup);
+  // List and triangle responses carry an outstanding tag of a thread in its leaf.
+  ListRspTag_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 list_rsp_valid_i |-> !tf_q[lr_tag] &&
+                                 st_q[lr_thr*4 +: 4] == StLeafRun);
+  TriRspTag_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                tri_rsp_valid_i |-> !tf_q[ti_tag] &&
+                                st_q[ti_thr*4 +: 4] == StLeafRun);
+  // A leaf's packet has at least one active ray, so every triangle is tested at least once.
+  TriHasRay_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                is_valid |-> ti_rem != 4'd0);
+  // Intersection results belong to threads in their leaf, with triangles still outstanding.
+  IsectOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 io_v |-> st_q[wb_thr*4 +: 4] == StLeafRun && wb_pend != 32'd0);
+  // A pop result belongs to a thread that is popping.
+  PopOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               pop2_v |-> st_q[pop2_thr_q*4 +: 4] == StPopping);
+  // Shading responses and framebuffer writes belong to threads being shaded.
+  ShdRspOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  shd_rsp_valid_i |-> st_q[sr_rid[RidW-1:2]*4 +: 4] == StShade);
+  MatRspOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  mat_rsp_valid_i |-> st_q[mr_thr*4 +: 4] == StShade);
+  FbOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              fb_valid_q |-> st_q[fb_thr*4 +: 4] == StShade &&
+                              fbw_q[fb_thr*3 +: 3] != 3'd0);
+  // Requests and writes hold their payload until taken (the memory-port protocol).
+  NodeReqStable_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                    node_req_valid_o && !node_req_ready_i |=>
+                                    node_req_valid_o && $stable(node_req_index_o));
+  TriReqStable_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                   tri_req_valid_o && !tri_req_ready_i |=>
+                                   tri_req_valid_o && $stable(tri_req_index_o));
+  FbStable_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               fb_valid_o && !fb_ready_i |=>
+                               fb_valid_o && $stable({fb_pixel_o, fb_rgb_o, fb_t_o}));
+  // Outputs that others act on are known after reset.
+  OutputsKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                   !$isunknown({pkt_ready_o, fb_valid_o, node_req_valid_o,
+                                                list_req_valid_o, tri_req_valid_o,
+                                                shd_req_valid_o, mat_req_valid_o, idle_o}));
+`endif
+
+endmodule
