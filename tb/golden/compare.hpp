@@ -1,4 +1,5 @@
-// Comparing two frames: hit agreement (same closest triangle, or both miss) and PSNR.
+// Comparing two frames: hit agreement (same closest triangle, or both miss) and PSNR; and the
+// bit-exact comparison of the RTL against the golden model (rgb, hit records, counters).
 #pragma once
 
 #include <cstdint>
@@ -29,5 +30,38 @@ Agreement compare_frames(const Frame& a, const Frame& b);
 // A difference image: pixels where the hits agree are the darkened image a; disagreeing pixels
 // are red (different triangle), green (only a hits) or blue (only b hits).
 std::vector<uint8_t> hit_difference_image(const Frame& a, const Frame& b);
+
+// Bit-exact comparison: every pixel's rgb and exact hit record (Frame::hits, both frames must
+// have them).
+struct ExactComparison {
+  uint64_t pixels = 0;
+  uint64_t differing = 0;    // pixels whose rgb or hit record differ
+  uint64_t rgb_differ = 0;   // of those, pixels whose rgb differs
+  uint64_t hits_differ = 0;  // of those, pixels whose hit record differs
+  int64_t first = -1;        // the first differing pixel (y * width + x), -1: none
+  bool equal() const { return differing == 0; }
+};
+ExactComparison compare_exact(const Frame& expected, const Frame& actual);
+
+// A difference image of the exact comparison: equal pixels are the darkened expected image;
+// differing pixels are red (hit record differs), yellow (only rgb differs).
+std::vector<uint8_t> exact_difference_image(const Frame& expected, const Frame& actual);
+
+// A counter that differs between the golden model (expected) and the RTL (actual).
+struct CounterDifference {
+  std::string name;
+  uint64_t expected = 0, actual = 0;
+  // Must match: every counter for a frame without errors; after an error (expected.errors > 0)
+  // only packets, rays, failed_packets and error_bits, since the failing packets' operations
+  // already in flight still finish and count (docs/architecture.md, the core's counters).
+  bool required = true;
+  std::string text() const;  // "name: expected X, got Y"
+};
+
+// The counters the RTL reproduces: packets, rays, node fetches, inner visits, traversal steps,
+// leaf visits, empty leaves, list entries, triangle tests, pushes, pops, culled pops, max stack,
+// failed packets and the error bits. Empty: all equal.
+std::vector<CounterDifference> counter_differences(const Counters& expected,
+                                                   const Counters& actual);
 
 }  // namespace rc

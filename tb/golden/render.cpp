@@ -54,6 +54,7 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
   f.rgb.assign(static_cast<size_t>(opt.width) * opt.height * 3, 0);
   f.hit_tri.assign(static_cast<size_t>(opt.width) * opt.height, -1);
   f.hit_t.assign(static_cast<size_t>(opt.width) * opt.height, 0.0f);
+  f.hits.assign(static_cast<size_t>(opt.width) * opt.height, HitRecord{});
   const uint32_t pw = (opt.width + 1) / 2, ph = (opt.height + 1) / 2;
   std::vector<Counters> row_counters(ph);
   parallel_rows(ph, opt.threads, opt.progress, "golden", [&](uint32_t py) {
@@ -73,6 +74,7 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
         std::memcpy(&f.rgb[pix * 3], rgb.data(), 3);
         f.hit_tri[pix] = h.tri;
         f.hit_t[pix] = h.tri >= 0 ? h.t.to_float() : 0.0f;
+        if (h.tri >= 0) f.hits[pix] = HitRecord{h.tri, h.t.bits(), h.u.bits(), h.v.bits()};
       }
     }
   });

@@ -13,12 +13,24 @@
 
 namespace rc {
 
+// One pixel's closest hit exactly, as the core's framebuffer port reports it: the triangle and
+// the format bit patterns of t, u and v (all zero, tri -1, for a miss).
+struct HitRecord {
+  int32_t tri = -1;
+  uint32_t t = 0, u = 0, v = 0;
+  bool operator==(const HitRecord& o) const {
+    return tri == o.tri && t == o.t && u == o.u && v == o.v;
+  }
+  bool operator!=(const HitRecord& o) const { return !(*this == o); }
+};
+
 // Per pixel: what the hits file stores, plus the shaded colour.
 struct Frame {
   uint32_t width = 0, height = 0;
   std::vector<uint8_t> rgb;      // width * height * 3, top row first
   std::vector<int32_t> hit_tri;  // -1 for a miss
   std::vector<float> hit_t;      // hit distance (0 for a miss)
+  std::vector<HitRecord> hits;   // exact hit records (golden model and RTL; empty for Embree)
   Counters counters;
   double seconds = 0.0;
 };

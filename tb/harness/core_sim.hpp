@@ -1,0 +1,111 @@
+// The harness around the verilated core (rtl/core/rc_core.sv): resets and clocks it, serves its
+// five memory ports from a memory image through rc::harness::MemoryPort, feeds it the packets of
+// the shared ray generator (tb/golden/render.hpp make_packet), collects its framebuffer writes
+// into an rc::Frame with exact hit records, reads its performance counters, and watches for hangs.
+//
+// The simulation class is a template on the Verilator model type (core_sim_impl.hpp holds its
+// definition); core_sim.cpp instantiates it for the two models the build verilates: Vrc_core
+// (default Threads) and Vrc_core_t1 (Threads = 1). render_rtl() picks one of them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "image.hpp"
+#include "memory_model.hpp"
+#include "rc_constants.hpp"
+#include "render.hpp"
+
+namespace rc::harness {
+
+// The core's memory ports, in this order everywhere (options, statistics, messages).
+enum CorePort : int { kPortNodes = 0, kPortLists, kPortTriangles, kPortShading, kPortMaterials };
+constexpr int kCorePorts = 5;
+const char* core_port_name(int port);
+
+constexpr int kCorePerfCount = static_cast<int>(spec::kCorePerfCount);
+
+struct CoreSimOptions {
+  // Per port timing (latency, rate limits, random stalls with their seeds).
+  std::array<MemoryParams, kCorePorts> memory{};
+  // Non-zero: a fixed recipe of seeded random stalls on every port (request stalls, extra delays,
+  // withheld responses; seeds derived from this one per port), seeded random gaps in the packet
+  // stream and random low periods of fb_ready_i. Overrides the stall fields of `memory`.
+  uint64_t stall_seed = 0;
+  // The run fails when no handshake completes on any port for this many cycles.
+  uint64_t watchdog_cycles = 200000;
+  // FST waveform (empty: none), dumped only for cycles first .. last (both inclusive).
+  std::string trace_path;
+  uint64_t trace_first = 0;
+  uint64_t trace_last = std::numeric_limits<uint64_t>::max();
+  bool progress = false;  // progress line on stderr
+};
+
+// splitmix64's finaliser: per-port seeds from one seed.
+inline uint64_t mix_seed(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+// Applies the stall recipe of `stall_seed` to the port parameters (keeps latency and limits).
+void apply_stall_recipe(std::array<MemoryParams, kCorePorts>& memory, uint64_t stall_seed);
+
+struct CoreSimResult {
+  Frame frame;          // rgb, hit_tri, hit_t, exact hits; counters from the core's perf counters
+  uint64_t cycles = 0;  // clock cycles after reset
+  uint32_t error_bits = 0;                      // error_o (all CoreStatus bits)
+  bool idle = false;                            // idle_o at the end
+  std::array<uint64_t, kCorePerfCount> perf{};  // every perf counter, by number
+  std::array<MemoryStats, kCorePorts> memory{};
+  uint64_t packets_fed = 0;
+  uint64_t fb_writes = 0;
+  // Per packet (row by row) the cycle the core took it; per pixel the cycle of its framebuffer
+  // write: where to look in a waveform (docs/debugging.md).
+  std::vector<uint64_t> packet_cycle, pixel_cycle;
+  uint64_t misses_with_payload = 0;  // misses reported with a non-zero tri/t/u/v (must be 0)
+  double seconds = 0.0;              // wall time of the simulation
+  double cycles_per_second = 0.0;    // simulated cycles per wall second
+};
+
+// A run that went wrong: a hang (watchdog), the core's watchdog bit, a pixel written twice or not
+// at all, a write to a pixel that does not exist, a memory protocol violation. The message names
+// the cycle and the state of every port.
+class CoreSimError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The simulation of one verilated core model. Not copyable; one render per object.
+template <class Model>
+class CoreSim {
+ public:
+  CoreSim(const scene::SceneImage& image, const CoreSimOptions& options);
+  ~CoreSim();
+  CoreSim(const CoreSim&) = delete;
+  CoreSim& operator=(const CoreSim&) = delete;
+
+  // Renders the frame of `render` (size, camera, background; threads and progress are ignored).
+  // Throws CoreSimError for a failed run.
+  CoreSimResult render(const RenderOptions& render);
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+// Which verilated model render_rtl() runs.
+enum class CoreModel { kDefault, kThreads1 };
+
+// Renders an fp24 image through the verilated core. Throws scene::Error for an image in another
+// format and CoreSimError for a failed run.
+CoreSimResult render_rtl(const scene::SceneImage& image, const RenderOptions& render,
+                         const CoreSimOptions& options, CoreModel model = CoreModel::kDefault);
+
+}  // namespace rc::harness

@@ -1,0 +1,486 @@
+// The definition of rc::harness::CoreSim<Model> (core_sim.hpp). Included by core_sim.cpp for the
+// build's core models, and by tests that instantiate the harness for a model of their own (a
+// fake core with rc_core's ports). Needs the model's header and Verilator's runtime.
+#pragma once
+
+#include <verilated.h>
+#include <verilated_fst_c.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <type_traits>
+
+#include "core_sim.hpp"
+#include "error.hpp"
+
+namespace rc::harness {
+
+namespace detail {
+
+// ---- Port bit access: Verilator gives ports up to 64 bits as integers, wider ones as VlWide ----
+
+template <class P>
+void set_field(P& port, unsigned lsb, unsigned width, uint64_t value) {
+  static_assert(std::is_integral<P>::value, "scalar port");
+  const uint64_t mask = width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
+  const uint64_t cur = static_cast<uint64_t>(port);
+  port = static_cast<P>((cur & ~(mask << lsb)) | ((value & mask) << lsb));
+}
+template <std::size_t N>
+void set_field(VlWide<N>& port, unsigned lsb, unsigned width, uint64_t value) {
+  for (unsigned i = 0; i < width; ++i) {
+    const unsigned b = lsb + i;
+    const uint32_t m = 1u << (b % 32);
+    if ((value >> i) & 1u)
+      port[b / 32] |= m;
+    else
+      port[b / 32] &= ~m;
+  }
+}
+
+template <class P>
+uint64_t get_field(const P& port, unsigned lsb, unsigned width) {
+  static_assert(std::is_integral<P>::value, "scalar port");
+  const uint64_t mask = width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
+  return (static_cast<uint64_t>(port) >> lsb) & mask;
+}
+
+// A memory response's data words (little-endian 32-bit words) onto a data port.
+template <class P>
+void set_words(P& port, const std::vector<uint32_t>& words) {
+  static_assert(std::is_integral<P>::value, "scalar port");
+  uint64_t v = 0;
+  for (size_t i = 0; i < words.size() && i < 2; ++i)
+    v |= static_cast<uint64_t>(words[i]) << (32 * i);
+  port = static_cast<P>(v);
+}
+template <std::size_t N>
+void set_words(VlWide<N>& port, const std::vector<uint32_t>& words) {
+  for (std::size_t i = 0; i < N; ++i) port[i] = i < words.size() ? words[i] : 0u;
+}
+template <class P>
+void clear_words(P& port) {
+  set_words(port, {});
+}
+
+}  // namespace detail
+
+// Every thread's state for the hang report; core_sim.cpp specialises it for the real core models
+// (rc_core st_q, public in the RTL). Other models (the harness test's stand-in) have none.
+template <class Model>
+std::string thread_states(const Model&) {
+  return "";
+}
+
+// The state names of rc_core st_q (4 bits per thread; docs/debugging.md).
+template <class Word>
+std::string describe_thread_states(const Word& st, uint32_t threads) {
+  static const char* const kNames[] = {"Free",    "Setup", "Fetch",   "Node", "Leaf",
+                                       "LeafRun", "Pop",   "Popping", "Done", "Shade"};
+  std::ostringstream s;
+  s << "  threads:";
+  for (uint32_t t = 0; t < threads; ++t) {
+    const uint32_t v = static_cast<uint32_t>(detail::get_field(st, 4 * t, 4));
+    s << " " << t << ":" << (v < 10 ? kNames[v] : "?");
+  }
+  s << "\n";
+  return s.str();
+}
+
+template <class Model>
+struct CoreSim<Model>::State {
+  const scene::SceneImage& image;
+  CoreSimOptions opt;
+  std::unique_ptr<VerilatedContext> ctx;
+  std::unique_ptr<Model> m;
+  std::unique_ptr<VerilatedFstC> fst;
+  std::vector<std::unique_ptr<MemoryPort>> ports;
+  std::mt19937_64 rng;
+  uint64_t cycle = 0;
+  uint64_t quiet = 0;  // cycles since the last handshake on any port
+  bool used = false;
+
+  // Packet stream.
+  uint32_t width = 0, height = 0, pw = 0, ph = 0;
+  uint64_t packets_total = 0, packets_fed = 0;
+  bool pkt_loaded = false;
+  uint32_t gap = 0;
+  // Framebuffer.
+  uint64_t pixels_total = 0, written = 0, miss_payload = 0;
+  std::vector<uint8_t> seen;
+  uint32_t fb_low_run = 0;
+
+  State(const scene::SceneImage& img, const CoreSimOptions& o) : image(img), opt(o) {}
+
+  bool stalls() const { return opt.stall_seed != 0; }
+
+  std::string port_state() const {
+    std::ostringstream s;
+    for (int i = 0; i < kCorePorts; ++i) {
+      const MemoryPort& p = *ports[static_cast<size_t>(i)];
+      const MemoryStats& st = p.stats();
+      s << "  " << core_port_name(i) << " port: " << p.outstanding() << " outstanding, idle "
+        << p.idle_cycles() << " cycles, " << st.requests << " requests, " << st.responses
+        << " responses";
+      if (p.response())
+        s << ", showing tag " << p.response()->tag << " (index " << p.response()->index << ")";
+      s << "\n";
+    }
+    return s.str();
+  }
+
+  std::string describe(const std::string& what) const {
+    std::ostringstream s;
+    s << what << " (cycle " << cycle << ", " << quiet << " cycles since the last handshake)\n"
+      << "  packets fed " << packets_fed << " of " << packets_total << " (pkt_valid_i "
+      << int(m->pkt_valid_i) << ", pkt_ready_o " << int(m->pkt_ready_o) << "), pixels written "
+      << written << " of " << pixels_total << " (fb_valid_o " << int(m->fb_valid_o)
+      << ", fb_ready_i " << int(m->fb_ready_i) << ")\n"
+      << "  idle_o " << int(m->idle_o) << ", error_o 0x" << std::hex << int(m->error_o) << std::dec
+      << "\n"
+      << thread_states(*m) << port_state();
+    return s.str();
+  }
+};
+
+template <class Model>
+CoreSim<Model>::CoreSim(const scene::SceneImage& image, const CoreSimOptions& options)
+    : s_(std::make_unique<State>(image, options)) {
+  State& s = *s_;
+  if (!image.format().template is<fp24>())
+    throw scene::Error(image.name() + ": the RTL core is built for fp24 (7/16), the image holds " +
+                       image.format().name());
+  if (s.opt.stall_seed != 0) apply_stall_recipe(s.opt.memory, s.opt.stall_seed);
+  s.rng.seed(mix_seed(s.opt.stall_seed ^ 0x5eedf00dull));
+
+  // The five ports: four sections by id, and the materials' kd fields.
+  const uint32_t ids[4] = {static_cast<uint32_t>(spec::kImageSectionIdNodes),
+                           static_cast<uint32_t>(spec::kImageSectionIdLists),
+                           static_cast<uint32_t>(spec::kImageSectionIdTriangles),
+                           static_cast<uint32_t>(spec::kImageSectionIdShading)};
+  for (int i = 0; i < 4; ++i)
+    s.ports.push_back(
+        std::make_unique<MemoryPort>(image, ids[i], s.opt.memory[static_cast<size_t>(i)]));
+  {
+    const scene::SectionInfo& mat =
+        image.section(static_cast<uint32_t>(spec::kImageSectionIdMaterials));
+    const auto kd = static_cast<size_t>(spec::kImageMaterialKd);
+    const size_t stride = mat.stride;
+    std::vector<uint8_t> bytes(static_cast<size_t>(mat.count) * stride, 0);
+    const size_t avail = static_cast<size_t>(mat.count) * stride;
+    const uint8_t* first = image.bytes().data() + mat.offset;
+    if (avail > kd) std::copy(first + kd, first + avail, bytes.begin());  // the rest stays zero
+    s.ports.push_back(std::make_unique<MemoryPort>(
+        std::move(bytes), mat.count, static_cast<uint32_t>(stride), 12u,
+        s.opt.memory[kPortMaterials], image.name() + ":materials.kd"));
+  }
+
+  s.ctx = std::make_unique<VerilatedContext>();
+  s.ctx->assertOn(true);
+  s.ctx->fatalOnError(false);  // an assertion ends the run with a CoreSimError, not abort()
+  if (!s.opt.trace_path.empty()) s.ctx->traceEverOn(true);
+  s.m = std::make_unique<Model>(s.ctx.get(), "core");
+}
+
+template <class Model>
+CoreSim<Model>::~CoreSim() {
+  if (!s_) return;
+  if (s_->fst) s_->fst->close();
+  if (s_->m) s_->m->final();
+}
+
+template <class Model>
+CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
+  using detail::get_field;
+  using detail::set_field;
+  using T = fp24;
+  constexpr unsigned W = T::kWidth;
+  State& s = *s_;
+  if (s.used) throw std::logic_error("CoreSim::render: one render per simulation object");
+  s.used = true;
+  Model& m = *s.m;
+  const auto start = std::chrono::steady_clock::now();
+
+  // ---- Configuration and reset ----
+  const auto bounds = s.image.bounds_bits();
+  for (unsigned i = 0; i < 6; ++i) set_field(m.bounds_i, i * W, W, bounds[i]);
+  m.node_count_i = s.image.section(static_cast<uint32_t>(spec::kImageSectionIdNodes)).count;
+  m.list_count_i = s.image.section(static_cast<uint32_t>(spec::kImageSectionIdLists)).count;
+  m.tri_count_i = s.image.section(static_cast<uint32_t>(spec::kImageSectionIdTriangles)).count;
+  // Exactly as shade() in tb/golden/trace.hpp.
+  m.ambient_i = T::from_double(static_cast<double>(spec::kShadeAmbientPermille) / 1000.0).bits();
+  m.diffuse_i =
+      T::from_double(1.0 - static_cast<double>(spec::kShadeAmbientPermille) / 1000.0).bits();
+  m.background_i = static_cast<uint32_t>(render.background[0]) |
+                   static_cast<uint32_t>(render.background[1]) << 8 |
+                   static_cast<uint32_t>(render.background[2]) << 16;
+  m.pkt_valid_i = 0;
+  m.fb_ready_i = 0;
+  m.perf_sel_i = 0;
+  m.clk_i = 0;
+  m.rst_ni = 1;
+  m.eval();
+  m.rst_ni = 0;
+  m.eval();
+  for (int i = 0; i < 4; ++i) {
+    m.clk_i = 1;
+    m.eval();
+    m.clk_i = 0;
+    m.eval();
+  }
+  m.rst_ni = 1;
+  m.eval();
+
+  // ---- The frame ----
+  const RayGenerator gen(render.camera, render.width, render.height);
+  s.width = render.width;
+  s.height = render.height;
+  s.pw = (s.width + 1) / 2;
+  s.ph = (s.height + 1) / 2;
+  s.packets_total = static_cast<uint64_t>(s.pw) * s.ph;
+  s.pixels_total = static_cast<uint64_t>(s.width) * s.height;
+  s.seen.assign(s.pixels_total, 0);
+  CoreSimResult res;
+  Frame& f = res.frame;
+  f.width = s.width;
+  f.height = s.height;
+  f.rgb.assign(s.pixels_total * 3, 0);
+  f.hit_tri.assign(s.pixels_total, -1);
+  f.hit_t.assign(s.pixels_total, 0.0f);
+  f.hits.assign(s.pixels_total, HitRecord{});
+  res.pixel_cycle.assign(s.pixels_total, 0);
+
+  const auto load_packet = [&](uint64_t k) {
+    const auto px = static_cast<uint32_t>(k % s.pw), py = static_cast<uint32_t>(k / s.pw);
+    std::array<Ray<T>, kPacketRays> rays;
+    const uint32_t mask = make_packet(gen, px, py, rays);
+    m.pkt_mask_i = static_cast<uint8_t>(mask);
+    for (unsigned r = 0; r < kPacketRays; ++r) {
+      const bool on = (mask >> r & 1u) != 0;
+      for (unsigned a = 0; a < 3; ++a) {
+        set_field(m.pkt_org_i, (3 * r + a) * W, W, on ? rays[r].org[a].bits() : 0u);
+        set_field(m.pkt_dir_i, (3 * r + a) * W, W, on ? rays[r].dir[a].bits() : 0u);
+      }
+      set_field(m.pkt_inv_len_i, r * W, W, on ? rays[r].inv_len.bits() : 0u);
+      const uint32_t x = 2 * px + (r & 1u), y = 2 * py + (r >> 1);
+      set_field(m.pkt_pixel_i, r * 32, 32, on ? y * s.width + x : 0u);
+    }
+  };
+
+  const auto fail = [&](const std::string& what) { throw CoreSimError(s.describe(what)); };
+
+  auto last_progress = start;
+  const auto drive_port = [&](auto& req_ready, auto& rsp_valid, auto& rsp_tag, auto& rsp_data,
+                              auto& rsp_error, const MemoryPort& p) {
+    req_ready = p.request_ready();
+    const auto& r = p.response();
+    rsp_valid = r.has_value();
+    if (r) {
+      rsp_tag = static_cast<std::remove_reference_t<decltype(rsp_tag)>>(r->tag);
+      detail::set_words(rsp_data, r->data);
+      rsp_error = r->error;
+    } else {
+      rsp_tag = 0;
+      detail::clear_words(rsp_data);
+      rsp_error = 0;
+    }
+  };
+  bool handshake = false;
+  const auto sample_port = [&](uint64_t req_valid, uint64_t req_tag, uint64_t req_index,
+                               uint64_t rsp_ready, MemoryPort& p) {
+    try {
+      if (req_valid && p.offer_request(static_cast<uint32_t>(req_tag), req_index)) handshake = true;
+      if (p.response() && rsp_ready) {
+        p.take_response();
+        handshake = true;
+      }
+    } catch (const ProtocolError& e) {
+      fail(std::string("memory protocol violation: ") + e.what());
+    }
+  };
+
+  const bool in_window_possible = !s.opt.trace_path.empty();
+  const auto dump = [&](uint64_t time) {
+    if (!in_window_possible || s.cycle < s.opt.trace_first || s.cycle > s.opt.trace_last) return;
+    if (!s.fst) {
+      s.fst = std::make_unique<VerilatedFstC>();
+      m.trace(s.fst.get(), 99);
+      s.fst->open(s.opt.trace_path.c_str());
+    }
+    s.fst->dump(time);
+  };
+
+  bool tail_started = false;
+  uint64_t tail = 0;
+  while (true) {
+    // ---- Inputs for this cycle ----
+    if (!s.pkt_loaded && s.packets_fed < s.packets_total && s.gap == 0) {
+      load_packet(s.packets_fed);
+      s.pkt_loaded = true;
+    }
+    m.pkt_valid_i = s.pkt_loaded && s.gap == 0;
+    if (s.gap > 0) --s.gap;
+    bool fb_ready = true;
+    if (s.stalls()) {
+      fb_ready = !(s.fb_low_run < 8 && (s.rng() & 3u) == 0);
+      s.fb_low_run = fb_ready ? 0 : s.fb_low_run + 1;
+    }
+    m.fb_ready_i = fb_ready;
+    drive_port(m.node_req_ready_i, m.node_rsp_valid_i, m.node_rsp_tag_i, m.node_rsp_data_i,
+               m.node_rsp_error_i, *s.ports[kPortNodes]);
+    drive_port(m.list_req_ready_i, m.list_rsp_valid_i, m.list_rsp_tag_i, m.list_rsp_data_i,
+               m.list_rsp_error_i, *s.ports[kPortLists]);
+    drive_port(m.tri_req_ready_i, m.tri_rsp_valid_i, m.tri_rsp_tag_i, m.tri_rsp_data_i,
+               m.tri_rsp_error_i, *s.ports[kPortTriangles]);
+    drive_port(m.shd_req_ready_i, m.shd_rsp_valid_i, m.shd_rsp_tag_i, m.shd_rsp_data_i,
+               m.shd_rsp_error_i, *s.ports[kPortShading]);
+    drive_port(m.mat_req_ready_i, m.mat_rsp_valid_i, m.mat_rsp_tag_i, m.mat_rsp_data_i,
+               m.mat_rsp_error_i, *s.ports[kPortMaterials]);
+    m.clk_i = 0;
+    m.eval();
+
+    // ---- Handshakes completing at the coming edge ----
+    handshake = false;
+    sample_port(m.node_req_valid_o, m.node_req_tag_o, m.node_req_index_o, m.node_rsp_ready_o,
+                *s.ports[kPortNodes]);
+    sample_port(m.list_req_valid_o, m.list_req_tag_o, m.list_req_index_o, m.list_rsp_ready_o,
+                *s.ports[kPortLists]);
+    sample_port(m.tri_req_valid_o, m.tri_req_tag_o, m.tri_req_index_o, m.tri_rsp_ready_o,
+                *s.ports[kPortTriangles]);
+    sample_port(m.shd_req_valid_o, m.shd_req_tag_o, m.shd_req_index_o, m.shd_rsp_ready_o,
+                *s.ports[kPortShading]);
+    sample_port(m.mat_req_valid_o, m.mat_req_tag_o, m.mat_req_index_o, m.mat_rsp_ready_o,
+                *s.ports[kPortMaterials]);
+    if (m.pkt_valid_i && m.pkt_ready_o) {
+      res.packet_cycle.push_back(s.cycle);
+      ++s.packets_fed;
+      s.pkt_loaded = false;
+      handshake = true;
+      if (s.stalls() && (s.rng() & 3u) == 0) s.gap = 1 + static_cast<uint32_t>(s.rng() % 8);
+    }
+    if (m.fb_valid_o && m.fb_ready_i) {
+      handshake = true;
+      const uint64_t pix = m.fb_pixel_o;
+      if (pix >= s.pixels_total)
+        fail("framebuffer write to pixel " + std::to_string(pix) + ", the frame has " +
+             std::to_string(s.pixels_total));
+      const uint32_t x = static_cast<uint32_t>(pix % s.width),
+                     y = static_cast<uint32_t>(pix / s.width);
+      const uint64_t packet = static_cast<uint64_t>(y / 2) * s.pw + x / 2;
+      if (packet >= s.packets_fed)
+        fail("framebuffer write to pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+             ") before its packet was taken");
+      if (s.seen[pix])
+        fail("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") written twice");
+      s.seen[pix] = 1;
+      res.pixel_cycle[pix] = s.cycle;
+      ++s.written;
+      const uint32_t rgb = m.fb_rgb_o;
+      for (int c = 0; c < 3; ++c) f.rgb[3 * pix + c] = static_cast<uint8_t>(rgb >> (8 * c));
+      HitRecord h;
+      const uint32_t tri = m.fb_tri_o;
+      h.t = static_cast<uint32_t>(get_field(m.fb_t_o, 0, W));
+      h.u = static_cast<uint32_t>(get_field(m.fb_u_o, 0, W));
+      h.v = static_cast<uint32_t>(get_field(m.fb_v_o, 0, W));
+      if (m.fb_hit_o) {
+        h.tri = static_cast<int32_t>(tri);
+        f.hit_tri[pix] = h.tri;
+        f.hit_t[pix] = T::from_bits(h.t).to_float();
+      } else if (tri != 0 || h.t != 0 || h.u != 0 || h.v != 0) {
+        ++s.miss_payload;  // a miss must report zeros; t, u, v stay as reported (they differ)
+      }
+      f.hits[pix] = h;
+    }
+    if (s.ctx->gotError()) fail("the RTL stopped (an assertion or $stop; see the message above)");
+
+    // ---- The clock edge ----
+    dump(2 * s.cycle);
+    m.clk_i = 1;
+    m.eval();
+    dump(2 * s.cycle + 1);
+    for (auto& p : s.ports) p->tick();
+    ++s.cycle;
+    s.quiet = handshake ? 0 : s.quiet + 1;
+
+    if (m.error_o >> spec::kCoreStatusWatchdog & 1u) fail("the core's watchdog bit is set");
+    if (s.quiet > s.opt.watchdog_cycles)
+      fail("no handshake on any port for " + std::to_string(s.opt.watchdog_cycles) +
+           " cycles: the core hangs");
+
+    if (s.opt.progress) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_progress > std::chrono::seconds(1)) {
+        last_progress = now;
+        std::fprintf(stderr, "\rrtl: %llu of %llu pixels, %llu cycles",
+                     static_cast<unsigned long long>(s.written),
+                     static_cast<unsigned long long>(s.pixels_total),
+                     static_cast<unsigned long long>(s.cycle));
+      }
+    }
+
+    // ---- Done: every packet fed, every pixel written, the core idle, no request outstanding,
+    // then a few more cycles to catch spurious writes and requests ----
+    if (!tail_started) {
+      bool outstanding = false;
+      for (auto& p : s.ports) outstanding = outstanding || p->outstanding() > 0;
+      if (s.packets_fed == s.packets_total && s.written == s.pixels_total && m.idle_o &&
+          !outstanding)
+        tail_started = true;
+    } else if (++tail >= 32) {
+      break;
+    }
+  }
+  if (s.opt.progress && std::chrono::steady_clock::now() - start > std::chrono::seconds(1))
+    std::fprintf(stderr, "\n");
+  for (auto& p : s.ports)
+    if (p->stats().requests != p->stats().responses || p->outstanding() > 0)
+      fail(std::string("requests after the last pixel (") + p->name() + ")");
+  if (s.miss_payload)
+    std::fprintf(stderr, "rtl: %llu misses reported with a non-zero hit payload\n",
+                 static_cast<unsigned long long>(s.miss_payload));
+
+  // ---- Status and counters ----
+  for (int k = 0; k < kCorePerfCount; ++k) {
+    m.perf_sel_i = static_cast<uint8_t>(k);
+    m.eval();
+    res.perf[static_cast<size_t>(k)] = m.perf_o;
+  }
+  m.perf_sel_i = 0;
+  m.eval();
+  res.error_bits = m.error_o;
+  res.idle = m.idle_o;
+  res.cycles = s.cycle;
+  res.packets_fed = s.packets_fed;
+  res.fb_writes = s.written;
+  res.misses_with_payload = s.miss_payload;
+  for (int i = 0; i < kCorePorts; ++i)
+    res.memory[static_cast<size_t>(i)] = s.ports[static_cast<size_t>(i)]->stats();
+  const auto perf = [&res](int64_t k) { return res.perf[static_cast<size_t>(k)]; };
+  Counters& c = f.counters;
+  c.packets = perf(spec::kCorePerfPackets);
+  c.rays = perf(spec::kCorePerfRays);
+  c.nodes_fetched = perf(spec::kCorePerfNodesFetched);
+  c.inner_visits = perf(spec::kCorePerfInnerVisits);
+  c.traversal_steps = perf(spec::kCorePerfTraversalSteps);
+  c.leaf_visits = perf(spec::kCorePerfLeafVisits);
+  c.empty_leaves = perf(spec::kCorePerfEmptyLeaves);
+  c.list_entries = perf(spec::kCorePerfListEntries);
+  c.triangle_tests = perf(spec::kCorePerfTriangleTests);
+  c.stack_pushes = perf(spec::kCorePerfStackPushes);
+  c.stack_pops = perf(spec::kCorePerfStackPops);
+  c.culled_pops = perf(spec::kCorePerfCulledPops);
+  c.max_stack = perf(spec::kCorePerfMaxStack);
+  c.errors = perf(spec::kCorePerfFailedPackets);
+  c.error_bits = res.error_bits & (kErrMalformedNode | kErrBadAddress | kErrStackOverflow);
+  if (s.fst) s.fst->flush();
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  f.seconds = res.seconds;
+  res.cycles_per_second = res.seconds > 0 ? static_cast<double>(res.cycles) / res.seconds : 0.0;
+  return res;
+}
+
+}  // namespace rc::harness

@@ -1,0 +1,135 @@
+// The core harness (tb/harness/core_sim_impl.hpp) on its own, around a stand-in with rc_core's
+// ports (rc_fake_core.sv) whose framebuffer writes are made from the bits of the records it read:
+// checks the wiring of all five memory ports (including the materials' kd field), the packet
+// stream (pixel ids), the framebuffer collection, the perf counter read-out, seeded stalls, the
+// watchdog and the FST window.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "Vrc_fake_core.h"
+#include "Vrc_fake_core_hang.h"
+#include "core_sim_impl.hpp"
+#include "job.hpp"
+
+namespace rc::test {
+namespace {
+
+using harness::CoreSim;
+using harness::CoreSimError;
+using harness::CoreSimOptions;
+using harness::CoreSimResult;
+
+const RenderInput& cornell() {
+  static const RenderInput in =
+      load_render_input("builtin:cornell", scene::LoadOptions{}, scene::NumberFormat::fp24());
+  return in;
+}
+
+// What the fake core writes for pixel p (see rc_fake_core.sv).
+HitRecord expected_hit(const scene::SceneImage& img, uint32_t p, std::array<uint8_t, 3>& rgb) {
+  const uint64_t node = img.node(p % img.node_count()).raw;
+  const uint32_t l = img.list_entry(p % img.list_size());
+  const scene::ShadingRecord sh = img.shading(l);
+  const scene::MaterialRecord mat = img.material(sh.material & 0xffffu);
+  for (int c = 0; c < 3; ++c) rgb[c] = static_cast<uint8_t>(mat.kd[c]);
+  HitRecord h;
+  h.tri = static_cast<int32_t>(l);
+  h.t = img.triangle_bits(l, 11);
+  h.u = sh.normal_bits[0];
+  h.v = static_cast<uint32_t>(node >> 40);
+  return h;
+}
+
+void check_frame(const CoreSimResult& r, const scene::SceneImage& img, uint32_t w, uint32_t h) {
+  ASSERT_EQ(r.frame.width, w);
+  ASSERT_EQ(r.frame.height, h);
+  uint64_t mismatches = 0;
+  for (uint32_t p = 0; p < w * h; ++p) {
+    std::array<uint8_t, 3> rgb;
+    const HitRecord want = expected_hit(img, p, rgb);
+    const bool ok = r.frame.hits[p] == want && r.frame.rgb[3 * p] == rgb[0] &&
+                    r.frame.rgb[3 * p + 1] == rgb[1] && r.frame.rgb[3 * p + 2] == rgb[2];
+    if (!ok && mismatches++ < 5)
+      ADD_FAILURE() << "pixel " << p << ": tri " << r.frame.hits[p].tri << " want " << want.tri
+                    << ", t " << r.frame.hits[p].t << " want " << want.t << ", u "
+                    << r.frame.hits[p].u << " want " << want.u << ", v " << r.frame.hits[p].v
+                    << " want " << want.v;
+  }
+  std::printf("[cases] core harness (fake core) %ux%u: %u cases, %llu mismatches\n", w, h, w * h,
+              static_cast<unsigned long long>(mismatches));
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_EQ(r.frame.counters.packets, static_cast<uint64_t>((w + 1) / 2) * ((h + 1) / 2));
+  EXPECT_EQ(r.frame.counters.rays, static_cast<uint64_t>(w) * h);
+  EXPECT_EQ(r.perf[spec::kCorePerfFbWrites], static_cast<uint64_t>(w) * h);
+  EXPECT_EQ(r.error_bits, 0u);
+  EXPECT_TRUE(r.idle);
+  for (const auto& m : r.memory) {
+    EXPECT_EQ(m.requests, static_cast<uint64_t>(w) * h);
+    EXPECT_EQ(m.responses, m.requests);
+  }
+  EXPECT_EQ(r.memory[harness::kPortMaterials].bytes, 12u * w * h);
+  EXPECT_EQ(r.memory[harness::kPortTriangles].bytes, 36u * w * h);
+}
+
+TEST(CoreHarness, FakeCoreNoStalls) {
+  RenderOptions ro = input_options(cornell());
+  ro.width = 15;  // odd: absent rays at the border
+  ro.height = 11;
+  CoreSimOptions o;
+  const CoreSimResult r = CoreSim<Vrc_fake_core>(cornell().image, o).render(ro);
+  check_frame(r, cornell().image, ro.width, ro.height);
+}
+
+TEST(CoreHarness, FakeCoreWithStalls) {
+  RenderOptions ro = input_options(cornell());
+  ro.width = 16;
+  ro.height = 12;
+  for (uint64_t seed : {1u, 2u}) {
+    CoreSimOptions o;
+    o.stall_seed = seed;
+    o.memory[harness::kPortNodes].latency = 3;
+    const CoreSimResult r = CoreSim<Vrc_fake_core>(cornell().image, o).render(ro);
+    check_frame(r, cornell().image, ro.width, ro.height);
+    EXPECT_GT(r.memory[harness::kPortLists].refused_cycles, 0u) << "stalls happened";
+  }
+}
+
+TEST(CoreHarness, WatchdogNamesThePorts) {
+  RenderOptions ro = input_options(cornell());
+  ro.width = 4;
+  ro.height = 4;
+  CoreSimOptions o;
+  o.watchdog_cycles = 500;
+  try {
+    CoreSim<Vrc_fake_core_hang>(cornell().image, o).render(ro);
+    FAIL() << "no error";
+  } catch (const CoreSimError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("hangs"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("nodes port: 1 outstanding"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("packets fed 1 of 4"), std::string::npos) << msg;
+  }
+}
+
+TEST(CoreHarness, TraceWindow) {
+  RenderOptions ro = input_options(cornell());
+  ro.width = 4;
+  ro.height = 4;
+  CoreSimOptions o;
+  o.trace_path = testing::TempDir() + "/fake_core.fst";
+  o.trace_first = 20;
+  o.trace_last = 60;
+  std::filesystem::remove(o.trace_path);
+  {
+    const CoreSimResult r = CoreSim<Vrc_fake_core>(cornell().image, o).render(ro);
+    EXPECT_GT(r.cycles, 60u);
+  }
+  ASSERT_TRUE(std::filesystem::exists(o.trace_path));
+  EXPECT_GT(std::filesystem::file_size(o.trace_path), 100u);
+}
+
+}  // namespace
+}  // namespace rc::test

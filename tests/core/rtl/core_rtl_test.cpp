@@ -1,0 +1,332 @@
+// The whole core (rtl/core/rc_core.sv), verilated and run through the harness
+// (tb/harness/core_sim.hpp), against the golden model (tb/golden/render.hpp), bit for bit: every
+// pixel's rgb and exact hit record (triangle, t, u, v) and the counters, for every scene of
+// scenes/, the builtin scenes and the shared models, at the default memory latency without stalls,
+// with seeded random stalls (two seeds), and at Threads = 1. Corrupted images (the error paths)
+// must give the golden model's error bits, counters and (all-miss) pixels, and must not hang.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "compare.hpp"
+#include "core_sim.hpp"
+#include "geometry.hpp"
+#include "job.hpp"
+
+namespace rc::test {
+namespace {
+
+using harness::CoreModel;
+using harness::CoreSimOptions;
+using harness::CoreSimResult;
+
+const std::string kRoot = RC_SOURCE_DIR;
+const std::string kModels = kRoot + "/../shared/models";
+
+std::string hit_text(const HitRecord& h) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "tri %d t %.9g (0x%06x) u %.9g (0x%06x) v %.9g (0x%06x)", h.tri,
+                fp24::from_bits(h.t).to_double(), h.t, fp24::from_bits(h.u).to_double(), h.u,
+                fp24::from_bits(h.v).to_double(), h.v);
+  return buf;
+}
+
+// Compares the RTL's frame with the golden model's; prints a [cases] line and, on a mismatch,
+// the first differing pixel with its packet and both hit records. Counters: all of them must
+// match for an image without errors; after an error only packets, rays, failed packets and the
+// error bits must (CounterDifference::required; the others are printed).
+void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimResult& r) {
+  const Frame& f = r.frame;
+  const ExactComparison cmp = compare_exact(gold, f);
+  std::vector<std::string> counters;
+  for (const CounterDifference& d : counter_differences(gold.counters, f.counters)) {
+    if (d.required)
+      counters.push_back(d.text());
+    else
+      std::printf("%s: counter after an error (allowed to differ) %s\n", what.c_str(),
+                  d.text().c_str());
+  }
+  std::printf(
+      "[cases] core rtl %s %ux%u: %llu cases, %llu mismatches (%llu cycles, %.3f rays/cycle, "
+      "efficiency %.3f, %.0f cycles/s)\n",
+      what.c_str(), f.width, f.height, static_cast<unsigned long long>(cmp.pixels),
+      static_cast<unsigned long long>(cmp.differing + counters.size()),
+      static_cast<unsigned long long>(r.cycles),
+      r.cycles ? static_cast<double>(f.counters.rays) / static_cast<double>(r.cycles) : 0.0,
+      r.cycles ? static_cast<double>(
+                     std::max(f.counters.traversal_steps / 4, f.counters.triangle_tests)) /
+                     static_cast<double>(r.cycles)
+               : 0.0,
+      r.cycles_per_second);
+  if (!cmp.equal()) {
+    const auto pix = static_cast<size_t>(cmp.first);
+    const uint32_t x = static_cast<uint32_t>(pix % f.width),
+                   y = static_cast<uint32_t>(pix / f.width);
+    ADD_FAILURE() << what << ": " << cmp.differing << " of " << cmp.pixels << " pixels differ ("
+                  << cmp.rgb_differ << " rgb, " << cmp.hits_differ
+                  << " hit records); first: pixel (" << x << ", " << y << "), packet (" << x / 2
+                  << ", " << y / 2 << ") ray " << ((x & 1u) | (y & 1u) << 1)
+                  << "\n  golden: " << hit_text(gold.hits[pix]) << " rgb " << int(gold.rgb[3 * pix])
+                  << "," << int(gold.rgb[3 * pix + 1]) << "," << int(gold.rgb[3 * pix + 2])
+                  << "\n  rtl:    " << hit_text(f.hits[pix]) << " rgb " << int(f.rgb[3 * pix])
+                  << "," << int(f.rgb[3 * pix + 1]) << "," << int(f.rgb[3 * pix + 2]);
+  }
+  for (const std::string& d : counters) ADD_FAILURE() << what << ": counter " << d;
+  EXPECT_EQ(r.error_bits & ~uint32_t{7}, 0u) << what << ": watchdog or unknown error bits";
+  EXPECT_TRUE(r.idle) << what;
+  EXPECT_EQ(r.misses_with_payload, 0u) << what << ": a miss must report a zero hit record";
+  EXPECT_EQ(r.perf[spec::kCorePerfFbWrites], static_cast<uint64_t>(f.width) * f.height) << what;
+}
+
+//////////////////////////////////////////
+// Scenes and models, in several modes  //
+//////////////////////////////////////////
+
+struct SceneCase {
+  const char* input;  // scenes/... or builtin:... (repository) or a path under ../shared/models
+  bool auto_camera;
+  bool needs_models;
+  uint32_t width, height;
+};
+
+struct Mode {
+  const char* name;
+  CoreModel model;
+  uint64_t stall_seed;
+};
+
+const Mode kModes[] = {
+    {"lat16", CoreModel::kDefault, 0},      {"stall1", CoreModel::kDefault, 1},
+    {"stall2", CoreModel::kDefault, 2},     {"t1", CoreModel::kThreads1, 0},
+    {"t1_stall3", CoreModel::kThreads1, 3},
+};
+
+void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.input; }
+
+std::string input_path(const SceneCase& c) {
+  const std::string in = c.input;
+  if (in.rfind("builtin:", 0) == 0) return in;
+  return (in.rfind("scenes/", 0) == 0 ? kRoot : kModels) + "/" + in;
+}
+
+class CoreRtl : public testing::TestWithParam<std::tuple<SceneCase, int>> {};
+
+TEST_P(CoreRtl, MatchesGoldenBitForBit) {
+  const SceneCase c = std::get<0>(GetParam());
+  const Mode& mode = kModes[std::get<1>(GetParam())];
+  if (c.needs_models && !std::filesystem::exists(kModels))
+    GTEST_SKIP() << kModels << " is not there";
+  const RenderInput in =
+      load_render_input(input_path(c), scene::LoadOptions{}, scene::NumberFormat::fp24());
+  RenderOptions opt = input_options(in);
+  if (c.auto_camera) opt.camera = auto_camera_for(in.image);
+  opt.width = c.width;
+  opt.height = c.height;
+  opt.progress = false;
+  const Frame gold = render_golden(load_geometry<fp24>(in.image), opt);
+  CoreSimOptions so;
+  so.stall_seed = mode.stall_seed;
+  const CoreSimResult r = harness::render_rtl(in.image, opt, so, mode.model);
+  expect_bit_exact(std::string(c.input) + " " + mode.name, gold, r);
+  EXPECT_EQ(gold.counters.errors, 0u);
+  if (mode.stall_seed != 0) {
+    uint64_t refused = 0;
+    for (const auto& m : r.memory) refused += m.refused_cycles;
+    EXPECT_GT(refused, 0u) << "the stalls happened";
+  }
+}
+
+// Sizes: large enough to cover the picture, small enough that the suite stays fast (see
+// tests/core/rtl/CMakeLists.txt for the time budget). Odd sizes exercise absent rays.
+const SceneCase kScenes[] = {
+    {"scenes/default.json", false, false, 96, 72},
+    {"scenes/cornell.json", false, false, 65, 49},
+    {"scenes/spheres.json", false, false, 96, 72},
+    {"scenes/terrain.json", false, false, 80, 60},
+    {"scenes/sponza.json", false, true, 64, 48},
+    {"scenes/conference.json", false, true, 64, 48},
+    {"builtin:spheres", true, false, 80, 60},
+    {"bunny/bunny.obj", true, true, 64, 48},
+    {"bunny/bunny_lo.obj", true, true, 80, 60},
+    {"suzanne/suzanne.obj", true, true, 80, 60},
+    {"suzanne/suzanne_cc2.obj", true, true, 64, 48},
+    {"teapot/teapot.obj", true, true, 64, 48},
+    {"dragon/dragon.obj", true, true, 64, 48},
+    {"cornell/CornellBox-Original.obj", true, true, 80, 60},
+    {"cornell/CornellBox-Empty-RG.obj", true, true, 80, 60},
+    {"cornell/CornellBox-Glossy.obj", true, true, 80, 60},
+    {"cornell/CornellBox-Mirror.obj", true, true, 80, 60},
+    {"cornell/CornellBox-Sphere.obj", true, true, 80, 60},
+    {"spheres/sphere-cylcoords-1k.obj", true, true, 80, 60},
+    {"spheres/sphere-cylcoords-4k.obj", true, true, 64, 48},
+    {"spheres/sphere-cylcoords-16k.obj", true, true, 64, 48},
+};
+
+std::string case_name(const testing::TestParamInfo<std::tuple<SceneCase, int>>& info) {
+  std::string n = std::get<0>(info.param).input;
+  n += std::string("_") + kModes[std::get<1>(info.param)].name;
+  for (char& ch : n)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return n;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CoreRtl,
+                         testing::Combine(testing::ValuesIn(kScenes), testing::Range(0, 5)),
+                         case_name);
+
+//////////////////////////////////
+// Corrupted images (errors)    //
+//////////////////////////////////
+
+// builtin:cornell with one record changed; the checksum is redone so the image loads.
+class Corrupt {
+ public:
+  explicit Corrupt(const std::string& input = "builtin:cornell") {
+    const RenderInput in =
+        load_render_input(input, scene::LoadOptions{}, scene::NumberFormat::fp24());
+    bytes_ = in.image.bytes();
+    nodes_ = in.image.section(spec::kImageSectionIdNodes);
+    lists_ = in.image.section(spec::kImageSectionIdLists);
+    opt_ = input_options(in);
+    opt_.width = 48;
+    opt_.height = 36;
+    opt_.progress = false;
+  }
+  scene::SceneImage image() const {
+    std::vector<uint8_t> b = bytes_;
+    scene::put_le(&b, spec::kImageHeaderChecksum, 0, 4);
+    scene::put_le(&b, spec::kImageHeaderChecksum, scene::image_checksum(b), 4);
+    return scene::SceneImage::from_bytes(std::move(b), "corrupted cornell");
+  }
+  scene::KdNode node(uint32_t i) const { return image().node(i); }
+  void set_node(uint32_t i, scene::KdNode n) {
+    scene::put_le(&bytes_, nodes_.offset + static_cast<size_t>(i) * nodes_.stride, n.raw, 8);
+  }
+  void set_list(uint32_t i, uint32_t v) {
+    scene::put_le(&bytes_, lists_.offset + static_cast<size_t>(i) * lists_.stride, v, 4);
+  }
+  // An inner node at the given depth along the left spine (depth 0: the root).
+  uint32_t inner_at(int depth) const {
+    const scene::SceneImage img = image();
+    uint32_t i = 0;
+    for (int d = 0; d < depth; ++d) {
+      const scene::KdNode n = img.node(i);
+      if (n.is_leaf()) break;
+      const scene::KdNode l = img.node(n.left());
+      i = l.is_leaf() ? n.right() : n.left();
+      if (img.node(i).is_leaf()) break;
+    }
+    EXPECT_FALSE(img.node(i).is_leaf());
+    return i;
+  }
+  // The first leaf with at least `min_count` triangles.
+  uint32_t leaf_with(uint32_t min_count) const {
+    const scene::SceneImage img = image();
+    for (uint32_t i = 0; i < img.node_count(); ++i)
+      if (img.node(i).is_leaf() && img.node(i).count() >= min_count) return i;
+    ADD_FAILURE() << "no leaf with " << min_count << " triangles";
+    return 0;
+  }
+
+  RenderOptions& options() { return opt_; }
+
+  void run(const std::string& what, uint32_t want_bits) const {
+    const scene::SceneImage img = image();
+    const Frame gold = render_golden(load_geometry<fp24>(img), opt_);
+    EXPECT_GT(gold.counters.errors, 0u) << what << ": the corruption must be met";
+    std::printf("%s: golden: %llu of %llu packets fail, error bits %u\n", what.c_str(),
+                static_cast<unsigned long long>(gold.counters.errors),
+                static_cast<unsigned long long>(gold.counters.packets), gold.counters.error_bits);
+    EXPECT_EQ(gold.counters.error_bits, want_bits) << what;
+    for (const Mode& mode : {kModes[0], kModes[1], kModes[3]}) {
+      CoreSimOptions so;
+      so.stall_seed = mode.stall_seed;
+      so.watchdog_cycles = 50000;
+      const CoreSimResult r = harness::render_rtl(img, opt_, so, mode.model);
+      expect_bit_exact("corrupt " + what + " " + mode.name, gold, r);
+      EXPECT_EQ(r.error_bits, want_bits) << what << " " << mode.name;
+    }
+  }
+
+ private:
+  std::vector<uint8_t> bytes_;
+  scene::SectionInfo nodes_, lists_;
+  RenderOptions opt_;
+};
+
+TEST(CoreRtlErrors, ChildPointingBackwards) {
+  Corrupt c;
+  const uint32_t i = c.inner_at(2);
+  const scene::KdNode n = c.node(i);
+  c.set_node(i, scene::KdNode::inner(n.axis(), i, n.split_bits()));  // left child = itself
+  c.run("child pointing backwards", kErrMalformedNode);
+}
+
+TEST(CoreRtlErrors, ChildOutsideTheNodeSection) {
+  Corrupt c;
+  const uint32_t i = c.inner_at(1);
+  const scene::KdNode n = c.node(i);
+  const auto count = static_cast<uint32_t>(c.image().node_count());
+  c.set_node(i, scene::KdNode::inner(n.axis(), count - 1, n.split_bits()));  // right child out
+  c.run("child outside the node section", kErrMalformedNode);
+}
+
+TEST(CoreRtlErrors, NanSplit) {
+  Corrupt c;
+  const uint32_t i = c.inner_at(1);
+  const scene::KdNode n = c.node(i);
+  c.set_node(i, scene::KdNode::inner(n.axis(), n.left(), fp24::kQNaNBits));
+  c.run("NaN split", kErrMalformedNode);
+}
+
+TEST(CoreRtlErrors, ListRangeOutOfBounds) {
+  Corrupt c;
+  const uint32_t i = c.leaf_with(2);
+  const auto lists = static_cast<uint32_t>(c.image().list_size());
+  c.set_node(i, scene::KdNode::leaf(lists - 1, c.node(i).count()));
+  c.run("list range out of bounds", kErrBadAddress);
+}
+
+TEST(CoreRtlErrors, TriangleIndexOutOfBounds) {
+  Corrupt c;
+  const uint32_t i = c.leaf_with(2);
+  const scene::KdNode n = c.node(i);
+  c.set_list(n.first() + 1, c.image().triangle_count() + 7);  // the leaf's second entry
+  std::printf("leaf %u: list entries %u .. %u, entry %u made out of bounds\n", i, n.first(),
+              n.first() + n.count() - 1, n.first() + 1);
+  c.run("triangle index out of bounds", kErrBadAddress);
+}
+
+// A tree deeper than the stack: inner nodes 0, 2, 4, ... split x ever closer to the box's upper
+// x face, each with an empty leaf as its left child and the next inner node as its right child.
+// Rays entering through that face and going towards -x (the camera looks along -x) have the right
+// child as their near child and push the left leaf at every level until the stack overflows.
+TEST(CoreRtlErrors, StackOverflow) {
+  Corrupt c("builtin:spheres");
+  const scene::SceneImage img = c.image();
+  const auto b = img.bounds();
+  constexpr uint32_t kLevels = static_cast<uint32_t>(spec::kKdtreeStackDepth) + 8;
+  const auto count = static_cast<uint32_t>(img.node_count());
+  ASSERT_GE(count, 2 * kLevels + 1);
+  for (uint32_t i = 0; i < count; ++i) c.set_node(i, scene::KdNode::leaf(0, 0));
+  const double w = b[3] - b[0];
+  for (uint32_t k = 0; k < kLevels; ++k) {
+    const double x = b[3] - w * std::ldexp(1.0, -static_cast<int>(k) - 1);
+    c.set_node(2 * k, scene::KdNode::inner(0, 2 * k + 1, fp24::from_double(x).bits()));
+  }
+  const double cy = (b[1] + b[4]) / 2, cz = (b[2] + b[5]) / 2;
+  c.options().camera.eye = glm::dvec3(b[3] + w, cy, cz);
+  c.options().camera.look = glm::dvec3(b[0], cy, cz);
+  c.options().camera.up = glm::dvec3(0, 1, 0);
+  c.options().camera.fov_deg = 40;
+  c.run("stack overflow", kErrStackOverflow);
+}
+
+}  // namespace
+}  // namespace rc::test
