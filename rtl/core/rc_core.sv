@@ -242,6 +242,15 @@ module rc_core #(
     end
   endfunction
 
+  // A ray without a hit has best t = +inf and best triangle = all ones (-1); the best-hit arrays
+  // are not reset per packet, their words are valid only where the ray's bhit_q bit is set.
+  function automatic logic [4*W-1:0] gate_t(input logic [4*W-1:0] t, input logic [3:0] hit);
+    for (int unsigned r = 0; r < 4; r++) gate_t[r*W +: W] = hit[r] ? t[r*W +: W] : FpInf;
+  endfunction
+  function automatic logic [127:0] gate_tri(input logic [127:0] tri_idx, input logic [3:0] hit);
+    for (int unsigned r = 0; r < 4; r++) gate_tri[r*32 +: 32] = hit[r] ? tri_idx[r*32 +: 32] : '1;
+  endfunction
+
   //////////////////
   // Packet input //
   //////////////////
@@ -272,7 +281,8 @@ module rc_core #(
   // Ray set-up: one ray per cycle       //
   /////////////////////////////////////////
 
-  logic            su_ready, su_take, su_v, su_active;
+  logic            su_ready, su_take, su_v, su_active, su_valid, su_out_ready;
+  logic            pop2_v;     // a pop result this cycle (the pop section below)
   logic [RidW-1:0] su_tag;
   logic [3*W-1:0]  su_org, su_dir, su_inv;
   logic [W-1:0]    su_tmin, su_tmax;
@@ -313,8 +323,8 @@ module rc_core #(
     .org_i   (su_org),
     .dir_i   (su_dir),
     .bounds_i(bounds_i),
-    .valid_o (su_v),
-    .ready_i (1'b1),
+    .valid_o (su_valid),
+    .ready_i (su_out_ready),
     .tag_o   (su_tag),
     .inv_o   (su_inv),
     .tmin_o  (su_tmin),
@@ -322,6 +332,10 @@ module rc_core #(
     .active_o(su_active)
   );
 
+  // The current-entry arrays have one write port: pop results first, then traversal results,
+  // then set-up results (the other two wait; their units hold them in their output FIFOs).
+  assign su_out_ready = ~pop2_v & ~trav_v_all[0];
+  assign su_v    = su_valid & su_out_ready;
   assign su_thr  = su_tag[RidW-1:2];
   assign su_r    = su_tag[1:0];
   assign su_last = su_v & (su_r == 2'd3);
@@ -430,6 +444,7 @@ module rc_core #(
   ////////////////////////////////////////
 
   logic [3:0]       trav_ready_all, trav_v_all;
+  logic             tr_ready;      // the traversal result is taken (below)
   logic [4*ThrW-1:0] trav_tag_all;
   logic [4*W-1:0]   trav_t;
   logic [7:0]       trav_case;
@@ -455,7 +470,7 @@ module rc_core #(
       .tmin_i (nr_tmin[r*W +: W]),
       .tmax_i (nr_tmax[r*W +: W]),
       .valid_o(trav_v_all[r]),
-      .ready_i(1'b1),
+      .ready_i(tr_ready),
       .tag_o  (trav_tag_all[r*ThrW +: ThrW]),
       .t_o    (trav_t[r*W +: W]),
       .case_o (trav_case[r*2 +: 2])
@@ -474,7 +489,8 @@ module rc_core #(
   logic [12*W-1:0]  tr_dir;
   logic [SpW-1:0]   tr_sp;
 
-  assign tr_v    = trav_v_all[0];
+  assign tr_ready = ~pop2_v;
+  assign tr_v     = trav_v_all[0] & tr_ready;
   assign tr_thr  = trav_tag_all[0 +: ThrW];
   assign tr_axis = nax_m[tr_thr];
   assign tr_idx  = nidx_m[tr_thr];
@@ -525,7 +541,7 @@ module rc_core #(
   logic             pp_any, pp_end;
   logic [ThrW-1:0]  pp_thr;
   logic [SpW-1:0]   pp_sp;
-  logic             pop1_v_q, pop2_v;
+  logic             pop1_v_q;
   logic [ThrW-1:0]  pop1_thr_q, pop2_thr_q;
   logic [EntryW-1:0] pop1_entry_q, pop2_entry_q;
   logic [3:0]       pop_le, pop2_mask;
@@ -564,7 +580,7 @@ module rc_core #(
   end
 
   // Cull: ray r stays only if le(tmin_r, best_t_r), by the format's comparison.
-  assign pop1_best_t = bt_m[pop1_thr_q];
+  assign pop1_best_t = gate_t(bt_m[pop1_thr_q], bhit_q[pop1_thr_q*4 +: 4]);
   logic [3:0] pop_cmp_v;
   for (genvar r = 0; r < 4; r++) begin : g_pop_cmp
     logic unused_lt, unused_eq;
@@ -749,8 +765,8 @@ module rc_core #(
 
   assign ti_org_all = org_m[ti_thr];
   assign ti_dir_all = dir_m[ti_thr];
-  assign ti_bt      = bt_m[ti_thr];
-  assign ti_btri    = btri_m[ti_thr];
+  assign ti_bt      = gate_t(bt_m[ti_thr], bhit_q[ti_thr*4 +: 4]);
+  assign ti_btri    = gate_tri(btri_m[ti_thr], bhit_q[ti_thr*4 +: 4]);
 
   logic              io_v, io_hit;
   logic [ThrW+2:0]   io_tag;
@@ -798,8 +814,8 @@ module rc_core #(
   assign wb_last     = io_tag[ThrW+2];
   assign wb_r        = io_tag[ThrW +: 2];
   assign wb_thr      = io_tag[ThrW-1:0];
-  assign wb_bt_all   = bt_m[wb_thr];
-  assign wb_btri_all = btri_m[wb_thr];
+  assign wb_bt_all   = gate_t(bt_m[wb_thr], bhit_q[wb_thr*4 +: 4]);
+  assign wb_btri_all = gate_tri(btri_m[wb_thr], bhit_q[wb_thr*4 +: 4]);
   assign wb_bt       = wb_bt_all[wb_r*W +: W];
   assign wb_btri     = wb_btri_all[wb_r*32 +: 32];
   assign wb_better   = io_v & io_hit & ((io_t < wb_bt) | ((io_t == wb_bt) & (io_tri < wb_btri)));
@@ -1182,14 +1198,23 @@ module rc_core #(
     end
   end
 
-  // Merged words (one ray's slot replaced).
-  logic [12*W-1:0] su_inv_new;
-  logic [4*W-1:0]  su_tmin_new, su_tmax_new, wb_bt_new, wb_bu_new, wb_bv_new, wb_bdz_new;
+  // Set-up results of the packet in set-up gather here (its rays leave set-up in order 0..3) and
+  // go to the arrays as whole words with the fourth ray. Best-hit words: one ray's slot replaced.
+  logic [12*W-1:0] su_inv_q, su_inv_new;
+  logic [4*W-1:0]  su_tmin_q, su_tmax_q, su_tmin_new, su_tmax_new;
+  logic [4*W-1:0]  wb_bt_new, wb_bu_new, wb_bv_new, wb_bdz_new;
   logic [127:0]    wb_btri_new;
+  always_ff @(posedge clk_i) begin
+    if (su_v) begin
+      su_inv_q  <= su_inv_new;
+      su_tmin_q <= su_tmin_new;
+      su_tmax_q <= su_tmax_new;
+    end
+  end
   always_comb begin
-    su_inv_new  = inv_m[su_thr];
-    su_tmin_new = tmin_m[su_thr];
-    su_tmax_new = tmax_m[su_thr];
+    su_inv_new  = su_inv_q;
+    su_tmin_new = su_tmin_q;
+    su_tmax_new = su_tmax_q;
     su_inv_new[su_r*3*W +: 3*W] = su_inv;
     su_tmin_new[su_r*W +: W]    = su_tmin;
     su_tmax_new[su_r*W +: W]    = su_tmax;
@@ -1205,23 +1230,46 @@ module rc_core #(
     wb_btri_new[wb_r*32 +: 32]  = io_tri;
   end
 
+  logic             cur_we;
+  logic [ThrW-1:0]  cur_thr;
+  logic [NodeW-1:0] cur_node;
+  logic [4*W-1:0]   cur_tmin, cur_tmax;
+  always_comb begin
+    cur_we   = 1'b0;
+    cur_thr  = su_thr;
+    cur_node = '0;
+    cur_tmin = su_tmin_new;
+    cur_tmax = su_tmax_new;
+    if (pop2_v) begin
+      cur_we   = |pop2_mask;
+      cur_thr  = pop2_thr_q;
+      cur_node = pop2_entry_q[8*W+4 +: NodeW];
+      cur_tmin = pop2_entry_q[4*W +: 4*W];
+      cur_tmax = pop2_entry_q[0 +: 4*W];
+    end else if (tr_v) begin
+      cur_we   = ~tr_overflow;
+      cur_thr  = tr_thr;
+      cur_node = (|tr_a_mask) ? tr_first : tr_second;
+      cur_tmin = (|tr_a_mask) ? tr_a_tmin : tr_b_tmin;
+      cur_tmax = (|tr_a_mask) ? tr_a_tmax : tr_b_tmax;
+    end else if (su_last) begin
+      cur_we   = 1'b1;
+    end
+  end
+
   always_ff @(posedge clk_i) begin
     if (acc_take) begin
       org_m[acc_thr]  <= pkt_org_i;
       dir_m[acc_thr]  <= pkt_dir_i;
       ilen_m[acc_thr] <= pkt_inv_len_i;
       pix_m[acc_thr]  <= pkt_pixel_i;
-      node_m[acc_thr] <= '0;
-      bt_m[acc_thr]   <= {4{FpInf}};
-      btri_m[acc_thr] <= '1;
-      bu_m[acc_thr]   <= '0;
-      bv_m[acc_thr]   <= '0;
-      bdz_m[acc_thr]  <= '0;
     end
-    if (su_v) begin
-      inv_m[su_thr]  <= su_inv_new;
-      tmin_m[su_thr] <= su_tmin_new;
-      tmax_m[su_thr] <= su_tmax_new;
+    if (su_last) inv_m[su_thr] <= su_inv_new;
+    // The current entry: one write port (at most one of pop, traversal, set-up per cycle).
+    if (cur_we) begin
+      node_m[cur_thr] <= cur_node;
+      tmin_m[cur_thr] <= cur_tmin;
+      tmax_m[cur_thr] <= cur_tmax;
     end
     if (nr_take && nr_inner_ok) begin
       nidx_m[nr_thr] <= nr_idx;
@@ -1233,17 +1281,9 @@ module rc_core #(
       pend_m[nr_thr] <= nr_upper;
     end
     if (tr_v && !tr_overflow) begin
-      node_m[tr_thr] <= ((|tr_a_mask) ? tr_first : tr_second);
-      tmin_m[tr_thr] <= (|tr_a_mask) ? tr_a_tmin : tr_b_tmin;
-      tmax_m[tr_thr] <= (|tr_a_mask) ? tr_a_tmax : tr_b_tmax;
       if (tr_push) begin
         stack_m[32'(tr_thr)*StackDepth + 32'(tr_sp[SpIdxW-1:0])] <= {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
       end
-    end
-    if (pop2_v && (|pop2_mask)) begin
-      node_m[pop2_thr_q] <= pop2_entry_q[8*W+4 +: NodeW];
-      tmin_m[pop2_thr_q] <= pop2_entry_q[4*W +: 4*W];
-      tmax_m[pop2_thr_q] <= pop2_entry_q[0 +: 4*W];
     end
     if (wb_better) begin
       bt_m[wb_thr]   <= wb_bt_new;
