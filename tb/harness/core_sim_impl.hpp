@@ -49,6 +49,13 @@ uint64_t get_field(const P& port, unsigned lsb, unsigned width) {
   return (static_cast<uint64_t>(port) >> lsb) & mask;
 }
 
+// A field of at most 32 bits that does not cross a 32-bit word of a wide signal.
+template <std::size_t N>
+uint64_t get_field(const VlWide<N>& port, unsigned lsb, unsigned width) {
+  const uint64_t mask = width >= 32 ? 0xffffffffull : (uint64_t{1} << width) - 1;
+  return (static_cast<uint64_t>(port[lsb / 32]) >> (lsb % 32)) & mask;
+}
+
 // A memory response's data words (little-endian 32-bit words) onto a data port.
 template <class P>
 void set_words(P& port, const std::vector<uint32_t>& words) {

@@ -41,7 +41,9 @@ std::string hit_text(const HitRecord& h) {
 // the first differing pixel with its packet and both hit records. Counters: all of them must
 // match for an image without errors; after an error only packets, rays, failed packets and the
 // error bits must (CounterDifference::required; the others are printed).
-void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimResult& r) {
+// `repro`: the raycore command that reruns the case (empty where there is none).
+void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimResult& r,
+                      const std::string& repro = "") {
   const Frame& f = r.frame;
   const ExactComparison cmp = compare_exact(gold, f);
   std::vector<std::string> counters;
@@ -75,9 +77,11 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
                   << "\n  golden: " << hit_text(gold.hits[pix]) << " rgb " << int(gold.rgb[3 * pix])
                   << "," << int(gold.rgb[3 * pix + 1]) << "," << int(gold.rgb[3 * pix + 2])
                   << "\n  rtl:    " << hit_text(f.hits[pix]) << " rgb " << int(f.rgb[3 * pix])
-                  << "," << int(f.rgb[3 * pix + 1]) << "," << int(f.rgb[3 * pix + 2]);
+                  << "," << int(f.rgb[3 * pix + 1]) << "," << int(f.rgb[3 * pix + 2])
+                  << (repro.empty() ? "" : "\n  rerun: " + repro);
   }
-  for (const std::string& d : counters) ADD_FAILURE() << what << ": counter " << d;
+  for (const std::string& d : counters)
+    ADD_FAILURE() << what << ": counter " << d << (repro.empty() ? "" : "\n  rerun: " + repro);
   EXPECT_EQ(r.error_bits & ~uint32_t{7}, 0u) << what << ": watchdog or unknown error bits";
   EXPECT_TRUE(r.idle) << what;
   EXPECT_EQ(r.misses_with_payload, 0u) << what << ": a miss must report a zero hit record";
@@ -115,6 +119,13 @@ std::string input_path(const SceneCase& c) {
   return (in.rfind("scenes/", 0) == 0 ? kRoot : kModels) + "/" + in;
 }
 
+// The input as the command line names it from the repository root.
+std::string cli_input(const SceneCase& c) {
+  const std::string in = c.input;
+  if (in.rfind("builtin:", 0) == 0 || in.rfind("scenes/", 0) == 0) return in;
+  return "../shared/models/" + in;
+}
+
 class CoreRtl : public testing::TestWithParam<std::tuple<SceneCase, int>> {};
 
 TEST_P(CoreRtl, MatchesGoldenBitForBit) {
@@ -133,7 +144,13 @@ TEST_P(CoreRtl, MatchesGoldenBitForBit) {
   CoreSimOptions so;
   so.stall_seed = mode.stall_seed;
   const CoreSimResult r = harness::render_rtl(in.image, opt, so, mode.model);
-  expect_bit_exact(std::string(c.input) + " " + mode.name, gold, r);
+  const std::string repro =
+      "./build/tb/app/raycore render " + cli_input(c) +
+      " --engine rtl --check -o /tmp/rc_case.png --size " + std::to_string(c.width) + "x" +
+      std::to_string(c.height) + (c.auto_camera ? " --auto-camera" : "") +
+      (mode.stall_seed ? " --stall-seed " + std::to_string(mode.stall_seed) : "") +
+      (mode.model == CoreModel::kThreads1 ? " --threads-rtl 1" : "");
+  expect_bit_exact(std::string(c.input) + " " + mode.name, gold, r, repro);
   EXPECT_EQ(gold.counters.errors, 0u);
   if (mode.stall_seed != 0) {
     uint64_t refused = 0;
