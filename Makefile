@@ -19,7 +19,7 @@ PYTHON  ?= python3
 DEB_PKGS := build-essential cmake python3 pkg-config verilator yosys \
             libgtest-dev libgmock-dev libbenchmark-dev libmpfr-dev libgmp-dev \
             libglm-dev libopenimageio-dev libtinyobjloader-dev libcli11-dev nlohmann-json3-dev \
-            libembree-dev zlib1g-dev \
+            libembree-dev zlib1g-dev gtkwave \
             clang-format
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
