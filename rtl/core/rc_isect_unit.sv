@@ -23,8 +23,9 @@
 //   always has room for everything in flight. PipeLat + 2 is the least depth that sustains one
 //   input per cycle (in steady state PipeLat results are in flight and one waits in the FIFO).
 // - Latency: PipeLat = (MulStages + 3 * AddStages) + DivStages + MulStages + 2 * AddStages +
-//   CmpStages cycles through the arithmetic (11 + 5 + 2 + 6 + 1 = 25 at the defaults mul 2,
-//   add 3, div 5, cmp 1), plus the FIFO's output register: valid_o rises PipeLat + 1 = 26 cycles
+//   CmpStages cycles through the arithmetic (20 + 11 + 2 + 12 + 1 = 46 at the defaults mul 2,
+//   add 6, div 11, cmp 1: the rc_fp_* default latencies), plus the FIFO's output register:
+//   valid_o rises PipeLat + 1 = 47 cycles
 //   after an accepted input when ready_i is high and the FIFO is empty.
 // - Throughput: one ray-triangle pair per cycle (with ready_i held high, ready_o stays 1).
 // - Parameters: ExpW (>= 2), FracW (>= 1): the format; TagW (>= 1): width of the tag carried
@@ -36,22 +37,22 @@
 //
 // Pipeline (cycle numbers at the defaults, counted from the accepted input):
 //   0   o' and d' transforms start (two rc_xform_unit, valid-only)
-//   11  t = -o'z / d'z starts; o'x, o'y, d'x, d'y, d'z and the side band wait DivStages
-//   16  t*d'x, t*d'y start; lt(0,t), lt(t,best_t), eq(t,best_t) start
-//   17  flag a = lt(0,t) && (lt(t,best_t) || (eq(t,best_t) && tri < best_tri))
-//   18  u = o'x + t*d'x, v = o'y + t*d'y start
-//   21  u + v starts; le(0,u), le(0,v) start
-//   22  flag b = flag a && le(0,u) && le(0,v)
-//   24  le(u+v, 1.0) starts
-//   25  hit = flag b && le(u+v, 1.0); the result enters the output FIFO
-//   26  valid_o
+//   20  t = -o'z / d'z starts; o'x, o'y, d'x, d'y, d'z and the side band wait DivStages
+//   31  t*d'x, t*d'y start; lt(0,t), lt(t,best_t), eq(t,best_t) start
+//   32  flag a = lt(0,t) && (lt(t,best_t) || (eq(t,best_t) && tri < best_tri))
+//   33  u = o'x + t*d'x, v = o'y + t*d'y start
+//   39  u + v starts; le(0,u), le(0,v) start
+//   40  flag b = flag a && le(0,u) && le(0,v)
+//   45  le(u+v, 1.0) starts
+//   46  hit = flag b && le(u+v, 1.0); the result enters the output FIFO
+//   47  valid_o
 module rc_isect_unit #(
   parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW     = rc_pkg::Fp24FracW,
   parameter int unsigned TagW      = 8,
   parameter int unsigned MulStages = 2,
-  parameter int unsigned AddStages = 3,
-  parameter int unsigned DivStages = 5,
+  parameter int unsigned AddStages = 6,
+  parameter int unsigned DivStages = 11,
   parameter int unsigned CmpStages = 1
 ) (
   input  logic                         clk_i,

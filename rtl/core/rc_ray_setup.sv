@@ -21,7 +21,7 @@
 //   when valid_i & ready_o. ready_o comes from a register (credits, see rc_credit_fifo) and never
 //   depends on valid_i or ready_i; valid_o never depends on ready_i. Results leave in order;
 //   nothing is dropped or duplicated. tag_i travels with the operation to tag_o.
-// - Latency: 13 cycles from the taking edge to valid_o (divide 5, with the subtracts in parallel
+// - Latency: 19 cycles from the taking edge to valid_o (divide 11, with the subtracts in parallel
 //   · multiply 2 · min/max of t0, t1: 1 · x, y, z max/min chain: 3 x 1 · le: 1 · output FIFO 1),
 //   when the FIFO is empty and ready_i is 1.
 // - Throughput: one ray per cycle while ready_i is 1 (the FIFO holds Latency + 1 entries, enough
@@ -63,7 +63,8 @@ module rc_ray_setup #(
   end
 
   localparam int unsigned W         = 1 + ExpW + FracW;
-  localparam int unsigned DivStages = 5;
+  // Latencies of the fp units: the rc_fp_* defaults (rtl/fp/*.sv, docs/fp24.md); keep in step.
+  localparam int unsigned DivStages = 11;
   localparam int unsigned SubStages = DivStages;  // the subtracts run beside the divides
   localparam int unsigned MulStages = 2;
   localparam int unsigned CmpStages = 1;

@@ -14,8 +14,8 @@
 //   when valid_i & ready_o. ready_o comes from a register (credits, see rc_credit_fifo) and never
 //   depends on valid_i or ready_i; valid_o never depends on ready_i. Results leave in order;
 //   nothing is dropped or duplicated. tag_i travels with the operation to tag_o.
-// - Latency: 18 cycles from the taking edge to valid_o (multiply 2 · multiply 2 · min 1 ·
-//   multiply 2 · add 3 · multiply 2 · to_u8 5 · output FIFO 1), when the FIFO is empty and
+// - Latency: 21 cycles from the taking edge to valid_o (multiply 2 · multiply 2 · min 1 ·
+//   multiply 2 · add 6 · multiply 2 · to_u8 5 · output FIFO 1), when the FIFO is empty and
 //   ready_i is 1.
 // - Throughput: one hit per cycle while ready_i is 1 (the FIFO holds Latency + 1 entries, enough
 //   credits for every operation in flight).
@@ -61,8 +61,9 @@ module rc_shade_unit #(
   end
 
   localparam int unsigned W         = 1 + ExpW + FracW;
+  // Latencies of the fp units: the rc_fp_* defaults (rtl/fp/*.sv, docs/fp24.md); keep in step.
   localparam int unsigned MulStages = 2;
-  localparam int unsigned AddStages = 3;
+  localparam int unsigned AddStages = 6;
   localparam int unsigned CmpStages = 1;
   localparam int unsigned U8Stages  = 5;  // rc_fp_to_u8's fixed latency
   // take -> FIFO write: three multiplies to c, min, multiply, add, kd multiply, to_u8.

@@ -13,7 +13,7 @@
 //   when valid_i & ready_o. ready_o comes from a register (credits, see rc_credit_fifo) and never
 //   depends on valid_i or ready_i; valid_o never depends on ready_i. Results leave in order;
 //   nothing is dropped or duplicated. tag_i travels with the operation to tag_o.
-// - Latency: 7 cycles from the taking edge to valid_o (subtract 3 + multiply 2 + compare 1 +
+// - Latency: 10 cycles from the taking edge to valid_o (subtract 6 + multiply 2 + compare 1 +
 //   output FIFO 1), when the FIFO is empty and ready_i is 1.
 // - Throughput: one operation per cycle while ready_i is 1 (the FIFO holds Latency + 1 entries,
 //   enough credits for every operation in flight). With ready_i low the unit accepts until the
@@ -55,7 +55,8 @@ module rc_trav_step #(
   end
 
   localparam int unsigned W         = 1 + ExpW + FracW;
-  localparam int unsigned AddStages = 3;
+  // Latencies of the fp units: the rc_fp_* defaults (rtl/fp/*.sv, docs/fp24.md); keep in step.
+  localparam int unsigned AddStages = 6;
   localparam int unsigned MulStages = 2;
   localparam int unsigned CmpStages = 1;
   localparam int unsigned PipeLat   = AddStages + MulStages + CmpStages;  // take to FIFO write

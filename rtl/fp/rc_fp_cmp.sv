@@ -80,10 +80,14 @@ module rc_fp_cmp #(
   assign a_canon = {a_sign, a_mag};
   assign b_canon = {b_sign, b_mag};
 
-  // Non-NaN words order like sign-magnitude integers of {exp, frac}.
-  assign mag_lt = a_mag < b_mag;
-  assign mag_gt = b_mag < a_mag;
-  assign mag_eq = a_mag == b_mag;
+  // Non-NaN words order like sign-magnitude integers of {exp, frac}. The comparisons use the raw
+  // magnitudes, so the zeroing runs beside them instead of in front: the raw order equals the
+  // order of the canonical magnitudes unless both exponent fields are 0, and then both words are
+  // zeros: equal in value (both_zero below), and with equal signs their canonical words are
+  // equal, so whichever min/max picks is the same word; with different signs ord_lt goes by sign.
+  assign mag_lt = a_i[MagW-1:0] < b_i[MagW-1:0];
+  assign mag_gt = b_i[MagW-1:0] < a_i[MagW-1:0];
+  assign mag_eq = a_i[MagW-1:0] == b_i[MagW-1:0];
   // Total order with -0 below +0 (for min/max): a before b.
   always_comb begin
     unique case ({a_sign, b_sign})
@@ -93,8 +97,8 @@ module rc_fp_cmp #(
       default: ord_lt = mag_gt;  // both negative: the larger magnitude is the smaller value
     endcase
   end
-  // IEEE value order: +0 and -0 are equal.
-  assign val_eq = mag_eq & ((a_sign == b_sign) | a_zero);  // equal magnitudes of 0 mean both zero
+  // IEEE value order: +0 and -0 are equal, and so are all zero-exponent encodings.
+  assign val_eq = (mag_eq & (a_sign == b_sign)) | (a_zero & b_zero);
   assign val_lt = ord_lt & ~val_eq;
 
   assign lt_d  = ~any_nan & val_lt;

@@ -23,18 +23,23 @@
 // Algorithm: radix-2 restoring division of the significands. Slot 0 unpacks, classifies and
 // pre-normalises the dividend (doubled when its significand is below the divisor's, so the
 // quotient lies in [1, 2)); slots 1..N (N = FracW + 2) each produce one quotient bit (FracW + 1
-// significand bits and a round bit); slot N + 1 rounds to nearest even with the sticky bit taken
-// from the final remainder (nonzero remainder = inexact), adjusts the exponent and packs.
+// significand bits and a round bit), and slot N also reduces the final remainder to the sticky
+// bit (nonzero remainder = inexact); slot N + 1 rounds to nearest even, adjusts the exponent and
+// packs.
 //
-// Pipeline: the N + 2 slots are spread evenly over the Stages: with Se = min(Stages, N + 2), a
-// register sits before slot k (1 <= k <= N + 1) when floor(k * Se / (N + 2)) differs from
-// floor((k - 1) * Se / (N + 2)); the remaining Stages - floor((N + 1) * Se / (N + 2)) registers
-// (at least one) sit at the output. At fp24 (N = 18, 20 slots) the default Stages = 5 gives four
-// slots (about four quotient bits) per cycle.
+// Pipeline: the N + 2 slots are spread evenly over Se = min(Stages, N + 2) cycles, the longer
+// cycles first: with Base = (N + 2) / Se and Rem = (N + 2) % Se, the first Rem cycles take
+// Base + 1 consecutive slots and the others Base; a register sits in front of every slot that
+// starts a cycle, and the remaining Stages - Se + 1 registers (at least one) sit at the output.
+// At fp24 (N = 18, 20 slots) the default Stages = 11 gives slots {0, 1} {2, 3} ... {16, 17}
+// {18} {19 = round}: at most two subtract-and-select carry chains per cycle, the last quotient
+// bit alone with the sticky reduction, and the rounding alone. That closes 100 MHz on an ECP5
+// LFE5U-85F (docs/fp24.md); spreading the same 11 cycles evenly ({17, 18} before the
+// rounding) reached only 84 to 88 MHz inside rc_ray_setup.
 module rc_fp_div #(
   parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW  = rc_pkg::Fp24FracW,
-  parameter int unsigned Stages = 5
+  parameter int unsigned Stages = 11
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
@@ -64,15 +69,22 @@ module rc_fp_div #(
   localparam int unsigned Se    = (Stages < Slots) ? Stages : Slots;
   localparam int unsigned ExW   = ExpW + 2;           // unbounded exponent, two's complement
   localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
-  localparam int unsigned OutRegs = Stages - ((Slots - 1) * Se) / Slots;
+  localparam int unsigned Base  = Slots / Se;           // slots per cycle (the short cycles)
+  localparam int unsigned Rem   = Slots % Se;           // cycles with Base + 1 slots, first
+  // The cycle (0 .. Se - 1) in which slot k runs.
+  function automatic int unsigned cycle_of(input int unsigned k);
+    cycle_of = ($signed(k) < $signed(Rem * (Base + 1))) ? k / (Base + 1) : (k - Rem) / Base;
+  endfunction
+  localparam int unsigned OutRegs = Stages - cycle_of(Slots - 1);
 
   // Per-operation flags carried down the pipeline: {spec_nan, spec_inf, spec_zero, sign}.
   localparam int unsigned MetaW = 4;
   localparam int unsigned HdrW  = MetaW + ExW;
   // Iteration state: {hdr, divisor fraction, partial remainder, quotient bits so far}.
   localparam int unsigned StW   = HdrW + FracW + RemW + N;
-  // State after the last iteration (the divisor is no longer needed).
-  localparam int unsigned FinW  = HdrW + RemW + N;
+  // State after the last iteration: the divisor is no longer needed, and of the final
+  // remainder only whether it is nonzero (the sticky bit).
+  localparam int unsigned FinW  = HdrW + 1 + N;
 
   ///////////////////////////////////////
   // Slot 0: unpack, pre-normalise     //
@@ -122,7 +134,7 @@ module rc_fp_div #(
 
   for (genvar k = 1; k <= N; k++) begin : g_iter
     // The register (or wire) in front of slot k.
-    if ((k * Se) / Slots != ((k - 1) * Se) / Slots) begin : g_cut
+    if (cycle_of(k) != cycle_of(k - 1)) begin : g_cut
       always_ff @(posedge clk_i) begin
         st_in[(k-1)*StW +: StW] <= st_out[(k-1)*StW +: StW];
       end
@@ -134,7 +146,7 @@ module rc_fp_div #(
 
     logic [HdrW-1:0]  hdr;
     logic [FracW-1:0] dvs_frac;
-    logic [RemW-1:0]  rem, rem_next;
+    logic [RemW-1:0]  rem;
     logic [N-1:0]     quo, quo_next;
     logic [RemW:0]    diff;
     logic             q_bit;
@@ -146,7 +158,6 @@ module rc_fp_div #(
     assign diff     = {1'b0, rem} - {3'b001, dvs_frac};
     assign q_bit    = ~diff[RemW];
     assign rem_kept = ManW'(q_bit ? diff[RemW-1:0] : rem);
-    assign rem_next = {rem_kept, 1'b0};
     // Quotient bits are placed MSB first, bit N - k in slot k.
     always_comb begin
       quo_next          = quo;
@@ -154,14 +165,16 @@ module rc_fp_div #(
     end
 
     if (k < N) begin : g_mid
-      assign st_out[k*StW +: StW] = {hdr, dvs_frac, rem_next, quo_next};
+      // The next slot's partial remainder is the kept one doubled.
+      assign st_out[k*StW +: StW] = {hdr, dvs_frac, rem_kept, 1'b0, quo_next};
     end else begin : g_last
-      assign fin_d = {hdr, rem_next, quo_next};
+      // The sticky bit is formed here, before the register, so the rounding cycle starts from it.
+      assign fin_d = {hdr, |rem_kept, quo_next};
     end
   end
 
   // The register (or wire) in front of slot N + 1.
-  if (((N + 1) * Se) / Slots != (N * Se) / Slots) begin : g_cut_fin
+  if (cycle_of(N + 1) != cycle_of(N)) begin : g_cut_fin
     always_ff @(posedge clk_i) begin
       fin_q <= fin_d;
     end
@@ -175,15 +188,15 @@ module rc_fp_div #(
 
   logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
   logic [ExW-1:0]  exp_f;
-  logic [RemW-1:0] rem_f;
+  logic            sticky_f;
   logic [N-1:0]    quo_f;
   logic [ManW-1:0] man;
   logic            round_up;
   logic [W-1:0]    res_d;
 
-  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, rem_f, quo_f} = fin_q;
+  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, sticky_f, quo_f} = fin_q;
   assign man      = quo_f[N-1:1];
-  assign round_up = quo_f[0] & ((|rem_f) | man[0]);
+  assign round_up = quo_f[0] & (sticky_f | man[0]);
 
   rc_fp_round_pack #(
     .ExpW (ExpW),

@@ -39,20 +39,31 @@ module rc_fp_round_pack #(
     $error("rc_fp_round_pack: need ExpW >= 2, FracW >= 1 and ExW >= ExpW + 2");
   end
 
-  localparam int unsigned W    = 1 + ExpW + FracW;
-  localparam int unsigned ManW = FracW + 1;
+  localparam int unsigned W = 1 + ExpW + FracW;
 
   localparam logic [ExpW-1:0] ExpOnes = {ExpW{1'b1}};
   localparam logic [W-1:0]    QNaN    = (W'(ExpOnes) << FracW) | (W'(1) << (FracW - 1));
 
-  logic [ManW:0]  man_rounded;
-  logic [ExW-1:0] exp_rounded;
-  logic           exp_uflow, exp_oflow;
+  // The rounding carry out of the significand (man_i all ones and rounding up) is a wide AND,
+  // not the end of the increment's carry chain, and the exponent checks are made for both
+  // outcomes (exp_i and exp_i + 1) in parallel with the increment; the carry only selects. This
+  // is the same function as incrementing, adding the carry to the exponent and then checking.
+  logic [FracW-1:0] frac_rounded;
+  logic             carry;
+  logic [ExpW-1:0]  exp_inc, exp_field;
+  logic             uflow0, uflow1, oflow0, oflow1, exp_uflow, exp_oflow;
 
-  assign man_rounded = {1'b0, man_i} + (ManW + 1)'(round_up_i);
-  assign exp_rounded = exp_i + ExW'(man_rounded[ManW]);
-  assign exp_uflow   = exp_rounded[ExW-1] | ~|exp_rounded;
-  assign exp_oflow   = ~exp_rounded[ExW-1] & (exp_rounded >= ExW'(ExpOnes));
+  assign frac_rounded = man_i[FracW-1:0] + FracW'(round_up_i);
+  assign carry        = round_up_i & (&man_i);
+  assign exp_inc      = exp_i[ExpW-1:0] + ExpW'(1);
+  // exp_i <= 0 and exp_i + 1 <= 0 (exp_i negative); exp_i >= ones and exp_i + 1 >= ones.
+  assign uflow0       = exp_i[ExW-1] | ~|exp_i;
+  assign uflow1       = exp_i[ExW-1];
+  assign oflow0       = ~exp_i[ExW-1] & (exp_i >= ExW'(ExpOnes));
+  assign oflow1       = ~exp_i[ExW-1] & (exp_i >= ExW'(ExpOnes) - ExW'(1));
+  assign exp_uflow    = carry ? uflow1 : uflow0;
+  assign exp_oflow    = carry ? oflow1 : oflow0;
+  assign exp_field    = carry ? exp_inc : exp_i[ExpW-1:0];
 
   always_comb begin
     if (nan_i) begin
@@ -64,8 +75,8 @@ module rc_fp_round_pack #(
     end else if (exp_uflow) begin
       res_o = {sign_i, {(W - 1){1'b0}}};
     end else begin
-      // On a carry out man_rounded is 10...0, so its low FracW bits are the right fraction (0).
-      res_o = {sign_i, exp_rounded[ExpW-1:0], man_rounded[FracW-1:0]};
+      // On a carry out the incremented fraction wraps to 0, the right fraction.
+      res_o = {sign_i, exp_field, frac_rounded};
     end
   end
 

@@ -6,16 +6,16 @@
 //   (its Stages parameter), so each has its own valid output; valid-only, no backpressure, and
 //   each *_valid_o is valid_i delayed by that unit's Stages.
 // - Parameters: ExpW/FracW select the format (default fp24); *Stages are the units' latencies
-//   (defaults = the units' defaults: add 3, mul 2, div 5, cmp 1).
+//   (defaults = the units' defaults: add 6, mul 2, div 11, cmp 1).
 // - Illegal input: none; every bit pattern is legal.
 // - Reset: rst_ni, active low, asynchronous; it clears the valid pipelines only.
 // Not synthesised: a test harness top for Verilator (no logic of its own).
 module rc_fp_units_tb #(
   parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW     = rc_pkg::Fp24FracW,
-  parameter int unsigned AddStages = 3,
+  parameter int unsigned AddStages = 6,
   parameter int unsigned MulStages = 2,
-  parameter int unsigned DivStages = 5,
+  parameter int unsigned DivStages = 11,
   parameter int unsigned CmpStages = 1
 ) (
   input  logic                clk_i,

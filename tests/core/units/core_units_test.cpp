@@ -606,7 +606,7 @@ TEST(CoreUnits, TravStepRandom) {
 }
 
 TEST(CoreUnits, TravStepTiming) {
-  run_timing<Vrc_trav_step, TravUnit>("rc_trav_step", 7, 8, trav_case);
+  run_timing<Vrc_trav_step, TravUnit>("rc_trav_step", 10, 11, trav_case);
 }
 
 TEST(CoreUnits, RaySetupRandom) {
@@ -634,7 +634,7 @@ TEST(CoreUnits, RaySetupRandom) {
 }
 
 TEST(CoreUnits, RaySetupTiming) {
-  run_timing<Vrc_ray_setup, SetupUnit>("rc_ray_setup", 13, 14, setup_case);
+  run_timing<Vrc_ray_setup, SetupUnit>("rc_ray_setup", 19, 20, setup_case);
 }
 
 TEST(CoreUnits, ShadeRandom) {
@@ -651,7 +651,7 @@ TEST(CoreUnits, ShadeRandom) {
 }
 
 TEST(CoreUnits, ShadeTiming) {
-  run_timing<Vrc_shade_unit, ShadeUnit>("rc_shade_unit", 18, 19, shade_case);
+  run_timing<Vrc_shade_unit, ShadeUnit>("rc_shade_unit", 21, 22, shade_case);
 }
 
 // rc_fp_to_u8 (valid-only, latency 5) against to_u8<fp24>() for every fp24 encoding.
