@@ -28,6 +28,12 @@
 //   combinational from registers; numbers >= CorePerfCount read 0.
 // - Handshakes: valid never depends on ready on any port; a valid with its payload stays until
 //   taken.
+// - Latency and throughput: not fixed; a packet takes as long as its walk through the tree (ray
+//   set-up, then per node a memory round trip plus a traversal step, per leaf its list and
+//   triangle reads and tests, then shading). At most one packet is taken per 4 cycles (ray
+//   set-up takes one ray per cycle) and Threads packets are in flight; framebuffer writes leave
+//   at up to one per cycle. Every memory response asked for is taken eventually (rsp_ready may be
+//   low for a while, never for ever).
 // - Illegal input: configuration changes while busy; a response with a tag that is not
 //   outstanding, or two responses for one request (assertions catch both).
 // - Reset: rst_ni, active low, asynchronous; clears all control state.
