@@ -15,12 +15,16 @@ namespace rc {
 
 constexpr int kPacketRays = 4;
 
-// Error bits, as the hardware reports them (docs/architecture.md, "Errors").
+// Error bits, as the hardware reports them (docs/architecture.md, "Errors"; bit numbers from
+// docs/spec.toml [core_status], which rc_core's error_o uses too).
 enum ErrorBits : uint32_t {
   kErrNone = 0,
-  kErrMalformedNode = 1u << 0,  // inner node with its children out of range, or NaN/inf split
-  kErrBadAddress = 1u << 1,     // leaf list range or triangle index outside the image
-  kErrStackOverflow = 1u << 2,  // a push with StackDepth entries on the stack
+  // inner node with its children out of range, or NaN/inf split
+  kErrMalformedNode = 1u << spec::kCoreStatusMalformedNode,
+  // leaf list range or triangle index outside the image
+  kErrBadAddress = 1u << spec::kCoreStatusBadAddress,
+  // a push with StackDepth entries on the stack
+  kErrStackOverflow = 1u << spec::kCoreStatusStackOverflow,
 };
 
 // A decoded kd node (docs/memory-format.md, "kd nodes").
