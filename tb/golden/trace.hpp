@@ -306,10 +306,21 @@ uint8_t to_u8(T x) {
   return static_cast<uint8_t>(ip);
 }
 
+// The shading constants as format values: ambient and 1 - ambient, each rounded from double once
+// (the RTL's ambient_i/diffuse_i take these values).
+template <class T>
+T shade_ambient() {
+  return T::from_double(static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
+}
+template <class T>
+T shade_diffuse() {
+  return T::from_double(1.0 - static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
+}
+
 template <class T>
 std::array<uint8_t, 3> shade(const Geometry<T>& g, const Ray<T>& r, const Hit<T>& h) {
-  const T ambient = T::from_double(static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
-  const T diffuse = T::from_double(1.0 - static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
+  const T ambient = shade_ambient<T>();
+  const T diffuse = shade_diffuse<T>();
   const T c = min(((h.dz * g.normal_len[h.tri]) * r.inv_len).abs(), T::one());
   const T f = ambient + diffuse * c;
   const auto& kd = g.kd[g.material[h.tri]];

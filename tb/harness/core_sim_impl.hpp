@@ -218,10 +218,9 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   m.node_count_i = s.image.section(static_cast<uint32_t>(spec::kImageSectionIdNodes)).count;
   m.list_count_i = s.image.section(static_cast<uint32_t>(spec::kImageSectionIdLists)).count;
   m.tri_count_i = s.image.section(static_cast<uint32_t>(spec::kImageSectionIdTriangles)).count;
-  // Exactly as shade() in tb/golden/trace.hpp.
-  m.ambient_i = T::from_double(static_cast<double>(spec::kShadeAmbientPermille) / 1000.0).bits();
-  m.diffuse_i =
-      T::from_double(1.0 - static_cast<double>(spec::kShadeAmbientPermille) / 1000.0).bits();
+  // The values shade() in tb/golden/trace.hpp uses.
+  m.ambient_i = shade_ambient<T>().bits();
+  m.diffuse_i = shade_diffuse<T>().bits();
   m.background_i = static_cast<uint32_t>(render.background[0]) |
                    static_cast<uint32_t>(render.background[1]) << 8 |
                    static_cast<uint32_t>(render.background[2]) << 16;

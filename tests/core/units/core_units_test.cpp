@@ -421,8 +421,8 @@ SetupUnit::In setup_case(Gen& g) {
 // rc_shade_unit      //
 ////////////////////////
 
-const T kAmbient = T::from_double(static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
-const T kDiffuse = T::from_double(1.0 - static_cast<double>(spec::kShadeAmbientPermille) / 1000.0);
+const T kAmbient = shade_ambient<T>();
+const T kDiffuse = shade_diffuse<T>();
 
 struct ShadeUnit {
   struct In {
