@@ -37,8 +37,8 @@ module rc_fp_to_u8 #(
   end
 
   localparam int unsigned W         = 1 + ExpW + FracW;
-  localparam int unsigned CmpStages = 1;
-  localparam int unsigned MulStages = 2;
+  localparam int unsigned CmpStages = rc_pkg::FpStagesCmp;
+  localparam int unsigned MulStages = rc_pkg::FpStagesMul;
   localparam int unsigned NanDly    = CmpStages + MulStages;  // NaN flag: after max to round
   localparam int unsigned FxW       = FracW + 9;              // 8 integer bits . FracW+1 bits
 

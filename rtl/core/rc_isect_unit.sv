@@ -50,10 +50,10 @@ module rc_isect_unit #(
   parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW     = rc_pkg::Fp24FracW,
   parameter int unsigned TagW      = 8,
-  parameter int unsigned MulStages = 2,
-  parameter int unsigned AddStages = 6,
-  parameter int unsigned DivStages = 11,
-  parameter int unsigned CmpStages = 1
+  parameter int unsigned MulStages = rc_pkg::FpStagesMul,
+  parameter int unsigned AddStages = rc_pkg::FpStagesAdd,
+  parameter int unsigned DivStages = rc_pkg::FpStagesDiv,
+  parameter int unsigned CmpStages = rc_pkg::FpStagesCmp
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,

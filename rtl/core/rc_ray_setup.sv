@@ -63,11 +63,11 @@ module rc_ray_setup #(
   end
 
   localparam int unsigned W         = 1 + ExpW + FracW;
-  // Latencies of the fp units: the rc_fp_* defaults (rtl/fp/*.sv, docs/fp24.md); keep in step.
-  localparam int unsigned DivStages = 11;
+  // Latencies of the fp units: the rc_fp_* defaults, both from docs/spec.toml [fp_stages].
+  localparam int unsigned DivStages = rc_pkg::FpStagesDiv;
   localparam int unsigned SubStages = DivStages;  // the subtracts run beside the divides
-  localparam int unsigned MulStages = 2;
-  localparam int unsigned CmpStages = 1;
+  localparam int unsigned MulStages = rc_pkg::FpStagesMul;
+  localparam int unsigned CmpStages = rc_pkg::FpStagesCmp;
   // take -> FIFO write: divide, multiply, min/max(t0, t1), three chain steps, le.
   localparam int unsigned PipeLat   = DivStages + MulStages + 5 * CmpStages;
   localparam int unsigned FifoDepth = PipeLat + 2;  // full throughput

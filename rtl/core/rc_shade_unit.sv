@@ -61,10 +61,10 @@ module rc_shade_unit #(
   end
 
   localparam int unsigned W         = 1 + ExpW + FracW;
-  // Latencies of the fp units: the rc_fp_* defaults (rtl/fp/*.sv, docs/fp24.md); keep in step.
-  localparam int unsigned MulStages = 2;
-  localparam int unsigned AddStages = 6;
-  localparam int unsigned CmpStages = 1;
+  // Latencies of the fp units: the rc_fp_* defaults, both from docs/spec.toml [fp_stages].
+  localparam int unsigned MulStages = rc_pkg::FpStagesMul;
+  localparam int unsigned AddStages = rc_pkg::FpStagesAdd;
+  localparam int unsigned CmpStages = rc_pkg::FpStagesCmp;
   localparam int unsigned U8Stages  = 5;  // rc_fp_to_u8's fixed latency
   // take -> FIFO write: three multiplies to c, min, multiply, add, kd multiply, to_u8.
   localparam int unsigned PipeLat   = 4 * MulStages + CmpStages + AddStages + U8Stages;

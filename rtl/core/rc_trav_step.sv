@@ -55,10 +55,10 @@ module rc_trav_step #(
   end
 
   localparam int unsigned W         = 1 + ExpW + FracW;
-  // Latencies of the fp units: the rc_fp_* defaults (rtl/fp/*.sv, docs/fp24.md); keep in step.
-  localparam int unsigned AddStages = 6;
-  localparam int unsigned MulStages = 2;
-  localparam int unsigned CmpStages = 1;
+  // Latencies of the fp units: the rc_fp_* defaults, both from docs/spec.toml [fp_stages].
+  localparam int unsigned AddStages = rc_pkg::FpStagesAdd;
+  localparam int unsigned MulStages = rc_pkg::FpStagesMul;
+  localparam int unsigned CmpStages = rc_pkg::FpStagesCmp;
   localparam int unsigned PipeLat   = AddStages + MulStages + CmpStages;  // take to FIFO write
   localparam int unsigned FifoDepth = PipeLat + 2;                        // full throughput
   localparam int unsigned OutW      = TagW + W + 2;

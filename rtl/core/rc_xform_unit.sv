@@ -43,8 +43,8 @@ module rc_xform_unit #(
   parameter int unsigned ExpW         = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW        = rc_pkg::Fp24FracW,
   parameter int unsigned TagW         = 8,
-  parameter int unsigned MulStages    = 2,
-  parameter int unsigned AddStages    = 6,
+  parameter int unsigned MulStages    = rc_pkg::FpStagesMul,
+  parameter int unsigned AddStages    = rc_pkg::FpStagesAdd,
   parameter bit          Backpressure = 1'b1
 ) (
   input  logic                         clk_i,

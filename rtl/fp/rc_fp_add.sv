@@ -38,7 +38,7 @@
 module rc_fp_add #(
   parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW  = rc_pkg::Fp24FracW,
-  parameter int unsigned Stages = 6
+  parameter int unsigned Stages = rc_pkg::FpStagesAdd
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,

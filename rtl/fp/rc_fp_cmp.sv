@@ -23,7 +23,7 @@
 module rc_fp_cmp #(
   parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW  = rc_pkg::Fp24FracW,
-  parameter int unsigned Stages = 1
+  parameter int unsigned Stages = rc_pkg::FpStagesCmp
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,

@@ -39,7 +39,7 @@
 module rc_fp_div #(
   parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW  = rc_pkg::Fp24FracW,
-  parameter int unsigned Stages = 11
+  parameter int unsigned Stages = rc_pkg::FpStagesDiv
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,

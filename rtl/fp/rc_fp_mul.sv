@@ -30,7 +30,7 @@
 module rc_fp_mul #(
   parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW  = rc_pkg::Fp24FracW,
-  parameter int unsigned Stages = 2
+  parameter int unsigned Stages = rc_pkg::FpStagesMul
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
