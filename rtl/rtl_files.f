@@ -5,6 +5,7 @@ rtl/fp/rc_fp_round_pack.sv
 rtl/fp/rc_fp_add.sv
 rtl/fp/rc_fp_mul.sv
 rtl/fp/rc_fp_div.sv
+rtl/fp/rc_fp_sqrt.sv
 rtl/fp/rc_fp_cmp.sv
 rtl/core/rc_credit_fifo.sv
 rtl/core/rc_fp_to_u8.sv

@@ -83,6 +83,12 @@ class Mpfr {
     return encode_result();
   }
 
+  uint32_t sqrt(T a) {
+    mpfr_set_d(x_, a.to_double(), MPFR_RNDN);
+    mpfr_sqrt(r_, x_, MPFR_RNDN);  // sqrt(-0) = -0, NaN for a NaN and below zero, as ours
+    return encode_result();
+  }
+
   // Comparison results as bits: lt, le, eq.
   unsigned compare(T a, T b) {
     mpfr_set_d(x_, a.to_double(), MPFR_RNDN);
@@ -184,6 +190,52 @@ TEST(FpModel, Fp24SpecialValuesVsMpfr) { special_pairs<fp24>("fp24"); }
 TEST(FpModel, Fp24RandomVsMpfr) { random_pairs<fp24>("fp24", 10'000'000, 0x5eed0024); }
 TEST(FpModel, Fp32SpecialValuesVsMpfr) { special_pairs<fp32ftz>("fp32ftz"); }
 TEST(FpModel, Fp32RandomVsMpfr) { random_pairs<fp32ftz>("fp32ftz", 2'000'000, 0x5eed0032); }
+
+// The square root of each given value, model against MPFR; returns the mismatches.
+template <class T>
+uint64_t check_sqrt(Mpfr<T>& ref, T a, uint64_t& reported) {
+  const uint32_t want = ref.sqrt(a), got = sqrt(a).bits();
+  if (want == got) return 0;
+  if (reported++ < 10)
+    ADD_FAILURE() << "sqrt(" << a.hex() << "): model " << T::from_bits(got).hex() << ", MPFR "
+                  << T::from_bits(want).hex();
+  return 1;
+}
+
+// The square root of every bit pattern of the format.
+template <class T>
+void sqrt_exhaustive(const std::string& label) {
+  Mpfr<T> ref;
+  uint64_t bad = 0, reported = 0;
+  const uint64_t n = uint64_t{1} << T::kWidth;
+  for (uint64_t i = 0; i < n; ++i)
+    bad += check_sqrt(ref, T::from_bits(static_cast<uint32_t>(i)), reported);
+  report_cases((label + " model sqrt vs MPFR, every value").c_str(), n, bad);
+  EXPECT_EQ(bad, 0u);
+}
+
+TEST(FpModel, ReducedFormatSqrtExhaustiveVsMpfr) {
+  sqrt_exhaustive<fp_reduced>("fp_reduced(1/5/6)");
+}
+TEST(FpModel, Fp24SqrtExhaustiveVsMpfr) { sqrt_exhaustive<fp24>("fp24"); }
+
+// fp32ftz: the special values and random encodings (half of them positive).
+TEST(FpModel, Fp32SqrtVsMpfr) {
+  using T = fp32ftz;
+  Mpfr<T> ref;
+  uint64_t bad = 0, reported = 0, cases = 0;
+  for (T a : special_values<T>()) {
+    bad += check_sqrt(ref, a, reported);
+    ++cases;
+  }
+  std::mt19937_64 rng(0x5eed5a27);
+  for (int i = 0; i < 4'000'000; ++i) {
+    bad += check_sqrt(ref, T::from_bits(static_cast<uint32_t>(rng())), reported);
+    ++cases;
+  }
+  report_cases("fp32ftz model sqrt vs MPFR, specials and random encodings", cases, bad);
+  EXPECT_EQ(bad, 0u);
+}
 
 // Every fp24 value: reciprocal against MPFR, negate and absolute value against their bit rules,
 // the exact conversion to float32 against ldexp, and the round trip through float32.

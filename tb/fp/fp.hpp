@@ -13,6 +13,7 @@
 // tests/fp_model_test.cpp checks this against MPFR and exhaustively on a reduced format.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -115,6 +116,13 @@ class Fp {
   friend Fp operator-(Fp a, Fp b) { return from_double(a.to_double() - b.to_double()); }
   friend Fp operator*(Fp a, Fp b) { return from_double(a.to_double() * b.to_double()); }
   friend Fp operator/(Fp a, Fp b) { return from_double(a.to_double() / b.to_double()); }
+  // Square root, correctly rounded (double's sqrt is correctly rounded and 53 >= 2(F+1)+2 makes
+  // rounding it again to F+1 bits innocuous): sqrt(+-0) = +-0, sqrt(+inf) = +inf, and any NaN
+  // or negative nonzero input (a zero-exponent encoding reads as zero) gives the canonical NaN.
+  friend Fp sqrt(Fp a) {
+    if (a.is_zero()) return Fp(a.bits_ & kSignBit);
+    return from_double(std::sqrt(a.to_double()));
+  }
   Fp& operator+=(Fp b) { return *this = *this + b; }
   Fp& operator-=(Fp b) { return *this = *this - b; }
   Fp& operator*=(Fp b) { return *this = *this * b; }

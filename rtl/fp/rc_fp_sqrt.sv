@@ -1,0 +1,253 @@
+// rc_fp_sqrt: pipelined floating-point square root for the raycore number format.
+//
+// Contract
+// - Function: res_o = sqrt(a_i), correctly rounded, bit-exact with sqrt(rc::Fp<ExpW, FracW>)
+//   (tb/fp/fp.hpp).
+// - Handshake: valid only, no backpressure. valid_o is valid_i delayed by exactly Stages cycles;
+//   res_o belongs to the input presented Stages cycles earlier and is meaningful only while
+//   valid_o is 1. A new operation may be presented every cycle (fully pipelined).
+// - Latency: Stages cycles (Stages >= 1, checked at elaboration).
+// - Parameters: ExpW exponent bits (>= 2), FracW fraction bits (>= 1); a word is
+//   {sign, exp[ExpW-1:0], frac[FracW-1:0]}. Stages = latency in cycles.
+// - Illegal input: none; every bit pattern of a_i is legal.
+// - Reset: rst_ni (active low, asynchronous) clears only the valid pipeline; data registers have
+//   no reset.
+// - Format rules implemented: an exponent field of 0 reads as signed zero whatever the fraction,
+//   and sqrt(+-0) = +-0 (fraction cleared); sqrt(+inf) = +inf; a NaN input and every negative
+//   nonzero input (-inf included) give the canonical NaN (sign 0, exp all ones, frac MSB only);
+//   any other result is positive and rounded to nearest, ties to even, with an unbounded
+//   exponent, then flushed or overflowed by the same rule as the other units (the square root of
+//   a normal number is always normal, so neither happens, and a tie cannot occur either; the
+//   general rounding is kept so the unit needs no such argument to be right).
+//
+// Algorithm: digit-by-digit (restoring) square root of the significand, one root bit per slot.
+// With e the biased exponent and m = 1.frac, the unbiased exponent e - Bias is made even by
+// doubling m when it is odd, so the radicand M = m or 2m lies in [1, 4), its root in [1, 2), and
+// the result's biased exponent is floor((e + Bias) / 2) (Bias is odd, so e - Bias is odd exactly
+// when e + Bias is). The root is computed on integers: X = M * 2^(2 N - 2) has 2 N bits
+// (N = FracW + 2: FracW + 1 significand bits and a round bit), consumed two at a time from the
+// top; after root bit j the partial root q_j = floor(sqrt(top 2 j bits of X)) has j bits and the
+// remainder r_j = (top 2 j bits) - q_j^2 <= 2 q_j fits in j + 1 bits. Step j: bring down the next
+// two bits, r' = 4 r_{j-1} + pair, subtract the trial 4 q_{j-1} + 1 if it fits (root bit 1) and
+// keep r' otherwise (root bit 0). Each step is only as wide as its operands (j + 3 bits), so the
+// early steps are short. Slot 0 unpacks, classifies, forms the radicand and takes root bit 1
+// (always 1: the top pair is 1, 2 or 3); slots 1 .. N - 1 take root bits 2 .. N, and slot N - 1
+// also reduces the final remainder to the sticky bit (nonzero = inexact); slot N rounds to
+// nearest even and packs (rc_fp_round_pack).
+//
+// Pipeline: the N + 1 slots are spread evenly over Se = min(Stages, N + 1) cycles, the longer
+// cycles first, as in rc_fp_div: with Base = (N + 1) / Se and Rem = (N + 1) % Se, the first Rem
+// cycles take Base + 1 consecutive slots and the others Base; a register sits in front of every
+// slot that starts a cycle, and the remaining Stages - Se + 1 registers (at least one) sit at the
+// output. At fp24 (N = 18, 19 slots) the default Stages = 10 gives slots {0, 1} {2, 3} ...
+// {16, 17} {18 = round}: at most two subtract-and-select steps per cycle, the last one with the
+// sticky reduction, and the rounding alone. That reaches 121 to 124 MHz alone on an ECP5
+// LFE5U-85F; Stages = 9 (three slots in the unpack cycle, the rounding with the last root bit)
+// 112 to 117 MHz (docs/fp24.md).
+module rc_fp_sqrt #(
+  parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW  = rc_pkg::Fp24FracW,
+  parameter int unsigned Stages = rc_pkg::FpStagesSqrt
+) (
+  input  logic                clk_i,
+  input  logic                rst_ni,
+  input  logic                valid_i,
+  input  logic [ExpW+FracW:0] a_i,
+  output logic                valid_o,
+  output logic [ExpW+FracW:0] res_o
+);
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  if (Stages < 1) begin : g_stages_check
+    $error("rc_fp_sqrt: Stages must be >= 1 (it is the latency in cycles)");
+  end
+  if (ExpW < 2 || FracW < 1) begin : g_width_check
+    $error("rc_fp_sqrt: need ExpW >= 2 and FracW >= 1");
+  end
+
+  localparam int unsigned W     = 1 + ExpW + FracW;
+  localparam int unsigned ManW  = FracW + 1;          // significand with the hidden bit
+  localparam int unsigned N     = ManW + 1;           // root bits: significand + round
+  localparam int unsigned Slots = N + 1;
+  localparam int unsigned Se    = (Stages < Slots) ? Stages : Slots;
+  localparam int unsigned ExW   = ExpW + 2;           // rc_fp_round_pack's exponent width
+  localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
+  localparam int unsigned Base  = Slots / Se;           // slots per cycle (the short cycles)
+  localparam int unsigned Rem   = Slots % Se;           // cycles with Base + 1 slots, first
+  // The cycle (0 .. Se - 1) in which slot k runs.
+  function automatic int unsigned cycle_of(input int unsigned k);
+    cycle_of = ($signed(k) < $signed(Rem * (Base + 1))) ? k / (Base + 1) : (k - Rem) / Base;
+  endfunction
+  localparam int unsigned OutRegs = Stages - cycle_of(Slots - 1);
+
+  // Per-operation flags carried down the pipeline: {spec_nan, spec_inf, spec_zero, sign}, then
+  // the result's exponent field.
+  localparam int unsigned MetaW = 4;
+  localparam int unsigned HdrW  = MetaW + ExpW;
+  // The state after slot k (k = 0 .. N - 2): {hdr, radicand bits not yet brought down (left
+  // aligned, N bits), remainder (k + 2 bits), partial root (k + 1 bits)}. The widths grow by
+  // two bits a slot, so the states sit one after the other in one vector at offsets st_off(k).
+  function automatic int unsigned st_w(input int unsigned k);
+    st_w = HdrW + N + 2 * k + 3;
+  endfunction
+  function automatic int unsigned st_off(input int unsigned k);
+    st_off = k * (HdrW + N) + k * k + 2 * k;  // the sum of st_w(0 .. k - 1)
+  endfunction
+  localparam int unsigned ChainW = st_off(N - 1);
+  // State after the last root bit: of the final remainder only whether it is nonzero (sticky).
+  localparam int unsigned FinW   = HdrW + 1 + N;
+
+  //////////////////////////////////////////////////
+  // Slot 0: unpack, classify, radicand, bit 1    //
+  //////////////////////////////////////////////////
+
+  logic             a_sign, a_zero, a_nan, a_inf;
+  logic [ExpW-1:0]  a_exp;
+  logic [FracW-1:0] a_frac;
+  logic             spec_nan, spec_inf, spec_zero;
+  logic [ExpW:0]    exp_sum;
+  logic [N-1:0]     rad0;
+  logic [1:0]       rem1;
+
+  assign a_sign = a_i[W-1];
+  assign a_exp  = a_i[W-2 -: ExpW];
+  assign a_frac = a_i[FracW-1:0];
+  assign a_zero = ~|a_exp;
+  assign a_nan  = (&a_exp) & (|a_frac);
+  assign a_inf  = (&a_exp) & ~(|a_frac);
+
+  assign spec_nan  = a_nan | (a_sign & ~a_zero);  // NaN, or negative and nonzero (-inf too)
+  assign spec_inf  = a_inf;                       // +inf here (-inf is spec_nan, which wins)
+  assign spec_zero = a_zero;                      // +-0 (overridden by nothing: it is not NaN)
+
+  // Result exponent field floor((e + Bias) / 2); its low bit says that e - Bias is odd, and then
+  // the significand is doubled. The hidden bit is always 1 here: zero, infinity and NaN inputs are
+  // overridden at the end.
+  assign exp_sum = (ExpW + 1)'(a_exp) + (ExpW + 1)'(Bias);
+  assign rad0    = exp_sum[0] ? {1'b1, a_frac, 1'b0} : {1'b0, 1'b1, a_frac};
+  // Root bit 1: the top pair of the radicand is 1, 2 or 3, so the bit is 1 and the remainder is
+  // the pair minus 1.
+  assign rem1    = rad0[N-1 -: 2] - 2'd1;
+
+  ///////////////////////////////////////////
+  // Slots 1 .. N - 1: one root bit each    //
+  ///////////////////////////////////////////
+
+  // st_out holds the state after slot k (k = 0 .. N - 2), st_in the same states after the register
+  // (or wire) in front of slot k + 1. split_var lets Verilator schedule the chain piece by piece.
+  logic [ChainW-1:0] st_out /* verilator split_var */;
+  logic [ChainW-1:0] st_in /* verilator split_var */;
+  logic [FinW-1:0]   fin_d, fin_q;
+
+  assign st_out[0 +: st_w(0)] = {spec_nan, spec_inf, spec_zero, a_sign, exp_sum[ExpW:1],
+                                 rad0[N-3:0], 2'b00, rem1, 1'b1};
+
+  for (genvar k = 1; k < N; k++) begin : g_step
+    // Where the state entering slot k (the state after slot k - 1) sits in st_out and st_in.
+    localparam int unsigned InOff  = st_off(k - 1);
+    localparam int unsigned InW    = st_w(k - 1);
+    localparam int unsigned OutOff = st_off(k);
+    localparam int unsigned OutW   = st_w(k);
+
+    // The register (or wire) in front of slot k.
+    if (cycle_of(k) != cycle_of(k - 1)) begin : g_cut
+      always_ff @(posedge clk_i) begin
+        st_in[InOff +: InW] <= st_out[InOff +: InW];
+      end
+    end else begin : g_no_cut
+      always_comb begin
+        st_in[InOff +: InW] = st_out[InOff +: InW];
+      end
+    end
+
+    // Slot k takes root bit j = k + 1 from the state after bit k: remainder k + 1 bits, root k.
+    logic [HdrW-1:0] hdr;
+    logic [N-1:0]    rad;
+    logic [k:0]      rem;
+    logic [k-1:0]    root;
+    logic [k+2:0]    rem_sh;
+    logic [k+3:0]    diff;
+    logic            r_bit;
+    logic [k+1:0]    rem_next;
+
+    assign {hdr, rad, rem, root} = st_in[InOff +: InW];
+    // Bring down the next two radicand bits, and subtract the trial 4 q + 1 if it fits. The kept
+    // remainder is <= 2 * (the new root), so it fits in k + 2 bits (the bit dropped is 0).
+    assign rem_sh   = {rem, rad[N-1 -: 2]};
+    assign diff     = {1'b0, rem_sh} - {2'b00, root, 2'b01};
+    assign r_bit    = ~diff[k+3];
+    assign rem_next = (k + 2)'(r_bit ? diff[k+2:0] : rem_sh);
+
+    if (k < N - 1) begin : g_mid
+      assign st_out[OutOff +: OutW] = {hdr, rad[N-3:0], 2'b00, rem_next, root, r_bit};
+    end else begin : g_last
+      // The sticky bit is formed here, before the register, so the rounding cycle starts from it.
+      assign fin_d = {hdr, |rem_next, root, r_bit};
+      // By now every radicand bit has been brought down (the rest are the zeros shifted in).
+      logic unused_rad;
+      assign unused_rad = ^rad[N-3:0];
+    end
+  end
+
+  // The register (or wire) in front of slot N.
+  if (cycle_of(N) != cycle_of(N - 1)) begin : g_cut_fin
+    always_ff @(posedge clk_i) begin
+      fin_q <= fin_d;
+    end
+  end else begin : g_no_cut_fin
+    assign fin_q = fin_d;
+  end
+
+  //////////////////////////////////////
+  // Slot N: round, pack               //
+  //////////////////////////////////////
+
+  logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
+  logic [ExpW-1:0] exp_f;
+  logic            sticky_f;
+  logic [N-1:0]    root_f;
+  logic [ManW-1:0] man;
+  logic            round_up;
+  logic [W-1:0]    res_d;
+
+  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, sticky_f, root_f} = fin_q;
+  assign man      = root_f[N-1:1];  // man[ManW-1] = 1: the root lies in [1, 2)
+  assign round_up = root_f[0] & (sticky_f | man[0]);
+
+  rc_fp_round_pack #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .ExW  (ExW)
+  ) u_round_pack (
+    .nan_i      (spec_nan_f),
+    .inf_i      (spec_inf_f),
+    .zero_i     (spec_zero_f),
+    .zero_sign_i(sign_f),  // sqrt(-0) = -0
+    .sign_i     (1'b0),    // every other non-NaN result is positive
+    .exp_i      (ExW'(exp_f)),
+    .man_i      (man),
+    .round_up_i (round_up),
+    .res_o      (res_d)
+  );
+
+  ///////////////////////////////
+  // Output and valid pipeline //
+  ///////////////////////////////
+
+  rc_pipe_out #(
+    .Width   (W),
+    .DataRegs(OutRegs),
+    .Stages  (Stages)
+  ) u_out (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .data_i (res_d),
+    .valid_o,
+    .data_o (res_o)
+  );
+
+endmodule
