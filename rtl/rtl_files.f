@@ -16,3 +16,7 @@ rtl/core/rc_xform_unit.sv
 rtl/core/rc_isect_unit.sv
 rtl/core/rc_rr_pick.sv
 rtl/core/rc_core.sv
+rtl/board/rc_delay.sv
+rtl/board/rc_ray_gen.sv
+rtl/board/rc_board_rom.sv
+rtl/board/rc_board.sv

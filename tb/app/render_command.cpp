@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "board_sim.hpp"
 #include "commands.hpp"
 #include "compare.hpp"
 #include "core_sim.hpp"
@@ -29,7 +30,7 @@ using rc::scene::Error;
 
 struct RenderArgs {
   std::string input, output, hits, stats, diff, size, camera, engine = "golden", reference;
-  std::string format = "7/16";
+  std::string format = "7/16", ray_source;  // ray_source "": host, raygen for the board
   std::vector<std::string> models_path;
   bool auto_camera = false, quiet = false;
   unsigned threads = 0;
@@ -223,7 +224,7 @@ harness::CoreSimResult run_rtl(const RenderArgs& a, const RenderInput& in,
 
 // --check: the golden model's frame against the RTL's, bit for bit. Returns whether they agree.
 bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& opt,
-               const Frame& rtl, const harness::CoreSimResult& sim, nlohmann::json& js) {
+               const Frame& rtl, const harness::CoreSimResult* sim, nlohmann::json& js) {
   RenderOptions gopt = opt;
   gopt.progress = false;
   const Frame gold = render_golden(load_geometry<fp24>(in.image), gopt);
@@ -267,8 +268,8 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
                 describe_rgb(rtl, pix).c_str());
     // Where to look in a waveform: from the cycle the packet was taken to its pixel's write.
     const size_t packet = static_cast<size_t>(y / 2) * ((rtl.width + 1) / 2) + x / 2;
-    if (packet < sim.packet_cycle.size() && pix < sim.pixel_cycle.size()) {
-      const unsigned long long from = sim.packet_cycle[packet], to = sim.pixel_cycle[pix];
+    if (sim && packet < sim->packet_cycle.size() && pix < sim->pixel_cycle.size()) {
+      const unsigned long long from = sim->packet_cycle[packet], to = sim->pixel_cycle[pix];
       std::printf(
           "    the core took the packet at cycle %llu and wrote the pixel at cycle %llu: add "
           "--trace f.fst --trace-window %llu:%llu (docs/debugging.md)\n",
@@ -288,10 +289,46 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   return false;
 }
 
+// --engine board: the verilated board (rtl/board/rc_board.sv) with its on-chip ray generation.
+harness::BoardSimResult run_board(const RenderArgs& a, const RenderInput& in,
+                                  const RenderOptions& opt) {
+  if (!in.image.format().is<fp24>())
+    throw Error("--engine board: the board is built for fp24 (--format 7/16); " + in.name +
+                " holds " + in.image.format().name() + " values");
+  harness::BoardSimOptions bo;
+  bo.watchdog_cycles = a.watchdog * 10;
+  bo.progress = !a.quiet;
+  return harness::render_board(in.image, opt, bo);
+}
+
+nlohmann::json board_json(const harness::BoardSimResult& r) {
+  const Counters& c = r.frame.counters;
+  const double eff = share(std::max(c.traversal_steps / 4, c.triangle_tests), r.cycles);
+  nlohmann::json perf_all = nlohmann::json::array();
+  for (uint64_t v : r.perf) perf_all.push_back(v);
+  return {{"cycles", r.cycles},
+          {"rays", c.rays},
+          {"rays_per_cycle", share(c.rays, r.cycles)},
+          {"efficiency", eff},
+          {"status", r.status},
+          {"error_bits", r.error_bits},
+          {"framebuffer_readback_differ", r.fb_readback_differ},
+          {"register_readback_differ", r.register_readback_differ},
+          {"simulated_cycles_per_second", r.cycles_per_second},
+          {"wall_seconds", r.seconds},
+          {"perf", perf_all}};
+}
+
 int run_render(const RenderArgs& a) {
-  if (a.engine != "golden" && a.engine != "embree" && a.engine != "rtl")
-    throw Error("--engine: expected golden, embree or rtl, got '" + a.engine + "'");
-  if (a.check && a.engine != "rtl") throw Error("--check needs --engine rtl");
+  if (a.engine != "golden" && a.engine != "embree" && a.engine != "rtl" && a.engine != "board")
+    throw Error("--engine: expected golden, embree, rtl or board, got '" + a.engine + "'");
+  if (a.check && a.engine != "rtl" && a.engine != "board")
+    throw Error("--check needs --engine rtl or board");
+  if (a.engine == "board" && !a.ray_source.empty() && a.ray_source != "raygen")
+    throw Error(
+        "--engine board generates its rays on chip: --ray-source raygen (the default "
+        "with the board), not '" +
+        a.ray_source + "'");
   if (!a.reference.empty() && a.reference != "embree" && a.reference != "golden")
     throw Error("--reference: expected embree or golden, got '" + a.reference + "'");
   scene::LoadOptions load;
@@ -303,10 +340,15 @@ int run_render(const RenderArgs& a) {
   if (a.auto_camera) opt.camera = auto_camera_for(in.image);
   opt.threads = a.threads;
   opt.progress = !a.quiet;
+  opt.ray_source = a.ray_source.empty()
+                       ? (a.engine == "board" ? RaySource::kRayGen : RaySource::kHost)
+                       : parse_ray_source(a.ray_source);
 
   std::optional<harness::CoreSimResult> rtl;
+  std::optional<harness::BoardSimResult> board;
   if (a.engine == "rtl") rtl = run_rtl(a, in, opt);
-  const Frame f = rtl ? rtl->frame : run_any(a.engine, in, opt);
+  if (a.engine == "board") board = run_board(a, in, opt);
+  const Frame f = rtl ? rtl->frame : board ? board->frame : run_any(a.engine, in, opt);
   write_image(a.output, f.width, f.height, f.rgb);
   if (!a.hits.empty()) write_hits(a.hits, f);
 
@@ -320,12 +362,13 @@ int run_render(const RenderArgs& a) {
                        {"seconds", f.seconds},
                        {"rays_per_second", rays_per_s},
                        {"threads", a.threads},
+                       {"ray_source", ray_source_name(opt.ray_source)},
                        {"counters", counters_json(f.counters)}};
   if (!a.quiet) {
     std::printf("%s: %ux%u, %s, engine %s: %.3f s, %.0f rays/s\n", a.input.c_str(), f.width,
                 f.height, in.image.format().name().c_str(), a.engine.c_str(), f.seconds,
                 rays_per_s);
-    if (a.engine == "golden" || a.engine == "rtl") {
+    if (a.engine != "embree") {
       const Counters& c = f.counters;
       std::printf(
           "  packets %llu, traversal steps %llu, triangle tests %llu, leaves %llu, "
@@ -341,7 +384,26 @@ int run_render(const RenderArgs& a) {
   if (rtl) {
     js["rtl"] = rtl_json(*rtl, a);
     if (!a.quiet) print_rtl_summary(js["rtl"]);
-    if (a.check) check_ok = check_rtl(a, in, opt, f, *rtl, js);
+    if (a.check) check_ok = check_rtl(a, in, opt, f, &*rtl, js);
+  }
+  if (board) {
+    js["board"] = board_json(*board);
+    const auto& b = js["board"];
+    if (!a.quiet)
+      std::printf(
+          "  board: %llu cycles, %.4f rays/cycle, efficiency %.3f, status 0x%x; read back "
+          "through the ports: %llu framebuffer pixels and %llu registers differ; %.0f "
+          "simulated cycles/s\n",
+          b["cycles"].get<unsigned long long>(), b["rays_per_cycle"].get<double>(),
+          b["efficiency"].get<double>(), b["status"].get<unsigned>(),
+          b["framebuffer_readback_differ"].get<unsigned long long>(),
+          b["register_readback_differ"].get<unsigned long long>(),
+          b["simulated_cycles_per_second"].get<double>());
+    if (board->fb_readback_differ || board->register_readback_differ) {
+      std::printf("  board: MISMATCH between the monitored writes and the ports' read-back\n");
+      check_ok = false;
+    }
+    if (a.check && !check_rtl(a, in, opt, f, nullptr, js)) check_ok = false;
   }
   if (!a.reference.empty()) {
     const Frame ref = run_any(a.reference, in, opt);
@@ -385,17 +447,70 @@ int run_render(const RenderArgs& a) {
   return f.counters.errors ? 1 : 0;
 }
 
+struct BoardImageArgs {
+  std::string input, output, size, camera, format = "7/16";
+  std::vector<std::string> models_path;
+  bool auto_camera = false;
+  uint32_t fb_pixels = static_cast<uint32_t>(spec::kBoardFbPixels);
+};
+
+// `raycore board-image`: the block RAM contents and register file of the board build.
+int run_board_image(const BoardImageArgs& a) {
+  scene::LoadOptions load;
+  load.models_path = a.models_path;
+  const RenderInput in = load_render_input(a.input, load, scene::NumberFormat::parse(a.format));
+  RenderOptions opt = input_options(in);
+  if (!a.size.empty()) parse_size(a.size, opt.width, opt.height);
+  if (!a.camera.empty()) opt.camera = parse_camera(a.camera);
+  if (a.auto_camera) opt.camera = auto_camera_for(in.image);
+  const harness::BoardImage b = harness::make_board_image(in.image, opt, a.fb_pixels);
+  harness::write_board_image(b, a.output, a.input);
+  std::printf("%s: board image for a %ux%u frame in %s:", a.input.c_str(), b.width, b.height,
+              a.output.c_str());
+  for (const auto& rom : b.roms)
+    std::printf(" %s %zu x %u bits,", rom.name.c_str(), rom.records.size(), rom.width);
+  std::printf(" regs %zu\n", b.regs.size());
+  return 0;
+}
+
 }  // namespace
 
 void add_render_commands(CLI::App& app, Action* action) {
+  {
+    auto args = std::make_shared<BoardImageArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "board-image",
+        "Write the board build's ROM and register contents (hex files and board.json) for a "
+        "scene and frame (docs/fpga.md)");
+    cmd->add_option("input", args->input, "scene.json, model.obj, builtin:NAME or scene.rcimg")
+        ->required();
+    cmd->add_option("-o,--output", args->output, "directory to write")->required();
+    cmd->add_option("--size", args->size, "frame size WxH (default: the scene's)");
+    auto* cam =
+        cmd->add_option("--camera", args->camera, "eye=X,Y,Z:look=X,Y,Z[:up=X,Y,Z][:fov=DEG]");
+    cmd->add_flag("--auto-camera", args->auto_camera, "place the camera from the scene bounds")
+        ->excludes(cam);
+    cmd->add_option("--format", args->format, "number format (the board is fp24: 7/16)")
+        ->capture_default_str();
+    cmd->add_option("--models-path", args->models_path, "directories searched for meshes");
+    cmd->add_option("--fb-pixels", args->fb_pixels, "the board's framebuffer size in pixels")
+        ->capture_default_str();
+    cmd->callback([args, action] { *action = [args] { return run_board_image(*args); }; });
+  }
+
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene, an OBJ file or a memory image");
   cmd->add_option("input", args->input, "scene.json, model.obj, builtin:NAME or scene.rcimg")
       ->required();
   cmd->add_option("--engine", args->engine,
-                  "golden (the bit-exact model), embree or rtl (the verilated core, fp24 only)")
+                  "golden (the bit-exact model), embree, rtl (the verilated core, fp24 only) or "
+                  "board (the verilated board build: ROMs, on-chip ray generation)")
       ->capture_default_str();
   cmd->add_option("--size", args->size, "frame size WxH (default: the scene's)");
+  cmd->add_option("--ray-source", args->ray_source,
+                  "host (double-precision camera, rounded once; the default) or raygen (the "
+                  "board's ray generation unit: fp arithmetic from camera registers; the default "
+                  "with --engine board)");
   auto* cam =
       cmd->add_option("--camera", args->camera, "eye=X,Y,Z:look=X,Y,Z[:up=X,Y,Z][:fov=DEG]");
   cmd->add_flag("--auto-camera", args->auto_camera, "place the camera from the scene bounds")
@@ -413,9 +528,10 @@ void add_render_commands(CLI::App& app, Action* action) {
   cmd->add_option("--models-path", args->models_path, "directories searched for meshes");
   cmd->add_option("--threads", args->threads, "threads (0: all)")->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "no progress bar or summary");
-  cmd->add_flag("--check", args->check,
-                "with --engine rtl: also render with the golden model and compare every pixel "
-                "and the counters bit for bit (exit status 1 on a mismatch)");
+  cmd->add_flag(
+      "--check", args->check,
+      "with --engine rtl or board: also render with the golden model and compare every pixel "
+      "and the counters bit for bit (exit status 1 on a mismatch)");
   cmd->add_option("--latency", args->latency, "rtl: memory latency in cycles, every port")
       ->capture_default_str()
       ->check(CLI::Range(1u, 100000u));

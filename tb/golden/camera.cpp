@@ -87,6 +87,23 @@ RayGenerator::RayGenerator(const Camera& cam, uint32_t width, uint32_t height)
   a_ = static_cast<double>(width) / static_cast<double>(height);
 }
 
+CameraRegistersD camera_registers(const Camera& cam, uint32_t width, uint32_t height) {
+  validate_camera(cam);
+  if (width == 0 || height == 0) throw std::runtime_error("image size must be at least 1x1");
+  const glm::dvec3 f = glm::normalize(cam.look - cam.eye);
+  const glm::dvec3 r = glm::normalize(glm::cross(f, cam.up));
+  const glm::dvec3 u = glm::cross(r, f);
+  const double h = std::tan(cam.fov_deg * M_PI / 360.0);
+  const double w = static_cast<double>(width), ht = static_cast<double>(height);
+  const double a = w / ht;
+  CameraRegistersD c;
+  c.eye = cam.eye;
+  c.c0 = f + (1.0 / w - 1.0) * h * a * r + (1.0 - 1.0 / ht) * h * u;
+  c.cx = (2.0 * h * a / w) * r;
+  c.cy = -(2.0 * h / ht) * u;
+  return c;
+}
+
 RayD RayGenerator::ray(uint32_t x, uint32_t y) const {
   const double sx = (static_cast<double>(x) + 0.5) / width_ * 2.0 - 1.0;
   const double sy = 1.0 - (static_cast<double>(y) + 0.5) / height_ * 2.0;

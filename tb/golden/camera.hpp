@@ -32,6 +32,14 @@ struct RayD {
   double inv_len;
 };
 
+// The ray generation unit's camera registers (docs/architecture.md, "Two ray sources"), in
+// double before rounding to the format: the origin, the direction through pixel (0, 0) and the
+// direction steps of one pixel right and one pixel down.
+struct CameraRegistersD {
+  glm::dvec3 eye, c0, cx, cy;
+};
+CameraRegistersD camera_registers(const Camera& cam, uint32_t width, uint32_t height);
+
 class RayGenerator {
  public:
   RayGenerator(const Camera& cam, uint32_t width, uint32_t height);

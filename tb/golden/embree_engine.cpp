@@ -64,7 +64,7 @@ template <class T>
 Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   const EmbreeScene es(tris);
-  const RayGenerator gen(opt.camera, opt.width, opt.height);
+  const PacketSource<T> gen(opt.camera, opt.width, opt.height, opt.ray_source);
   Frame f;
   f.width = opt.width;
   f.height = opt.height;
@@ -76,7 +76,7 @@ Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& 
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (uint32_t x = 0; x < opt.width; ++x) {
-      const Ray<T> cr = core_ray<T>(gen.ray(x, y));  // widened to float32 exactly below
+      const Ray<T> cr = gen.ray(x, y);  // widened to float32 exactly below
       RTCRayHit rh{};
       rh.ray.org_x = cr.org[0].to_float();
       rh.ray.org_y = cr.org[1].to_float();

@@ -47,7 +47,7 @@ void parallel_rows(uint32_t rows, unsigned threads, bool progress, const char* l
 template <class T>
 Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
-  const RayGenerator gen(opt.camera, opt.width, opt.height);
+  const PacketSource<T> gen(opt.camera, opt.width, opt.height, opt.ray_source);
   Frame f;
   f.width = opt.width;
   f.height = opt.height;
@@ -62,7 +62,7 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
     std::array<Ray<T>, kPacketRays> rays;
     std::array<Hit<T>, kPacketRays> hits;
     for (uint32_t px = 0; px < pw; ++px) {
-      const uint32_t mask = make_packet(gen, px, py, rays);
+      const uint32_t mask = gen.packet(px, py, rays);
       trace_packet(g, rays, mask, hits, c);  // errors are counted in c
       for (int r = 0; r < kPacketRays; ++r) {
         if (!(mask >> r & 1)) continue;
@@ -85,6 +85,14 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
 
 template Frame render_golden<fp24>(const Geometry<fp24>&, const RenderOptions&);
 template Frame render_golden<fp32ftz>(const Geometry<fp32ftz>&, const RenderOptions&);
+
+RaySource parse_ray_source(const std::string& name) {
+  if (name == "host") return RaySource::kHost;
+  if (name == "raygen") return RaySource::kRayGen;
+  throw std::runtime_error("unknown ray source '" + name + "' (host, raygen)");
+}
+
+const char* ray_source_name(RaySource s) { return s == RaySource::kHost ? "host" : "raygen"; }
 
 namespace {
 void put_u32(std::ofstream& out, uint32_t v) {

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -35,12 +36,19 @@ struct Frame {
   double seconds = 0.0;
 };
 
+// Where the rays come from (docs/architecture.md, "Two ray sources"): the host's double-precision
+// camera rounded once (the packet port's rays), or the board's ray generation unit.
+enum class RaySource { kHost, kRayGen };
+RaySource parse_ray_source(const std::string& name);  // "host" | "raygen"; throws otherwise
+const char* ray_source_name(RaySource s);
+
 struct RenderOptions {
   uint32_t width = 256, height = 192;
   Camera camera;
   std::array<uint8_t, 3> background{0, 0, 0};
   unsigned threads = 0;  // 0: all hardware threads
   bool progress = true;  // progress bar on stderr for renders longer than a second
+  RaySource ray_source = RaySource::kHost;
 };
 
 // A generated ray as the core sees it: each component rounded to the format once.
@@ -55,21 +63,77 @@ Ray<T> core_ray(const RayD& d) {
   return r;
 }
 
-// The four rays of packet (px, py): pixels (2px + (r & 1), 2py + (r >> 1)) for r = 0..3; a ray
-// whose pixel lies outside the image is absent (its mask bit is 0).
+// The ray generation unit's registers in the format (each rounded once from double).
 template <class T>
-uint32_t make_packet(const RayGenerator& gen, uint32_t px, uint32_t py,
-                     std::array<Ray<T>, kPacketRays>& rays) {
-  uint32_t mask = 0;
-  for (int r = 0; r < kPacketRays; ++r) {
-    const uint32_t x = 2 * px + (static_cast<uint32_t>(r) & 1u);
-    const uint32_t y = 2 * py + (static_cast<uint32_t>(r) >> 1);
-    if (x >= gen.width() || y >= gen.height()) continue;
-    rays[r] = core_ray<T>(gen.ray(x, y));
-    mask |= 1u << r;
+struct CameraRegisters {
+  std::array<T, 3> eye, c0, cx, cy;
+};
+
+template <class T>
+CameraRegisters<T> round_registers(const CameraRegistersD& d) {
+  CameraRegisters<T> c;
+  for (int a = 0; a < 3; ++a) {
+    c.eye[a] = T::from_double(d.eye[a]);
+    c.c0[a] = T::from_double(d.c0[a]);
+    c.cx[a] = T::from_double(d.cx[a]);
+    c.cy[a] = T::from_double(d.cy[a]);
   }
-  return mask;
+  return c;
 }
+
+// The ray of pixel (x, y) exactly as rtl/board/rc_ray_gen.sv computes it, in format operations
+// in the order of docs/architecture.md ("Two ray sources").
+template <class T>
+Ray<T> raygen_ray(const CameraRegisters<T>& c, uint32_t x, uint32_t y) {
+  const T fx = T::from_double(static_cast<double>(x));  // exact below 2^(F+1)
+  const T fy = T::from_double(static_cast<double>(y));
+  Ray<T> r;
+  for (int a = 0; a < 3; ++a) {
+    r.org[a] = c.eye[a];
+    r.dir[a] = (c.c0[a] + fx * c.cx[a]) + fy * c.cy[a];
+  }
+  const auto& d = r.dir;
+  r.inv_len = T::one() / sqrt((d[0] * d[0] + d[1] * d[1]) + d[2] * d[2]);
+  return r;
+}
+
+// The rays of a frame from either source, by pixel and by packet.
+template <class T>
+class PacketSource {
+ public:
+  PacketSource(const Camera& cam, uint32_t width, uint32_t height, RaySource src)
+      : gen_(cam, width, height),
+        regs_(round_registers<T>(camera_registers(cam, width, height))),
+        src_(src) {
+    if (width >= (1u << (T::kFracW + 1)) || height >= (1u << (T::kFracW + 1)))
+      throw std::runtime_error("image size too large for the format's exact pixel coordinates");
+  }
+  Ray<T> ray(uint32_t x, uint32_t y) const {
+    return src_ == RaySource::kHost ? core_ray<T>(gen_.ray(x, y)) : raygen_ray(regs_, x, y);
+  }
+  // The four rays of packet (px, py): pixels (2px + (r & 1), 2py + (r >> 1)) for r = 0..3; a ray
+  // whose pixel lies outside the image is absent (its mask bit is 0). Returns the mask.
+  uint32_t packet(uint32_t px, uint32_t py, std::array<Ray<T>, kPacketRays>& rays) const {
+    uint32_t mask = 0;
+    for (int r = 0; r < kPacketRays; ++r) {
+      const uint32_t x = 2 * px + (static_cast<uint32_t>(r) & 1u);
+      const uint32_t y = 2 * py + (static_cast<uint32_t>(r) >> 1);
+      if (x >= width() || y >= height()) continue;
+      rays[r] = ray(x, y);
+      mask |= 1u << r;
+    }
+    return mask;
+  }
+  uint32_t width() const { return gen_.width(); }
+  uint32_t height() const { return gen_.height(); }
+  RaySource source() const { return src_; }
+  const CameraRegisters<T>& registers() const { return regs_; }
+
+ private:
+  RayGenerator gen_;
+  CameraRegisters<T> regs_;
+  RaySource src_;
+};
 
 // Runs fn(first_row, last_row) for rows [0, rows) in chunks on `threads` threads (0: all), with a
 // progress bar on stderr when `progress` and the work takes longer than a second.

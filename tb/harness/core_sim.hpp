@@ -1,6 +1,6 @@
 // The harness around the verilated core (rtl/core/rc_core.sv): resets and clocks it, serves its
 // five memory ports from a memory image through rc::harness::MemoryPort, feeds it the packets of
-// the shared ray generator (tb/golden/render.hpp make_packet), collects its framebuffer writes
+// the shared ray source (tb/golden/render.hpp PacketSource), collects its framebuffer writes
 // into an rc::Frame with exact hit records, reads its performance counters, and watches for hangs.
 //
 // The simulation class is a template on the Verilator model type (core_sim_impl.hpp holds its
@@ -53,6 +53,14 @@ inline uint64_t mix_seed(uint64_t x) {
   x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
   return x ^ (x >> 31);
 }
+
+// The core's five memory ports for an image, with the given timing: nodes, lists, triangles and
+// shading by section, and the materials' kd fields (12 bytes of each 128-byte record).
+std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
+    const scene::SceneImage& image, const std::array<MemoryParams, kCorePorts>& memory);
+
+// The golden model's counters from the core's performance counters (by number) and error_o.
+Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf, uint32_t error_bits);
 
 // Applies the stall recipe of `stall_seed` to the port parameters (keeps latency and limits).
 void apply_stall_recipe(std::array<MemoryParams, kCorePorts>& memory, uint64_t stall_seed);

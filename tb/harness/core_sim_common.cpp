@@ -26,4 +26,50 @@ void apply_stall_recipe(std::array<MemoryParams, kCorePorts>& memory, uint64_t s
   }
 }
 
+std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
+    const scene::SceneImage& image, const std::array<MemoryParams, kCorePorts>& memory) {
+  std::vector<std::unique_ptr<MemoryPort>> ports;
+  // Four sections by id, and the materials' kd fields.
+  const uint32_t ids[4] = {static_cast<uint32_t>(spec::kImageSectionIdNodes),
+                           static_cast<uint32_t>(spec::kImageSectionIdLists),
+                           static_cast<uint32_t>(spec::kImageSectionIdTriangles),
+                           static_cast<uint32_t>(spec::kImageSectionIdShading)};
+  for (int i = 0; i < 4; ++i)
+    ports.push_back(std::make_unique<MemoryPort>(image, ids[i], memory[static_cast<size_t>(i)]));
+  const scene::SectionInfo& mat =
+      image.section(static_cast<uint32_t>(spec::kImageSectionIdMaterials));
+  const auto kd = static_cast<size_t>(spec::kImageMaterialKd);
+  const size_t stride = mat.stride;
+  std::vector<uint8_t> bytes(static_cast<size_t>(mat.count) * stride, 0);
+  const size_t avail = static_cast<size_t>(mat.count) * stride;
+  const uint8_t* first = image.bytes().data() + mat.offset;
+  if (avail > kd) std::copy(first + kd, first + avail, bytes.begin());  // the rest stays zero
+  ports.push_back(
+      std::make_unique<MemoryPort>(std::move(bytes), mat.count, static_cast<uint32_t>(stride), 12u,
+                                   memory[kPortMaterials], image.name() + ":materials.kd"));
+  return ports;
+}
+
+Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf_values,
+                            uint32_t error_bits) {
+  const auto perf = [&perf_values](int64_t k) { return perf_values[static_cast<size_t>(k)]; };
+  Counters c;
+  c.packets = perf(spec::kCorePerfPackets);
+  c.rays = perf(spec::kCorePerfRays);
+  c.nodes_fetched = perf(spec::kCorePerfNodesFetched);
+  c.inner_visits = perf(spec::kCorePerfInnerVisits);
+  c.traversal_steps = perf(spec::kCorePerfTraversalSteps);
+  c.leaf_visits = perf(spec::kCorePerfLeafVisits);
+  c.empty_leaves = perf(spec::kCorePerfEmptyLeaves);
+  c.list_entries = perf(spec::kCorePerfListEntries);
+  c.triangle_tests = perf(spec::kCorePerfTriangleTests);
+  c.stack_pushes = perf(spec::kCorePerfStackPushes);
+  c.stack_pops = perf(spec::kCorePerfStackPops);
+  c.culled_pops = perf(spec::kCorePerfCulledPops);
+  c.max_stack = perf(spec::kCorePerfMaxStack);
+  c.errors = perf(spec::kCorePerfFailedPackets);
+  c.error_bits = error_bits & (kErrMalformedNode | kErrBadAddress | kErrStackOverflow);
+  return c;
+}
+
 }  // namespace rc::harness

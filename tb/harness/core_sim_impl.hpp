@@ -164,27 +164,7 @@ CoreSim<Model>::CoreSim(const scene::SceneImage& image, const CoreSimOptions& op
   if (s.opt.stall_seed != 0) apply_stall_recipe(s.opt.memory, s.opt.stall_seed);
   s.rng.seed(mix_seed(s.opt.stall_seed ^ 0x5eedf00dull));
 
-  // The five ports: four sections by id, and the materials' kd fields.
-  const uint32_t ids[4] = {static_cast<uint32_t>(spec::kImageSectionIdNodes),
-                           static_cast<uint32_t>(spec::kImageSectionIdLists),
-                           static_cast<uint32_t>(spec::kImageSectionIdTriangles),
-                           static_cast<uint32_t>(spec::kImageSectionIdShading)};
-  for (int i = 0; i < 4; ++i)
-    s.ports.push_back(
-        std::make_unique<MemoryPort>(image, ids[i], s.opt.memory[static_cast<size_t>(i)]));
-  {
-    const scene::SectionInfo& mat =
-        image.section(static_cast<uint32_t>(spec::kImageSectionIdMaterials));
-    const auto kd = static_cast<size_t>(spec::kImageMaterialKd);
-    const size_t stride = mat.stride;
-    std::vector<uint8_t> bytes(static_cast<size_t>(mat.count) * stride, 0);
-    const size_t avail = static_cast<size_t>(mat.count) * stride;
-    const uint8_t* first = image.bytes().data() + mat.offset;
-    if (avail > kd) std::copy(first + kd, first + avail, bytes.begin());  // the rest stays zero
-    s.ports.push_back(std::make_unique<MemoryPort>(
-        std::move(bytes), mat.count, static_cast<uint32_t>(stride), 12u,
-        s.opt.memory[kPortMaterials], image.name() + ":materials.kd"));
-  }
+  s.ports = make_core_ports(image, s.opt.memory);
 
   s.ctx = std::make_unique<VerilatedContext>();
   s.ctx->assertOn(true);
@@ -242,7 +222,7 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   m.eval();
 
   // ---- The frame ----
-  const RayGenerator gen(render.camera, render.width, render.height);
+  const PacketSource<T> gen(render.camera, render.width, render.height, render.ray_source);
   s.width = render.width;
   s.height = render.height;
   s.pw = (s.width + 1) / 2;
@@ -263,7 +243,7 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   const auto load_packet = [&](uint64_t k) {
     const auto px = static_cast<uint32_t>(k % s.pw), py = static_cast<uint32_t>(k / s.pw);
     std::array<Ray<T>, kPacketRays> rays;
-    const uint32_t mask = make_packet(gen, px, py, rays);
+    const uint32_t mask = gen.packet(px, py, rays);
     m.pkt_mask_i = static_cast<uint8_t>(mask);
     for (unsigned r = 0; r < kPacketRays; ++r) {
       const bool on = (mask >> r & 1u) != 0;
@@ -465,23 +445,7 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   res.misses_with_payload = s.miss_payload;
   for (int i = 0; i < kCorePorts; ++i)
     res.memory[static_cast<size_t>(i)] = s.ports[static_cast<size_t>(i)]->stats();
-  const auto perf = [&res](int64_t k) { return res.perf[static_cast<size_t>(k)]; };
-  Counters& c = f.counters;
-  c.packets = perf(spec::kCorePerfPackets);
-  c.rays = perf(spec::kCorePerfRays);
-  c.nodes_fetched = perf(spec::kCorePerfNodesFetched);
-  c.inner_visits = perf(spec::kCorePerfInnerVisits);
-  c.traversal_steps = perf(spec::kCorePerfTraversalSteps);
-  c.leaf_visits = perf(spec::kCorePerfLeafVisits);
-  c.empty_leaves = perf(spec::kCorePerfEmptyLeaves);
-  c.list_entries = perf(spec::kCorePerfListEntries);
-  c.triangle_tests = perf(spec::kCorePerfTriangleTests);
-  c.stack_pushes = perf(spec::kCorePerfStackPushes);
-  c.stack_pops = perf(spec::kCorePerfStackPops);
-  c.culled_pops = perf(spec::kCorePerfCulledPops);
-  c.max_stack = perf(spec::kCorePerfMaxStack);
-  c.errors = perf(spec::kCorePerfFailedPackets);
-  c.error_bits = res.error_bits & (kErrMalformedNode | kErrBadAddress | kErrStackOverflow);
+  f.counters = counters_from_perf(res.perf, res.error_bits);
   if (s.fst) s.fst->flush();
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   f.seconds = res.seconds;

@@ -1,0 +1,471 @@
+// rc_board: the core for standalone use on an FPGA board (docs/fpga.md, "The board build"): the
+// memory image of a scene in block RAM, a framebuffer in block RAM, on-chip ray generation from
+// camera registers (rc_ray_gen), and a register port for a host.
+//
+// Contract
+// - Memory: five ROMs (rc_board_rom), one per rc_core memory port, of NodeDepth, ListDepth,
+//   TriDepth, ShdDepth and MatDepth records, initialised from NodeHex .. MatHex (written by
+//   `raycore board-image` from the memory image the scene compiler writes; in simulation the
+//   plusargs +nodes= +lists= +tris= +shading= +materials= override them). An index beyond a ROM
+//   gets an error response (the core's bad-address bit).
+// - Register port: reg_we_i writes reg_wdata_i to register reg_addr_i at the clock edge; reg_rdata_o
+//   is register reg_addr_i of the previous cycle (one cycle read latency). Register numbers are
+//   rc_pkg's BoardReg* (docs/spec.toml [board_reg]). Registers 0 .. BoardRegs-1 are the register
+//   file (camera, frame size, background, root box, record counts, shading constants),
+//   initialised from RegsHex (plusarg +regs=); writes to it are ignored while busy_o. Writing bit
+//   0 of BoardRegControl (or a start_i pulse) starts a frame when busy_o is 0: two cycles later
+//   the frame size is checked (width * height <= FbPixels, else status bit size_error and no
+//   frame) and the ray generation unit starts.
+// - Frame: the core renders every pixel into the framebuffer (pixel id y * width + x, 24-bit
+//   RGB). done_o rises when the last packet has been generated and the core is idle; it stays
+//   until the next start. BoardRegCycles holds the frame's cycle count.
+// - Framebuffer read port: fb_rdata_o is pixel fb_raddr_i of the previous cycle (registered
+//   block RAM read; reading while a frame runs is legal and shows the frame in progress).
+// - Monitor: mon_valid_o and mon_* show each framebuffer write of the core with its hit record
+//   (simulation checks them; a board top leaves them open).
+// - Status: busy_o (a frame is starting or running), done_o, error_o = rc_core's error_o
+//   (sticky until reset), size_error_o.
+// - Illegal input: none on the register port (writes while busy are ignored); reading registers
+//   that do not exist returns 0.
+// - Reset: rst_ni (active low, asynchronous) clears control state; the register file, ROMs and
+//   framebuffer keep their contents.
+module rc_board #(
+  parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW     = rc_pkg::Fp24FracW,
+  parameter int unsigned Threads   = rc_pkg::CoreThreads,
+  parameter int unsigned NodeDepth = 1,
+  parameter int unsigned ListDepth = 1,
+  parameter int unsigned TriDepth  = 1,
+  parameter int unsigned ShdDepth  = 1,
+  parameter int unsigned MatDepth  = 1,
+  parameter int unsigned FbPixels  = rc_pkg::BoardFbPixels,
+  parameter              NodeHex = "",
+  parameter              ListHex = "",
+  parameter              TriHex = "",
+  parameter              ShdHex = "",
+  parameter              MatHex = "",
+  parameter              RegsHex = "",
+  // Derived (do not override).
+  parameter int unsigned W         = 1 + ExpW + FracW,
+  parameter int unsigned AddrW     = rc_pkg::BoardAddrBits,
+  parameter int unsigned FbAddrW   = (FbPixels > 1) ? $clog2(FbPixels) : 1,
+  parameter int unsigned StatusW   = rc_pkg::CoreStatusBits
+) (
+  input  logic               clk_i,
+  input  logic               rst_ni,
+
+  // Register port.
+  input  logic               reg_we_i,
+  input  logic [AddrW-1:0]   reg_addr_i,
+  input  logic [31:0]        reg_wdata_i,
+  output logic [31:0]        reg_rdata_o,
+  input  logic               start_i,
+
+  // Framebuffer read port.
+  input  logic [FbAddrW-1:0] fb_raddr_i,
+  output logic [23:0]        fb_rdata_o,
+
+  // Status.
+  output logic               busy_o,
+  output logic               done_o,
+  output logic               size_error_o,
+  output logic [StatusW-1:0] error_o,
+
+  // Monitor of the core's framebuffer writes.
+  output logic               mon_valid_o,
+  output logic [31:0]        mon_pixel_o,
+  output logic [23:0]        mon_rgb_o,
+  output logic               mon_hit_o,
+  output logic [31:0]        mon_tri_o,
+  output logic [W-1:0]       mon_t_o,
+  output logic [W-1:0]       mon_u_o,
+  output logic [W-1:0]       mon_v_o
+);
+
+  localparam int unsigned Regs   = rc_pkg::BoardRegs;
+  localparam int unsigned CoordW = rc_pkg::BoardCoordBits;
+  localparam int unsigned TagW   = rc_pkg::CoreTagBits;
+
+  if (Regs < rc_pkg::BoardRegDiffuse + 1 || Regs > rc_pkg::BoardRegControl) begin : g_regs_check
+    $error("rc_board: the register file must hold registers 0 .. BoardRegDiffuse, below control");
+  end
+
+  ///////////////////
+  // Register file //
+  ///////////////////
+
+  logic [31:0] regs_q [0:Regs-1];
+
+  initial begin
+`ifndef SYNTHESIS
+    string file;
+    if ($value$plusargs("regs=%s", file)) begin
+      $readmemh(file, regs_q);
+    end else if (RegsHex != "") begin
+      $readmemh(RegsHex, regs_q);
+    end
+`else
+    if (RegsHex != "") $readmemh(RegsHex, regs_q);
+`endif
+  end
+
+  logic running_q, done_q, size_error_q;
+  logic [1:0] pend_q;  // start requested: cycles until the size check
+  logic busy;
+
+  assign busy = running_q | (pend_q != 2'd0);
+
+  always_ff @(posedge clk_i) begin
+    if (reg_we_i && !busy && {1'b0, reg_addr_i} < (AddrW+1)'(Regs)) begin
+      regs_q[reg_addr_i[$clog2(Regs)-1:0]] <= reg_wdata_i;
+    end
+  end
+
+  function automatic logic [3*W-1:0] vec3(int unsigned base);
+    vec3 = {regs_q[base+2][W-1:0], regs_q[base+1][W-1:0], regs_q[base][W-1:0]};
+  endfunction
+
+  logic [3*W-1:0]    eye, c0, cx, cy;
+  logic [6*W-1:0]    bounds;
+  logic [CoordW-1:0] width, height;
+
+  assign eye    = vec3(rc_pkg::BoardRegEye);
+  assign c0     = vec3(rc_pkg::BoardRegC0);
+  assign cx     = vec3(rc_pkg::BoardRegCx);
+  assign cy     = vec3(rc_pkg::BoardRegCy);
+  assign bounds = {vec3(rc_pkg::BoardRegBounds + 3), vec3(rc_pkg::BoardRegBounds)};
+  assign width  = regs_q[rc_pkg::BoardRegWidth][CoordW-1:0];
+  assign height = regs_q[rc_pkg::BoardRegHeight][CoordW-1:0];
+
+  /////////////////////
+  // Frame control   //
+  /////////////////////
+
+  logic        start_req, gen_start, gen_busy, core_idle, size_ok;
+  logic [31:0] pixels_q, cycles_q;
+
+  assign start_req = !busy && (start_i || (reg_we_i && {1'b0, reg_addr_i} ==
+                     (AddrW+1)'(rc_pkg::BoardRegControl) && reg_wdata_i[0]));
+  assign size_ok   = pixels_q <= 32'(FbPixels);
+  assign gen_start = (pend_q == 2'd1) && size_ok;
+
+  always_ff @(posedge clk_i) begin
+    pixels_q <= 32'(width) * 32'(height);  // registers are locked from the start request on
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pend_q       <= 2'd0;
+      running_q    <= 1'b0;
+      done_q       <= 1'b0;
+      size_error_q <= 1'b0;
+      cycles_q     <= '0;
+    end else begin
+      if (start_req) begin
+        pend_q       <= 2'd2;
+        done_q       <= 1'b0;
+        size_error_q <= 1'b0;
+        cycles_q     <= '0;
+      end else if (pend_q != 2'd0) begin
+        pend_q <= pend_q - 2'd1;
+        if (pend_q == 2'd1) begin
+          running_q    <= size_ok;
+          size_error_q <= !size_ok;
+        end
+      end
+      if (running_q) begin
+        cycles_q <= cycles_q + 32'd1;
+        // The generator is busy from the cycle after its start until its last packet is taken;
+        // the core is not idle from the cycle after it took a packet until its last write.
+        if (!gen_busy && core_idle) begin
+          running_q <= 1'b0;
+          done_q    <= 1'b1;
+        end
+      end
+    end
+  end
+
+  ////////////////////
+  // Ray generation //
+  ////////////////////
+
+  logic              pkt_valid, pkt_ready;
+  logic [3:0]        pkt_mask;
+  logic [12*W-1:0]   pkt_org, pkt_dir;
+  logic [4*W-1:0]    pkt_inv_len;
+  logic [127:0]      pkt_pixel;
+
+  rc_ray_gen #(
+    .ExpW (ExpW),
+    .FracW(FracW)
+  ) u_ray_gen (
+    .clk_i,
+    .rst_ni,
+    .eye_i        (eye),
+    .c0_i         (c0),
+    .cx_i         (cx),
+    .cy_i         (cy),
+    .width_i      (width),
+    .height_i     (height),
+    .start_i      (gen_start),
+    .busy_o       (gen_busy),
+    .pkt_valid_o  (pkt_valid),
+    .pkt_ready_i  (pkt_ready),
+    .pkt_mask_o   (pkt_mask),
+    .pkt_org_o    (pkt_org),
+    .pkt_dir_o    (pkt_dir),
+    .pkt_inv_len_o(pkt_inv_len),
+    .pkt_pixel_o  (pkt_pixel)
+  );
+
+  //////////////////////////
+  // Memory ports (ROMs)  //
+  //////////////////////////
+
+  logic            node_req_valid, node_req_ready, node_rsp_valid, node_rsp_ready, node_rsp_error;
+  logic [TagW-1:0] node_req_tag, node_rsp_tag;
+  logic [31:0]     node_req_index;
+  logic [63:0]     node_rsp_data;
+  logic            list_req_valid, list_req_ready, list_rsp_valid, list_rsp_ready, list_rsp_error;
+  logic [TagW-1:0] list_req_tag, list_rsp_tag;
+  logic [31:0]     list_req_index;
+  logic [31:0]     list_rsp_data;
+  logic            tri_req_valid, tri_req_ready, tri_rsp_valid, tri_rsp_ready, tri_rsp_error;
+  logic [TagW-1:0] tri_req_tag, tri_rsp_tag;
+  logic [31:0]     tri_req_index;
+  logic [12*W-1:0] tri_rsp_data;
+  logic            shd_req_valid, shd_req_ready, shd_rsp_valid, shd_rsp_ready, shd_rsp_error;
+  logic [TagW-1:0] shd_req_tag, shd_rsp_tag;
+  logic [31:0]     shd_req_index;
+  logic [32+4*W-1:0] shd_rsp_data;
+  logic            mat_req_valid, mat_req_ready, mat_rsp_valid, mat_rsp_ready, mat_rsp_error;
+  logic [TagW-1:0] mat_req_tag, mat_rsp_tag;
+  logic [31:0]     mat_req_index;
+  logic [95:0]     mat_rsp_data;
+
+  rc_board_rom #(.Width(64), .Depth(NodeDepth), .TagW(TagW), .InitFile(NodeHex), .Name("nodes"))
+  u_rom_nodes (
+    .clk_i, .rst_ni,
+    .req_valid_i(node_req_valid), .req_ready_o(node_req_ready), .req_tag_i(node_req_tag),
+    .req_index_i(node_req_index), .rsp_valid_o(node_rsp_valid), .rsp_ready_i(node_rsp_ready),
+    .rsp_tag_o(node_rsp_tag), .rsp_data_o(node_rsp_data), .rsp_error_o(node_rsp_error)
+  );
+  rc_board_rom #(.Width(32), .Depth(ListDepth), .TagW(TagW), .InitFile(ListHex), .Name("lists"))
+  u_rom_lists (
+    .clk_i, .rst_ni,
+    .req_valid_i(list_req_valid), .req_ready_o(list_req_ready), .req_tag_i(list_req_tag),
+    .req_index_i(list_req_index), .rsp_valid_o(list_rsp_valid), .rsp_ready_i(list_rsp_ready),
+    .rsp_tag_o(list_rsp_tag), .rsp_data_o(list_rsp_data), .rsp_error_o(list_rsp_error)
+  );
+  rc_board_rom #(.Width(12*W), .Depth(TriDepth), .TagW(TagW), .InitFile(TriHex), .Name("tris"))
+  u_rom_tris (
+    .clk_i, .rst_ni,
+    .req_valid_i(tri_req_valid), .req_ready_o(tri_req_ready), .req_tag_i(tri_req_tag),
+    .req_index_i(tri_req_index), .rsp_valid_o(tri_rsp_valid), .rsp_ready_i(tri_rsp_ready),
+    .rsp_tag_o(tri_rsp_tag), .rsp_data_o(tri_rsp_data), .rsp_error_o(tri_rsp_error)
+  );
+  rc_board_rom #(.Width(32+4*W), .Depth(ShdDepth), .TagW(TagW), .InitFile(ShdHex),
+                 .Name("shading"))
+  u_rom_shading (
+    .clk_i, .rst_ni,
+    .req_valid_i(shd_req_valid), .req_ready_o(shd_req_ready), .req_tag_i(shd_req_tag),
+    .req_index_i(shd_req_index), .rsp_valid_o(shd_rsp_valid), .rsp_ready_i(shd_rsp_ready),
+    .rsp_tag_o(shd_rsp_tag), .rsp_data_o(shd_rsp_data), .rsp_error_o(shd_rsp_error)
+  );
+  rc_board_rom #(.Width(96), .Depth(MatDepth), .TagW(TagW), .InitFile(MatHex),
+                 .Name("materials"))
+  u_rom_materials (
+    .clk_i, .rst_ni,
+    .req_valid_i(mat_req_valid), .req_ready_o(mat_req_ready), .req_tag_i(mat_req_tag),
+    .req_index_i(mat_req_index), .rsp_valid_o(mat_rsp_valid), .rsp_ready_i(mat_rsp_ready),
+    .rsp_tag_o(mat_rsp_tag), .rsp_data_o(mat_rsp_data), .rsp_error_o(mat_rsp_error)
+  );
+
+  //////////////
+  // The core //
+  //////////////
+
+  logic              fb_valid;
+  logic [31:0]       fb_pixel, fb_tri;
+  logic [23:0]       fb_rgb;
+  logic              fb_hit;
+  logic [W-1:0]      fb_t, fb_u, fb_v;
+  logic [7:0]        perf_sel_q;
+  logic [63:0]       perf;
+  logic [StatusW-1:0] core_error;
+
+  rc_core #(
+    .ExpW   (ExpW),
+    .FracW  (FracW),
+    .Threads(Threads)
+  ) u_core (
+    .clk_i,
+    .rst_ni,
+    .bounds_i        (bounds),
+    .node_count_i    (regs_q[rc_pkg::BoardRegNodeCount]),
+    .list_count_i    (regs_q[rc_pkg::BoardRegListCount]),
+    .tri_count_i     (regs_q[rc_pkg::BoardRegTriCount]),
+    .ambient_i       (regs_q[rc_pkg::BoardRegAmbient][W-1:0]),
+    .diffuse_i       (regs_q[rc_pkg::BoardRegDiffuse][W-1:0]),
+    .background_i    (regs_q[rc_pkg::BoardRegBackground][23:0]),
+    .pkt_valid_i     (pkt_valid),
+    .pkt_ready_o     (pkt_ready),
+    .pkt_mask_i      (pkt_mask),
+    .pkt_org_i       (pkt_org),
+    .pkt_dir_i       (pkt_dir),
+    .pkt_inv_len_i   (pkt_inv_len),
+    .pkt_pixel_i     (pkt_pixel),
+    .fb_valid_o      (fb_valid),
+    .fb_ready_i      (1'b1),
+    .fb_pixel_o      (fb_pixel),
+    .fb_rgb_o        (fb_rgb),
+    .fb_hit_o        (fb_hit),
+    .fb_tri_o        (fb_tri),
+    .fb_t_o          (fb_t),
+    .fb_u_o          (fb_u),
+    .fb_v_o          (fb_v),
+    .node_req_valid_o(node_req_valid),
+    .node_req_ready_i(node_req_ready),
+    .node_req_tag_o  (node_req_tag),
+    .node_req_index_o(node_req_index),
+    .node_rsp_valid_i(node_rsp_valid),
+    .node_rsp_ready_o(node_rsp_ready),
+    .node_rsp_tag_i  (node_rsp_tag),
+    .node_rsp_data_i (node_rsp_data),
+    .node_rsp_error_i(node_rsp_error),
+    .list_req_valid_o(list_req_valid),
+    .list_req_ready_i(list_req_ready),
+    .list_req_tag_o  (list_req_tag),
+    .list_req_index_o(list_req_index),
+    .list_rsp_valid_i(list_rsp_valid),
+    .list_rsp_ready_o(list_rsp_ready),
+    .list_rsp_tag_i  (list_rsp_tag),
+    .list_rsp_data_i (list_rsp_data),
+    .list_rsp_error_i(list_rsp_error),
+    .tri_req_valid_o (tri_req_valid),
+    .tri_req_ready_i (tri_req_ready),
+    .tri_req_tag_o   (tri_req_tag),
+    .tri_req_index_o (tri_req_index),
+    .tri_rsp_valid_i (tri_rsp_valid),
+    .tri_rsp_ready_o (tri_rsp_ready),
+    .tri_rsp_tag_i   (tri_rsp_tag),
+    .tri_rsp_data_i  (tri_rsp_data),
+    .tri_rsp_error_i (tri_rsp_error),
+    .shd_req_valid_o (shd_req_valid),
+    .shd_req_ready_i (shd_req_ready),
+    .shd_req_tag_o   (shd_req_tag),
+    .shd_req_index_o (shd_req_index),
+    .shd_rsp_valid_i (shd_rsp_valid),
+    .shd_rsp_ready_o (shd_rsp_ready),
+    .shd_rsp_tag_i   (shd_rsp_tag),
+    .shd_rsp_data_i  (shd_rsp_data),
+    .shd_rsp_error_i (shd_rsp_error),
+    .mat_req_valid_o (mat_req_valid),
+    .mat_req_ready_i (mat_req_ready),
+    .mat_req_tag_o   (mat_req_tag),
+    .mat_req_index_o (mat_req_index),
+    .mat_rsp_valid_i (mat_rsp_valid),
+    .mat_rsp_ready_o (mat_rsp_ready),
+    .mat_rsp_tag_i   (mat_rsp_tag),
+    .mat_rsp_data_i  (mat_rsp_data),
+    .mat_rsp_error_i (mat_rsp_error),
+    .idle_o          (core_idle),
+    .error_o         (core_error),
+    .perf_sel_i      (perf_sel_q),
+    .perf_o          (perf)
+  );
+
+  /////////////////
+  // Framebuffer //
+  /////////////////
+
+  logic [23:0] fb_mem [0:FbPixels-1];
+  logic [23:0] fb_rdata_q;
+
+  always_ff @(posedge clk_i) begin
+    if (fb_valid && fb_pixel < 32'(FbPixels)) fb_mem[FbAddrW'(fb_pixel)] <= fb_rgb;
+  end
+
+  always_ff @(posedge clk_i) begin
+    fb_rdata_q <= fb_mem[fb_raddr_i];
+  end
+
+  ////////////////////
+  // Register reads //
+  ////////////////////
+
+  logic [31:0] status, rdata_d, rdata_q;
+
+  always_comb begin
+    status = '0;
+    status[rc_pkg::BoardStatusBusy]      = busy;
+    status[rc_pkg::BoardStatusDone]      = done_q;
+    status[rc_pkg::BoardStatusSizeError] = size_error_q;
+    status[rc_pkg::BoardStatusCoreErrorLsb +: StatusW] = core_error;
+  end
+
+  always_comb begin
+    rdata_d = '0;
+    if ({1'b0, reg_addr_i} < (AddrW+1)'(Regs)) begin
+      rdata_d = regs_q[reg_addr_i[$clog2(Regs)-1:0]];
+    end else begin
+      unique case (32'(reg_addr_i))
+        rc_pkg::BoardRegStatus:  rdata_d = status;
+        rc_pkg::BoardRegCycles:  rdata_d = cycles_q;
+        rc_pkg::BoardRegPerfSel: rdata_d = 32'(perf_sel_q);
+        rc_pkg::BoardRegPerfLo:  rdata_d = perf[31:0];
+        rc_pkg::BoardRegPerfHi:  rdata_d = perf[63:32];
+        default:                 rdata_d = '0;
+      endcase
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      perf_sel_q <= '0;
+    end else if (reg_we_i && 32'(reg_addr_i) == rc_pkg::BoardRegPerfSel) begin
+      perf_sel_q <= reg_wdata_i[7:0];
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    rdata_q <= rdata_d;
+  end
+
+  assign reg_rdata_o  = rdata_q;
+  assign fb_rdata_o   = fb_rdata_q;
+  assign busy_o       = busy;
+  assign done_o       = done_q;
+  assign size_error_o = size_error_q;
+  assign error_o      = core_error;
+
+  assign mon_valid_o = fb_valid;
+  assign mon_pixel_o = fb_pixel;
+  assign mon_rgb_o   = fb_rgb;
+  assign mon_hit_o   = fb_hit;
+  assign mon_tri_o   = fb_tri;
+  assign mon_t_o     = fb_t;
+  assign mon_u_o     = fb_u;
+  assign mon_v_o     = fb_v;
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o(checks_on)
+  );
+
+  // The size check keeps every pixel inside the framebuffer.
+  FbInRange_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    fb_valid |-> fb_pixel < 32'(FbPixels));
+  // The generator runs only inside a frame.
+  GenInFrame_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    gen_busy |-> running_q);
+`endif
+
+endmodule

@@ -1,0 +1,99 @@
+// rc_board_rom: one of rc_core's memory ports served from block RAM (a ROM of records).
+//
+// Contract
+// - Function: answers each request (index, tag) with record `index` of the ROM (Depth records of
+//   Width bits, the layout of rc::harness::MemoryPort::record_words(): record bit i at data bit
+//   i) and the request's tag; an index >= Depth gets an error response (rsp_error_o = 1, data
+//   undefined). The ROM is initialised from InitFile ($readmemh, one record per line, most
+//   significant digit first); in simulation (SYNTHESIS undefined) the plusarg +<Name>=<file>
+//   overrides it, so one verilated model serves any scene.
+// - Handshake: the protocol of docs/architecture.md ("Memory ports"). req_valid_i/req_ready_o,
+//   then rsp_valid_o/rsp_ready_i. req_ready_o = !rsp_valid_o || rsp_ready_i (ready may depend on
+//   ready; rsp_valid_o comes from a register and never depends on rsp_ready_i). The response
+//   holds until taken.
+// - Latency: 1 cycle (the block RAM's registered read); throughput one request per cycle while
+//   rsp_ready_i is 1. Responses are in request order.
+// - Parameters: Width record bits, Depth records (>= 1), IdxW index bits, TagW tag bits.
+// - Illegal input: none (every index is answered; out-of-range ones with an error).
+// - Reset: rst_ni (active low, asynchronous) clears rsp_valid_o; contents are not reset.
+module rc_board_rom #(
+  parameter int unsigned Width    = 32,
+  parameter int unsigned Depth    = 1,
+  parameter int unsigned IdxW     = 32,
+  parameter int unsigned TagW     = 8,
+  parameter              InitFile = "",
+  parameter              Name     = "rom"
+) (
+  input  logic             clk_i,
+  input  logic             rst_ni,
+  input  logic             req_valid_i,
+  output logic             req_ready_o,
+  input  logic [TagW-1:0]  req_tag_i,
+  input  logic [IdxW-1:0]  req_index_i,
+  output logic             rsp_valid_o,
+  input  logic             rsp_ready_i,
+  output logic [TagW-1:0]  rsp_tag_o,
+  output logic [Width-1:0] rsp_data_o,
+  output logic             rsp_error_o
+);
+
+  if (Width < 1 || Depth < 1) begin : g_param_check
+    $error("rc_board_rom: need Width >= 1 and Depth >= 1");
+  end
+
+  localparam int unsigned AddrW = (Depth > 1) ? $clog2(Depth) : 1;
+
+  logic [Width-1:0] mem [0:Depth-1];
+
+  initial begin
+`ifndef SYNTHESIS
+    string file;
+    if ($value$plusargs({Name, "=%s"}, file)) begin
+      $readmemh(file, mem);
+    end else if (InitFile != "") begin
+      $readmemh(InitFile, mem);
+    end
+`else
+    if (InitFile != "") $readmemh(InitFile, mem);
+`endif
+  end
+
+  logic             take, in_range;
+  logic [AddrW-1:0] addr;
+  logic             rsp_valid_q, rsp_error_q;
+  logic [TagW-1:0]  rsp_tag_q;
+  logic [Width-1:0] rsp_data_q;
+
+  assign req_ready_o = ~rsp_valid_q | rsp_ready_i;
+  assign take        = req_valid_i & req_ready_o;
+  assign in_range    = {32'd0, req_index_i} < 64'(Depth);
+  assign addr        = in_range ? AddrW'(req_index_i) : '0;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      rsp_valid_q <= 1'b0;
+    end else if (take) begin
+      rsp_valid_q <= 1'b1;
+    end else if (rsp_ready_i) begin
+      rsp_valid_q <= 1'b0;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (take) begin
+      rsp_tag_q   <= req_tag_i;
+      rsp_error_q <= ~in_range;
+    end
+  end
+
+  // The block RAM read port: registered, enabled by the request handshake.
+  always_ff @(posedge clk_i) begin
+    if (take) rsp_data_q <= mem[addr];
+  end
+
+  assign rsp_valid_o = rsp_valid_q;
+  assign rsp_tag_o   = rsp_tag_q;
+  assign rsp_data_o  = rsp_data_q;
+  assign rsp_error_o = rsp_error_q;
+
+endmodule

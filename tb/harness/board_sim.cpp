@@ -1,0 +1,304 @@
+// The board build's C++ side (board_sim.hpp): block RAM contents and the verilated rc_board.
+#include "board_sim.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <type_traits>
+
+#include "Vrc_board.h"
+#include "error.hpp"
+#include "rc_constants.hpp"
+#include "verilated.h"
+
+namespace rc::harness {
+
+namespace {
+
+constexpr unsigned kW = fp24::kWidth;
+
+// Record bits per port (rc_core's response data widths).
+constexpr std::array<uint32_t, kCorePorts> kRecordBits = {64, 32, 12 * kW, 32 + 4 * kW, 96};
+constexpr std::array<const char*, kCorePorts> kRomNames = {"nodes", "lists", "tris", "shading",
+                                                           "materials"};
+
+std::string hex_record(const std::vector<uint32_t>& words, uint32_t bits) {
+  static const char* digits = "0123456789abcdef";
+  const uint32_t n = (bits + 3) / 4;
+  std::string s(n, '0');
+  for (uint32_t d = 0; d < n; ++d) {  // digit d holds bits 4d .. 4d+3
+    const uint32_t w = (4 * d) / 32, sh = (4 * d) % 32;
+    const uint32_t v = w < words.size() ? (words[w] >> sh) & 0xfu : 0u;
+    s[n - 1 - d] = digits[v];
+  }
+  return s;
+}
+
+void write_text(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream out(p);
+  out << text;
+  if (!out) throw scene::Error("cannot write " + p.string());
+}
+
+std::string regs_hex(const std::vector<uint32_t>& regs) {
+  std::ostringstream ss;
+  for (uint32_t v : regs) ss << hex_record({v}, 32) << "\n";
+  return ss.str();
+}
+
+}  // namespace
+
+BoardImage make_board_image(const scene::SceneImage& image, const RenderOptions& render,
+                            uint32_t fb_pixels) {
+  if (!image.format().is<fp24>())
+    throw scene::Error(image.name() + ": the board is built for fp24 (7/16), the image holds " +
+                       image.format().name());
+  const uint64_t pixels = static_cast<uint64_t>(render.width) * render.height;
+  if (pixels > fb_pixels)
+    throw scene::Error("the frame " + std::to_string(render.width) + "x" +
+                       std::to_string(render.height) + " (" + std::to_string(pixels) +
+                       " pixels) does not fit the board's framebuffer of " +
+                       std::to_string(fb_pixels) + " pixels");
+  if (render.width >= (1u << spec::kBoardCoordBits) ||
+      render.height >= (1u << spec::kBoardCoordBits))
+    throw scene::Error("the frame is wider or higher than the board's coordinate registers");
+  BoardImage b;
+  b.width = render.width;
+  b.height = render.height;
+  b.fb_pixels = fb_pixels;
+  const auto ports = make_core_ports(image, std::array<MemoryParams, kCorePorts>{});
+  for (int i = 0; i < kCorePorts; ++i) {
+    BoardRom& rom = b.roms[static_cast<size_t>(i)];
+    const MemoryPort& p = *ports[static_cast<size_t>(i)];
+    rom.name = kRomNames[static_cast<size_t>(i)];
+    rom.width = kRecordBits[static_cast<size_t>(i)];
+    if (p.data_words() * 32 < rom.width || p.record_bytes() * 8 > rom.width)
+      throw std::logic_error("board ROM " + rom.name + ": record of " +
+                             std::to_string(p.record_bytes()) + " bytes, port of " +
+                             std::to_string(rom.width) + " bits");
+    rom.records.reserve(p.count());
+    for (uint64_t k = 0; k < p.count(); ++k) rom.records.push_back(p.record_words(k));
+  }
+  b.regs.assign(spec::kBoardRegs, 0u);
+  const auto cam = round_registers<fp24>(camera_registers(render.camera, b.width, b.height));
+  for (unsigned a = 0; a < 3; ++a) {
+    b.regs[spec::kBoardRegEye + a] = cam.eye[a].bits();
+    b.regs[spec::kBoardRegC0 + a] = cam.c0[a].bits();
+    b.regs[spec::kBoardRegCx + a] = cam.cx[a].bits();
+    b.regs[spec::kBoardRegCy + a] = cam.cy[a].bits();
+  }
+  b.regs[spec::kBoardRegWidth] = b.width;
+  b.regs[spec::kBoardRegHeight] = b.height;
+  b.regs[spec::kBoardRegBackground] = static_cast<uint32_t>(render.background[0]) |
+                                      static_cast<uint32_t>(render.background[1]) << 8 |
+                                      static_cast<uint32_t>(render.background[2]) << 16;
+  const auto bounds = image.bounds_bits();
+  for (unsigned i = 0; i < 6; ++i) b.regs[spec::kBoardRegBounds + i] = bounds[i];
+  b.regs[spec::kBoardRegNodeCount] =
+      image.section(static_cast<uint32_t>(spec::kImageSectionIdNodes)).count;
+  b.regs[spec::kBoardRegListCount] =
+      image.section(static_cast<uint32_t>(spec::kImageSectionIdLists)).count;
+  b.regs[spec::kBoardRegTriCount] =
+      image.section(static_cast<uint32_t>(spec::kImageSectionIdTriangles)).count;
+  b.regs[spec::kBoardRegAmbient] = shade_ambient<fp24>().bits();
+  b.regs[spec::kBoardRegDiffuse] = shade_diffuse<fp24>().bits();
+  return b;
+}
+
+void write_board_image(const BoardImage& b, const std::string& dir, const std::string& source) {
+  namespace fs = std::filesystem;
+  fs::create_directories(dir);
+  nlohmann::json depths, params;
+  const char* depth_params[kCorePorts] = {"NodeDepth", "ListDepth", "TriDepth", "ShdDepth",
+                                          "MatDepth"};
+  const char* hex_params[kCorePorts] = {"NodeHex", "ListHex", "TriHex", "ShdHex", "MatHex"};
+  for (int i = 0; i < kCorePorts; ++i) {
+    const BoardRom& rom = b.roms[static_cast<size_t>(i)];
+    std::ostringstream ss;
+    for (const auto& r : rom.records) ss << hex_record(r, rom.width) << "\n";
+    if (rom.records.empty()) ss << hex_record({}, rom.width) << "\n";  // a ROM needs a record
+    const fs::path file = fs::path(dir) / (rom.name + ".hex");
+    write_text(file, ss.str());
+    depths[rom.name] = {{"records", rom.records.size()},
+                        {"depth", rom.depth()},
+                        {"bits", rom.width},
+                        {"file", rom.name + ".hex"}};
+    params[depth_params[i]] = rom.depth();
+    params[hex_params[i]] = rom.name + ".hex";
+  }
+  write_text(fs::path(dir) / "regs.hex", regs_hex(b.regs));
+  params["RegsHex"] = "regs.hex";
+  params["FbPixels"] = b.fb_pixels;
+  const nlohmann::json j = {{"source", source},
+                            {"width", b.width},
+                            {"height", b.height},
+                            {"roms", depths},
+                            {"rc_board_params", params}};
+  write_text(fs::path(dir) / "board.json", j.dump(2) + "\n");
+}
+
+uint32_t board_model_fb_pixels() { return RC_BOARD_SIM_FbPixels; }
+
+BoardSimResult render_board(const scene::SceneImage& image, const RenderOptions& render,
+                            const BoardSimOptions& options) {
+  namespace fs = std::filesystem;
+  const auto start_time = std::chrono::steady_clock::now();
+  const BoardImage b = make_board_image(image, render, board_model_fb_pixels());
+  const uint32_t model_depth[kCorePorts] = {RC_BOARD_SIM_NodeDepth, RC_BOARD_SIM_ListDepth,
+                                            RC_BOARD_SIM_TriDepth, RC_BOARD_SIM_ShdDepth,
+                                            RC_BOARD_SIM_MatDepth};
+  for (int i = 0; i < kCorePorts; ++i)
+    if (b.roms[static_cast<size_t>(i)].records.size() > model_depth[i])
+      throw scene::Error(
+          image.name() + ": " + std::to_string(b.roms[static_cast<size_t>(i)].records.size()) +
+          " " + kRomNames[static_cast<size_t>(i)] +
+          " records do not fit the verilated board's ROM of " + std::to_string(model_depth[i]));
+
+  // The ROM contents as the FPGA flow writes them; the register file starts with the scene's
+  // configuration but no camera and no frame size: those go through the register port.
+  static std::atomic<unsigned> run_counter{0};
+  const fs::path dir = fs::temp_directory_path() / ("raycore-board-" + std::to_string(::getpid()) +
+                                                    "-" + std::to_string(run_counter.fetch_add(1)));
+  write_board_image(b, dir.string(), image.name());
+  std::vector<uint32_t> initial = b.regs;
+  for (uint32_t k = spec::kBoardRegEye; k <= spec::kBoardRegHeight; ++k) initial[k] = 0;
+  write_text(dir / "regs.hex", regs_hex(initial));
+  struct Cleanup {
+    fs::path dir;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  } cleanup{dir};
+
+  auto ctx = std::make_unique<VerilatedContext>();
+  ctx->assertOn(true);
+  ctx->fatalOnError(false);
+  std::vector<std::string> args = {"raycore-board"};
+  for (const BoardRom& rom : b.roms)
+    args.push_back("+" + rom.name + "=" + (dir / (rom.name + ".hex")).string());
+  args.push_back("+regs=" + (dir / "regs.hex").string());
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  ctx->commandArgs(static_cast<int>(argv.size()), argv.data());
+  auto m = std::make_unique<Vrc_board>(ctx.get(), "board");
+
+  BoardSimResult res;
+  uint64_t cycle = 0;
+  const auto fail = [&](const std::string& what) {
+    throw BoardSimError("board: " + what + " (cycle " + std::to_string(cycle) + ")");
+  };
+  const auto tick = [&] {
+    m->clk_i = 1;
+    m->eval();
+    m->clk_i = 0;
+    m->eval();
+    ++cycle;
+    if (ctx->gotError()) fail("the RTL stopped (an assertion or $stop; see the message above)");
+  };
+  m->clk_i = 0;
+  m->rst_ni = 0;
+  m->reg_we_i = 0;
+  m->start_i = 0;
+  m->fb_raddr_i = 0;
+  m->eval();
+  for (int i = 0; i < 4; ++i) tick();
+  m->rst_ni = 1;
+  m->eval();
+  tick();
+
+  const auto write_reg = [&](uint32_t addr, uint32_t value) {
+    m->reg_we_i = 1;
+    m->reg_addr_i = static_cast<uint8_t>(addr);
+    m->reg_wdata_i = value;
+    tick();
+    m->reg_we_i = 0;
+  };
+  const auto read_reg = [&](uint32_t addr) {
+    m->reg_addr_i = static_cast<uint8_t>(addr);
+    tick();
+    return static_cast<uint32_t>(m->reg_rdata_o);
+  };
+
+  // Program the camera and the frame size, then read the whole register file back.
+  for (uint32_t k = spec::kBoardRegEye; k <= spec::kBoardRegHeight; ++k) write_reg(k, b.regs[k]);
+  for (uint32_t k = 0; k < spec::kBoardRegs; ++k)
+    if (read_reg(k) != b.regs[k]) ++res.register_readback_differ;
+
+  // The frame.
+  Frame& f = res.frame;
+  f.width = b.width;
+  f.height = b.height;
+  const size_t npix = static_cast<size_t>(b.width) * b.height;
+  f.rgb.assign(npix * 3, 0);
+  f.hit_tri.assign(npix, -1);
+  f.hit_t.assign(npix, 0.0f);
+  f.hits.assign(npix, HitRecord{});
+  std::vector<uint8_t> seen(npix, 0);
+  write_reg(spec::kBoardRegControl, 1u);
+  const uint64_t frame_start = cycle;
+  while (!m->done_o) {
+    if (m->size_error_o) fail("the board refused the frame size");
+    if (m->mon_valid_o) {
+      const uint32_t pix = m->mon_pixel_o;
+      if (pix >= npix) fail("write to pixel " + std::to_string(pix) + " outside the frame");
+      if (seen[pix]++) fail("pixel " + std::to_string(pix) + " written twice");
+      const uint32_t rgb = m->mon_rgb_o;
+      for (int c = 0; c < 3; ++c)
+        f.rgb[pix * 3 + static_cast<size_t>(c)] = (rgb >> (8 * c)) & 0xffu;
+      if (m->mon_hit_o) {
+        f.hits[pix] =
+            HitRecord{static_cast<int32_t>(m->mon_tri_o), m->mon_t_o, m->mon_u_o, m->mon_v_o};
+        f.hit_tri[pix] = static_cast<int32_t>(m->mon_tri_o);
+        f.hit_t[pix] = fp24::from_bits(m->mon_t_o).to_float();
+      }
+    }
+    tick();
+    if (cycle - frame_start > options.watchdog_cycles)
+      fail("no done after " + std::to_string(options.watchdog_cycles) + " cycles (status " +
+           std::to_string(read_reg(spec::kBoardRegStatus)) + ")");
+    if (options.progress && (cycle & 0xfffff) == 0)
+      std::fprintf(stderr, "\rboard: %llu cycles", static_cast<unsigned long long>(cycle));
+  }
+  if (options.progress && cycle - frame_start > 0xfffff) std::fprintf(stderr, "\n");
+  for (size_t p = 0; p < npix; ++p)
+    if (!seen[p]) fail("pixel " + std::to_string(p) + " never written");
+
+  // Status, cycles, counters and the framebuffer, all through the ports.
+  res.status = read_reg(spec::kBoardRegStatus);
+  res.error_bits =
+      (res.status >> spec::kBoardStatusCoreErrorLsb) & ((1u << spec::kCoreStatusBits) - 1u);
+  res.cycles = read_reg(spec::kBoardRegCycles);
+  for (int k = 0; k < kCorePerfCount; ++k) {
+    write_reg(spec::kBoardRegPerfSel, static_cast<uint32_t>(k));
+    const uint64_t lo = read_reg(spec::kBoardRegPerfLo);
+    const uint64_t hi = read_reg(spec::kBoardRegPerfHi);
+    res.perf[static_cast<size_t>(k)] = lo | hi << 32;
+  }
+  f.counters = counters_from_perf(res.perf, res.error_bits);
+  for (size_t p = 0; p < npix; ++p) {
+    m->fb_raddr_i = static_cast<std::remove_reference_t<decltype(m->fb_raddr_i)>>(p);
+    tick();
+    const uint32_t rgb = m->fb_rdata_o;
+    for (int c = 0; c < 3; ++c)
+      if (((rgb >> (8 * c)) & 0xffu) != f.rgb[p * 3 + static_cast<size_t>(c)]) {
+        ++res.fb_readback_differ;
+        break;
+      }
+  }
+  m->final();
+  res.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  f.seconds = res.seconds;
+  res.cycles_per_second = res.seconds > 0 ? static_cast<double>(cycle) / res.seconds : 0.0;
+  return res;
+}
+
+}  // namespace rc::harness

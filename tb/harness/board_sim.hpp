@@ -1,0 +1,76 @@
+// The board build (rtl/board/rc_board.sv, docs/fpga.md) from the C++ side:
+// - BoardImage: a memory image as the board's block RAM contents (one hex file per ROM, one record
+//   per line, exactly the records rc::harness::MemoryPort serves) and its register file (camera
+//   registers from rc::camera_registers(), frame size, background, root box, record counts,
+//   shading constants). `raycore board-image` writes it for the FPGA flow.
+// - render_board(): the verilated rc_board (model Vrc_board) renders a frame: the harness loads
+//   the ROMs through plusargs, programs the camera and frame registers through the register port
+//   and reads them back, starts the frame, collects the core's framebuffer writes from the
+//   monitor port, and afterwards reads the whole framebuffer back through its read port.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core_sim.hpp"
+#include "image.hpp"
+#include "render.hpp"
+
+namespace rc::harness {
+
+struct BoardRom {
+  std::string name;    // nodes, lists, tris, shading, materials (the plusarg and file stem)
+  uint32_t width = 0;  // record bits
+  std::vector<std::vector<uint32_t>> records;  // little-endian words per record
+  uint32_t depth() const { return records.empty() ? 1u : static_cast<uint32_t>(records.size()); }
+};
+
+struct BoardImage {
+  std::array<BoardRom, kCorePorts> roms;  // in CorePort order
+  std::vector<uint32_t> regs;             // the register file (spec::kBoardRegs entries)
+  uint32_t width = 0, height = 0;
+  uint32_t fb_pixels = 0;  // the framebuffer the image was made for (rc_board FbPixels)
+};
+
+// The board's contents for a frame of `render` (size, camera, background) over an fp24 image.
+// Throws scene::Error when the image is not fp24 or the frame does not fit (fb_pixels).
+BoardImage make_board_image(const scene::SceneImage& image, const RenderOptions& render,
+                            uint32_t fb_pixels);
+
+// Writes <dir>/{nodes,lists,tris,shading,materials,regs}.hex ($readmemh) and <dir>/board.json
+// (depths, frame size, the parameters the FPGA flow passes to rc_board). Creates dir.
+void write_board_image(const BoardImage& b, const std::string& dir, const std::string& source);
+
+struct BoardSimOptions {
+  uint64_t watchdog_cycles = 2000000;  // fail when the frame takes longer than this
+  bool progress = false;
+};
+
+struct BoardSimResult {
+  Frame frame;  // from the monitor: rgb, exact hit records; counters from the perf registers
+  uint64_t cycles = 0;      // the board's cycle register for the frame
+  uint32_t status = 0;      // the status register after the frame
+  uint32_t error_bits = 0;  // rc_core error_o (status bits from core_error_lsb)
+  std::array<uint64_t, kCorePerfCount> perf{};
+  uint64_t fb_readback_differ = 0;  // framebuffer pixels whose read-back rgb differs
+  uint64_t register_readback_differ = 0;
+  double seconds = 0.0, cycles_per_second = 0.0;
+};
+
+class BoardSimError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The largest frame the verilated board model holds (its FbPixels parameter).
+uint32_t board_model_fb_pixels();
+
+// Renders through the verilated board. Throws scene::Error for an unusable image or frame and
+// BoardSimError for a failed run (hang, pixel written twice or never, assertion).
+BoardSimResult render_board(const scene::SceneImage& image, const RenderOptions& render,
+                            const BoardSimOptions& options);
+
+}  // namespace rc::harness
