@@ -11,7 +11,8 @@
 //   colour, R [7:0], G [15:8], B [23:16].
 // - Packet input: valid/ready. pkt_mask_i bit r: ray r exists. Per ray r: origin and direction
 //   component a at [(3r + a)*W +: W], inv_len at [r*W +: W], pixel id at [r*32 +: 32]. A packet
-//   is taken when a thread is free; its rays then pass ray set-up one per cycle.
+//   is taken when a thread is free and the ray set-up feeder is idle; its rays then pass ray
+//   set-up one per 3 cycles, in order 0..3 (absent rays too; their results are masked).
 // - Framebuffer write port: valid/ready, one write per existing ray of every packet, in no
 //   particular order: fb_pixel_o (the ray's pixel id), fb_rgb_o, and the ray's hit record
 //   (fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o; zero on a miss). A packet that met an error
@@ -30,10 +31,11 @@
 //   taken.
 // - Latency and throughput: not fixed; a packet takes as long as its walk through the tree (ray
 //   set-up, then per node a memory round trip plus a traversal step, per leaf its list and
-//   triangle reads and tests, then shading). At most one packet is taken per 4 cycles (ray
-//   set-up takes one ray per cycle) and Threads packets are in flight; framebuffer writes leave
-//   at up to one per cycle. Every memory response asked for is taken eventually (rsp_ready may be
-//   low for a while, never for ever).
+//   triangle reads and tests, then shading). Packets are taken at least 11 cycles apart, one
+//   per 12 cycles at most while they follow back to back (ray set-up takes one ray per 3 cycles,
+//   and the next packet is taken once ray 3 of the one before has entered it); Threads packets
+//   are in flight; framebuffer writes leave at up to one per cycle. Every memory response asked
+//   for is taken eventually (rsp_ready may be low for a while, never for ever).
 // - Illegal input: configuration changes while busy; a response with a tag that is not
 //   outstanding, or two responses for one request (assertions catch both).
 // - Reset: rst_ni, active low, asynchronous; clears all control state.
@@ -284,8 +286,13 @@ module rc_core #(
   assign acc_take    = pkt_valid_i & pkt_ready_o;
 
   /////////////////////////////////////////
-  // Ray set-up: one ray per cycle       //
+  // Ray set-up: one ray per 3 cycles    //
   /////////////////////////////////////////
+
+  // The feeder offers the packet's rays 0..3 in turn and rc_ray_setup takes one every 3 cycles.
+  // pkt_ready_o returns in the cycle after ray 3 is taken, and ray set-up takes its next ray no
+  // earlier than 3 cycles after that take, so a packet waiting at the input loses no set-up
+  // cycle (and nothing here assumes the set-up's rate or latency: the handshake paces it).
 
   logic            su_ready, su_take, su_v, su_active, su_valid, su_out_ready;
   logic            pop2_v;     // a pop result this cycle (the pop section below)

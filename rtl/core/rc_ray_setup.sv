@@ -17,19 +17,31 @@
 //   value +0 matters for the bits: max(-0, x) would give -0 for x <= -0. The axis order does
 //   not: the format's min/max are the infimum/supremum of a total order with -0 below +0, and a
 //   NaN t0/t1 skips the axis, so any order gives the same bits; tests/core/units checked this.)
+// - Structure: one arithmetic slice, time-multiplexed over the three axes: a taken ray waits in
+//   an input register and its axes enter the slice (one divider, two subtracters, two
+//   multipliers, the min/max compare, the chain's max and min compares) x first, then y, then z,
+//   one axis every CmpStages cycles (1 at the defaults); the chain step of an axis takes the
+//   interval straight from the compares' results for the axis before it. A skipped axis passes
+//   through the chain's compares as max(tmin, -inf) and min(tmax, +inf), which are tmin and tmax
+//   bit for bit (both are canonical and never NaN), so the chain's bits are those above.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
-//   when valid_i & ready_o. ready_o comes from a register (credits, see rc_credit_fifo) and never
-//   depends on valid_i or ready_i; valid_o never depends on ready_i. Results leave in order;
-//   nothing is dropped or duplicated. tag_i travels with the operation to tag_o.
-// - Latency: 19 cycles from the taking edge to valid_o (divide 11, with the subtracts in parallel
-//   · multiply 2 · min/max of t0, t1: 1 · x, y, z max/min chain: 3 x 1 · le: 1 · output FIFO 1),
-//   when the FIFO is empty and ready_i is 1.
-// - Throughput: one ray per cycle while ready_i is 1 (the FIFO holds Latency + 1 entries, enough
-//   credits for every operation in flight).
+//   when valid_i & ready_o. ready_o comes from registers only (the credit count of
+//   rc_credit_fifo and the input register's slot counter) and never depends on valid_i or
+//   ready_i; valid_o never depends on ready_i. Results leave in order; nothing is dropped or
+//   duplicated. tag_i travels with the operation to tag_o.
+// - Latency: 20 cycles at the defaults from the taking edge to valid_o (input register 1 · z
+//   enters the slice 2 x 1 after x · divide 11, with the subtracts in parallel · multiply 2 ·
+//   min/max of t0, t1: 1 · the chain step of z: 1 (those of x and y overlap the later axes) ·
+//   le: 1 · output FIFO 1), when the FIFO is empty and ready_i is 1.
+// - Throughput: one ray per 3 x CmpStages cycles (3 at the defaults) while ready_i is 1: ready_o
+//   rises again in the ray's last cycle in the input register (at the defaults the cycle its z
+//   enters the slice), so the next ray is taken then and its x follows at once. The FIFO holds
+//   Latency / (3 x CmpStages) + 1 entries (7 at the defaults), enough credits for every
+//   operation in flight at that rate.
 // - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1).
 // - Illegal input: none; every bit pattern of the data inputs is legal.
-// - Reset: rst_ni (active low, asynchronous) clears control state only (valid chains, FIFO
-//   pointers and credit count); data registers have no reset.
+// - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, valid
+//   chains and axis flags, FIFO pointers and credit count); data registers have no reset.
 module rc_ray_setup #(
   parameter int unsigned ExpW  = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW = rc_pkg::Fp24FracW,
@@ -65,258 +77,307 @@ module rc_ray_setup #(
   localparam int unsigned W         = 1 + ExpW + FracW;
   // Latencies of the fp units: the rc_fp_* defaults, both from docs/spec.toml [fp_stages].
   localparam int unsigned DivStages = rc_pkg::FpStagesDiv;
-  localparam int unsigned SubStages = DivStages;  // the subtracts run beside the divides
+  localparam int unsigned SubStages = DivStages;  // the subtracts run beside the divide
   localparam int unsigned MulStages = rc_pkg::FpStagesMul;
   localparam int unsigned CmpStages = rc_pkg::FpStagesCmp;
-  // take -> FIFO write: divide, multiply, min/max(t0, t1), three chain steps, le.
-  localparam int unsigned PipeLat   = DivStages + MulStages + 5 * CmpStages;
-  localparam int unsigned FifoDepth = PipeLat + 2;  // full throughput
-  localparam int unsigned InvDly    = PipeLat - DivStages;  // inv from the divider to the FIFO
+  // One axis enters the slice every AxisGap cycles: an axis' chain step needs the result of the
+  // previous axis' step, which the compares give CmpStages cycles after their inputs.
+  localparam int unsigned AxisGap   = CmpStages;
+  localparam int unsigned Interval  = 3 * AxisGap;  // cycles per ray
+  // An axis entering the slice -> its min/max(t0, t1) at the chain: divide, multiply, compare.
+  localparam int unsigned ChainDly  = DivStages + MulStages + CmpStages;
+  // take -> FIFO write: input register, z enters 2 gaps after x, z's chain step, le.
+  localparam int unsigned PipeLat   = 1 + 2 * AxisGap + ChainDly + 2 * CmpStages;
+  localparam int unsigned Latency   = PipeLat + 1;  // the FIFO adds one cycle
+  // Credits: a ray holds one from its take until it leaves, Latency cycles at the earliest, and
+  // rays are taken Interval cycles apart, so Latency / Interval earlier rays hold one when the
+  // next is taken.
+  localparam int unsigned FifoDepth = Latency / Interval + 1;
+  // The divider's result of axis a -> FIFO write: (2 - a) gaps, multiply, three compares.
+  localparam int unsigned InvDly    = 2 * AxisGap + MulStages + 3 * CmpStages;
+  localparam int unsigned AxW       = 4 * W;  // {org, dir, lo, hi} of one axis
   localparam int unsigned OutW      = TagW + 3 * W + 2 * W + 1;
 
-  localparam logic [ExpW-1:0] Bias    = ExpW'((1 << (ExpW - 1)) - 1);
-  localparam logic [W-1:0]    One     = {1'b0, Bias, {FracW{1'b0}}};
-  localparam logic [W-1:0]    PosZero = '0;
-  localparam logic [W-1:0]    PosInf  = {1'b0, {ExpW{1'b1}}, {FracW{1'b0}}};
+  localparam logic [ExpW-1:0] Bias   = ExpW'((1 << (ExpW - 1)) - 1);
+  localparam logic [W-1:0]    One    = {1'b0, Bias, {FracW{1'b0}}};
+  localparam logic [W-1:0]    PosInf = {1'b0, {ExpW{1'b1}}, {FracW{1'b0}}};
 
   // NaN test on the magnitude bits {exp, frac} (the sign does not matter).
   function automatic logic is_nan(logic [W-2:0] mag);
     is_nan = (&mag[W-2 -: ExpW]) & (|mag[FracW-1:0]);
   endfunction
 
-  logic take;
-  assign take = valid_i & ready_o;
+  ////////////////////////////////////////////////
+  // Input register and the axis sequence       //
+  ////////////////////////////////////////////////
 
-  /////////////////////////////////////////////////////
-  // Stage 1: inv = 1 / dir, lo - org, hi - org      //
-  /////////////////////////////////////////////////////
+  // slot_q: one-hot, bit k = cycle k of the ray held in the input register (all zero: empty).
+  // Axis a enters the slice in cycle a x AxisGap. The register takes the next ray in the last
+  // cycle (the ray's z has then entered, or enters in that very cycle when AxisGap = 1).
+  logic [Interval-1:0] slot_q;
+  logic                credit, take, busy, issue, first, last;
 
-  logic [2:0]     div_valid;
-  logic [3*W-1:0] inv, dlo, dhi;
-  logic [2:0]        unused_sub_lo_valid, unused_sub_hi_valid;
+  assign busy    = |slot_q;
+  assign ready_o = credit & (~busy | slot_q[Interval-1]);
+  assign take    = valid_i & ready_o;
+  assign first   = slot_q[0];
+  assign last    = slot_q[2*AxisGap];
+  assign issue   = slot_q[0] | slot_q[AxisGap] | slot_q[2*AxisGap];
 
-  for (genvar a = 0; a < 3; a++) begin : g_axis_in
-    rc_fp_div #(
-      .ExpW  (ExpW),
-      .FracW (FracW),
-      .Stages(DivStages)
-    ) u_div (
-      .clk_i,
-      .rst_ni,
-      .valid_i(take),
-      .a_i    (One),
-      .b_i    (dir_i[a*W +: W]),
-      .valid_o(div_valid[a]),
-      .res_o  (inv[a*W +: W])
-    );
-
-    rc_fp_add #(
-      .ExpW  (ExpW),
-      .FracW (FracW),
-      .Stages(SubStages)
-    ) u_sub_lo (
-      .clk_i,
-      .rst_ni,
-      .valid_i(take),
-      .sub_i  (1'b1),
-      .a_i    (bounds_i[a*W +: W]),
-      .b_i    (org_i[a*W +: W]),
-      .valid_o(unused_sub_lo_valid[a]),
-      .res_o  (dlo[a*W +: W])
-    );
-
-    rc_fp_add #(
-      .ExpW  (ExpW),
-      .FracW (FracW),
-      .Stages(SubStages)
-    ) u_sub_hi (
-      .clk_i,
-      .rst_ni,
-      .valid_i(take),
-      .sub_i  (1'b1),
-      .a_i    (bounds_i[(a+3)*W +: W]),
-      .b_i    (org_i[a*W +: W]),
-      .valid_o(unused_sub_hi_valid[a]),
-      .res_o  (dhi[a*W +: W])
-    );
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      slot_q <= '0;
+    end else if (take) begin
+      slot_q <= Interval'(1);
+    end else begin
+      slot_q <= slot_q << 1;
+    end
   end
 
-  // The tag travels the whole pipeline.
-  logic [PipeLat*TagW-1:0] tag_q;
-  always_ff @(posedge clk_i) begin
-    tag_q <= (tag_q << TagW) | (PipeLat*TagW)'(tag_i);
+  // The ray's axes as {org, dir, lo, hi}; ax_q[0 +: AxW] is the next axis to enter the slice,
+  // the rest move down one place whenever one enters (no read multiplexer in front of the
+  // arithmetic).
+  logic [3*AxW-1:0] ax_in, ax_q;
+  logic [TagW-1:0]  tag_q;
+  for (genvar a = 0; a < 3; a++) begin : g_ax_in
+    assign ax_in[a*AxW +: AxW] = {org_i[a*W +: W], dir_i[a*W +: W], bounds_i[a*W +: W],
+                                  bounds_i[(a+3)*W +: W]};
   end
 
-  // inv from the divider output to the FIFO.
-  logic [InvDly*3*W-1:0] inv_q;
   always_ff @(posedge clk_i) begin
-    inv_q <= (inv_q << (3*W)) | (InvDly*3*W)'(inv);
+    if (take) begin
+      ax_q  <= ax_in;
+      tag_q <= tag_i;
+    end else if (issue) begin
+      ax_q[0 +: 2*AxW] <= ax_q[AxW +: 2*AxW];
+    end
+  end
+
+  logic [W-1:0] ax_org, ax_dir, ax_lo, ax_hi;
+  assign {ax_org, ax_dir, ax_lo, ax_hi} = ax_q[0 +: AxW];
+
+  //////////////////////////////////////////////////
+  // Slice 1: inv = 1 / dir, lo - org, hi - org   //
+  //////////////////////////////////////////////////
+
+  logic         div_valid, sub_lo_valid, sub_hi_valid;
+  logic [W-1:0] inv, dlo, dhi;
+
+  rc_fp_div #(
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .Stages(DivStages)
+  ) u_div (
+    .clk_i,
+    .rst_ni,
+    .valid_i(issue),
+    .a_i    (One),
+    .b_i    (ax_dir),
+    .valid_o(div_valid),
+    .res_o  (inv)
+  );
+
+  rc_fp_add #(
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .Stages(SubStages)
+  ) u_sub_lo (
+    .clk_i,
+    .rst_ni,
+    .valid_i(issue),
+    .sub_i  (1'b1),
+    .a_i    (ax_lo),
+    .b_i    (ax_org),
+    .valid_o(sub_lo_valid),
+    .res_o  (dlo)
+  );
+
+  rc_fp_add #(
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .Stages(SubStages)
+  ) u_sub_hi (
+    .clk_i,
+    .rst_ni,
+    .valid_i(issue),
+    .sub_i  (1'b1),
+    .a_i    (ax_hi),
+    .b_i    (ax_org),
+    .valid_o(sub_hi_valid),
+    .res_o  (dhi)
+  );
+
+  // Beside the slice to the chain: the axis flags (control: reset) and the ray's tag.
+  logic [ChainDly*3-1:0]    flag_q;  // {valid, first, last} per cycle
+  logic [ChainDly*TagW-1:0] side_tag_q;
+  logic                     ch_valid_side, ch_first, ch_last;
+  logic [TagW-1:0]          ch_tag;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      flag_q <= '0;
+    end else begin
+      flag_q <= (flag_q << 3) | (ChainDly*3)'({issue, first, last});
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    side_tag_q <= (side_tag_q << TagW) | (ChainDly*TagW)'(tag_q);
+  end
+  assign {ch_valid_side, ch_first, ch_last} = flag_q[ChainDly*3-1 -: 3];
+  assign ch_tag = side_tag_q[ChainDly*TagW-1 -: TagW];
+
+  // The divider's results, one per cycle, for the FIFO: inv_q[k*W +: W] is the result of k + 1
+  // cycles ago.
+  logic [InvDly*W-1:0] inv_q;
+  always_ff @(posedge clk_i) begin
+    inv_q <= (inv_q << W) | (InvDly*W)'(inv);
   end
 
   ///////////////////////////////////////////////
-  // Stage 2: t0 = dlo * inv, t1 = dhi * inv   //
+  // Slice 2: t0 = dlo * inv, t1 = dhi * inv   //
   ///////////////////////////////////////////////
 
-  logic [2:0]     mul_valid, unused_mul_hi_valid;
-  logic [3*W-1:0] t0, t1;
-  logic [2:0]     skip_m;  // t0 or t1 is NaN: the axis does not restrict the ray
+  logic         mul_valid, mul_hi_valid, skip_m;
+  logic [W-1:0] t0, t1;
 
-  for (genvar a = 0; a < 3; a++) begin : g_axis_mul
-    rc_fp_mul #(
-      .ExpW  (ExpW),
-      .FracW (FracW),
-      .Stages(MulStages)
-    ) u_mul_lo (
-      .clk_i,
-      .rst_ni,
-      .valid_i(div_valid[a]),
-      .a_i    (dlo[a*W +: W]),
-      .b_i    (inv[a*W +: W]),
-      .valid_o(mul_valid[a]),
-      .res_o  (t0[a*W +: W])
-    );
+  rc_fp_mul #(
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .Stages(MulStages)
+  ) u_mul_lo (
+    .clk_i,
+    .rst_ni,
+    .valid_i(div_valid),
+    .a_i    (dlo),
+    .b_i    (inv),
+    .valid_o(mul_valid),
+    .res_o  (t0)
+  );
 
-    rc_fp_mul #(
-      .ExpW  (ExpW),
-      .FracW (FracW),
-      .Stages(MulStages)
-    ) u_mul_hi (
-      .clk_i,
-      .rst_ni,
-      .valid_i(div_valid[a]),
-      .a_i    (dhi[a*W +: W]),
-      .b_i    (inv[a*W +: W]),
-      .valid_o(unused_mul_hi_valid[a]),
-      .res_o  (t1[a*W +: W])
-    );
+  rc_fp_mul #(
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .Stages(MulStages)
+  ) u_mul_hi (
+    .clk_i,
+    .rst_ni,
+    .valid_i(div_valid),
+    .a_i    (dhi),
+    .b_i    (inv),
+    .valid_o(mul_hi_valid),
+    .res_o  (t1)
+  );
 
-    assign skip_m[a] = is_nan(t0[a*W +: W-1]) | is_nan(t1[a*W +: W-1]);
-  end
+  // t0 or t1 is NaN: the axis does not restrict the ray.
+  assign skip_m = is_nan(t0[W-2:0]) | is_nan(t1[W-2:0]);
 
-  //////////////////////////////////////////////////
-  // Stage 3: min(t0, t1), max(t0, t1) per axis   //
-  //////////////////////////////////////////////////
+  /////////////////////////////////////////
+  // Slice 3: min(t0, t1), max(t0, t1)   //
+  /////////////////////////////////////////
 
-  logic [2:0]     mm_valid;
-  logic [3*W-1:0] mn, mx;
-  logic [2:0]        unused_mm_lt, unused_mm_le, unused_mm_eq;
+  logic         mm_valid;
+  logic [W-1:0] mn, mx;
+  logic         unused_mm_lt, unused_mm_le, unused_mm_eq;
 
-  for (genvar a = 0; a < 3; a++) begin : g_axis_mm
-    rc_fp_cmp #(
-      .ExpW  (ExpW),
-      .FracW (FracW),
-      .Stages(CmpStages)
-    ) u_mm (
-      .clk_i,
-      .rst_ni,
-      .valid_i(mul_valid[a]),
-      .a_i    (t0[a*W +: W]),
-      .b_i    (t1[a*W +: W]),
-      .valid_o(mm_valid[a]),
-      .lt_o   (unused_mm_lt[a]),
-      .le_o   (unused_mm_le[a]),
-      .eq_o   (unused_mm_eq[a]),
-      .min_o  (mn[a*W +: W]),
-      .max_o  (mx[a*W +: W])
-    );
-  end
+  rc_fp_cmp #(
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .Stages(CmpStages)
+  ) u_mm (
+    .clk_i,
+    .rst_ni,
+    .valid_i(mul_valid),
+    .a_i    (t0),
+    .b_i    (t1),
+    .valid_o(mm_valid),
+    .lt_o   (unused_mm_lt),
+    .le_o   (unused_mm_le),
+    .eq_o   (unused_mm_eq),
+    .min_o  (mn),
+    .max_o  (mx)
+  );
 
-  // The skip flags beside the min/max compare.
-  logic [CmpStages*3-1:0] skip_mm_q;
-  logic [2:0]             skip_mm;
+  // The skip flag beside the min/max compare.
+  logic [CmpStages-1:0] skip_mm_q;
+  logic                 skip;
   always_ff @(posedge clk_i) begin
-    skip_mm_q <= (skip_mm_q << 3) | (CmpStages*3)'(skip_m);
+    skip_mm_q <= (skip_mm_q << 1) | CmpStages'(skip_m);
   end
-  assign skip_mm = skip_mm_q[CmpStages*3-1 -: 3];
+  assign skip = skip_mm_q[CmpStages-1];
 
-  /////////////////////////////////////////////////////////////
-  // Stage 4: the chain, x then y then z (one step per axis) //
-  /////////////////////////////////////////////////////////////
+  ///////////////////////////////////////////////////////////////////
+  // The chain: one step per axis, x then y then z, fed back       //
+  ///////////////////////////////////////////////////////////////////
 
-  // lo_c/hi_c[a*W +: W]: the interval entering step a; [3*W +: W]: the final interval.
-  localparam int unsigned AxW = 2 * W + 1;  // {mn, mx, skip} of one axis
-  logic [4*W-1:0] lo_c, hi_c;
-  logic [3:0]     step_valid;
-  assign lo_c[0 +: W]  = PosZero;
-  assign hi_c[0 +: W]  = PosInf;
-  assign step_valid[0] = mm_valid[0];
+  // lo_in/hi_in: the interval entering this axis' step: [+0, +inf] for x, else the interval
+  // after the previous axis' step, which leaves the compares in this very cycle (the loop is one
+  // LUT level plus a compare). A skipped axis compares with max(tmin, -inf) and min(tmax, +inf)
+  // instead, which give tmin and tmax bit for bit: both are canonical (+0, +inf and every
+  // min/max result are) and never NaN (see TminNotNan_A). So the skip selects an operand beside
+  // the loop, not the result inside it. The selects are AND-OR masks, not muxes with constant
+  // inputs (see rc_fp_cmp).
+  localparam int unsigned KeepW = 1 + TagW;  // {last, tag}
+  localparam logic [W-1:0] NegInf = {1'b1, {ExpW{1'b1}}, {FracW{1'b0}}};
+  logic [W-1:0]  lo_in, hi_in, lo_b, hi_b, max_res, min_res;
+  logic          chain_valid, last_keep;
+  logic [TagW-1:0] tag_keep;
+  logic          unused_max_valid, unused_max_lt, unused_max_le, unused_max_eq;
+  logic          unused_min_lt, unused_min_le, unused_min_eq;
+  logic [W-1:0]  unused_max_min, unused_min_max;
 
-  for (genvar a = 0; a < 3; a++) begin : g_chain
-    logic [W-1:0] mn_a, mx_a, max_res, min_res;
-    logic         skip_a;
-    logic         unused_max_valid, unused_max_lt, unused_max_le, unused_max_eq;
-    logic         unused_min_lt, unused_min_le, unused_min_eq;
-    logic [W-1:0] unused_max_min, unused_min_max;
+  assign lo_in = {W{~ch_first}} & max_res;                          // +0 is all zeros
+  assign hi_in = ({W{~ch_first}} & min_res) | ({W{ch_first}} & PosInf);
+  assign lo_b  = ({W{~skip}} & mn) | ({W{skip}} & NegInf);
+  assign hi_b  = ({W{~skip}} & mx) | ({W{skip}} & PosInf);
 
-    // Axis a's {mn, mx, skip} wait a x CmpStages cycles for their chain step.
-    logic [AxW-1:0] ax_d, ax_a;
-    assign ax_d = {mn[a*W +: W], mx[a*W +: W], skip_mm[a]};
-    if (a == 0) begin : g_no_wait
-      assign ax_a = ax_d;
-    end else begin : g_wait
-      localparam int unsigned Dly = a * CmpStages;
-      logic [Dly*AxW-1:0] ax_q;
-      always_ff @(posedge clk_i) begin
-        ax_q <= (ax_q << AxW) | (Dly*AxW)'(ax_d);
-      end
-      assign ax_a = ax_q[Dly*AxW-1 -: AxW];
-    end
-    assign {mn_a, mx_a, skip_a} = ax_a;
+  // tmin = max(tmin, min(t0, t1))
+  rc_fp_cmp #(
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .Stages(CmpStages)
+  ) u_max (
+    .clk_i,
+    .rst_ni,
+    .valid_i(mm_valid),
+    .a_i    (lo_in),
+    .b_i    (lo_b),
+    .valid_o(unused_max_valid),
+    .lt_o   (unused_max_lt),
+    .le_o   (unused_max_le),
+    .eq_o   (unused_max_eq),
+    .min_o  (unused_max_min),
+    .max_o  (max_res)
+  );
 
-    // tmin = max(tmin, min(t0, t1))
-    rc_fp_cmp #(
-      .ExpW  (ExpW),
-      .FracW (FracW),
-      .Stages(CmpStages)
-    ) u_max (
-      .clk_i,
-      .rst_ni,
-      .valid_i(step_valid[a]),
-      .a_i    (lo_c[a*W +: W]),
-      .b_i    (mn_a),
-      .valid_o(unused_max_valid),
-      .lt_o   (unused_max_lt),
-      .le_o   (unused_max_le),
-      .eq_o   (unused_max_eq),
-      .min_o  (unused_max_min),
-      .max_o  (max_res)
-    );
+  // tmax = min(tmax, max(t0, t1))
+  rc_fp_cmp #(
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .Stages(CmpStages)
+  ) u_min (
+    .clk_i,
+    .rst_ni,
+    .valid_i(mm_valid),
+    .a_i    (hi_in),
+    .b_i    (hi_b),
+    .valid_o(chain_valid),
+    .lt_o   (unused_min_lt),
+    .le_o   (unused_min_le),
+    .eq_o   (unused_min_eq),
+    .min_o  (min_res),
+    .max_o  (unused_min_max)
+  );
 
-    // tmax = min(tmax, max(t0, t1))
-    rc_fp_cmp #(
-      .ExpW  (ExpW),
-      .FracW (FracW),
-      .Stages(CmpStages)
-    ) u_min (
-      .clk_i,
-      .rst_ni,
-      .valid_i(step_valid[a]),
-      .a_i    (hi_c[a*W +: W]),
-      .b_i    (mx_a),
-      .valid_o(step_valid[a + 1]),
-      .lt_o   (unused_min_lt),
-      .le_o   (unused_min_le),
-      .eq_o   (unused_min_eq),
-      .min_o  (min_res),
-      .max_o  (unused_min_max)
-    );
-
-    // The incoming interval and the skip flag beside the compares.
-    logic [CmpStages*AxW-1:0] keep_q;
-    logic [W-1:0]             lo_keep, hi_keep;
-    logic                     skip_keep;
-    always_ff @(posedge clk_i) begin
-      keep_q <= (keep_q << AxW) | (CmpStages*AxW)'({lo_c[a*W +: W], hi_c[a*W +: W], skip_a});
-    end
-    assign {lo_keep, hi_keep, skip_keep} = keep_q[CmpStages*AxW-1 -: AxW];
-
-    assign lo_c[(a+1)*W +: W] = skip_keep ? lo_keep : max_res;
-    assign hi_c[(a+1)*W +: W] = skip_keep ? hi_keep : min_res;
+  // The last-axis flag and the tag beside the compares.
+  logic [CmpStages*KeepW-1:0] keep_q;
+  always_ff @(posedge clk_i) begin
+    keep_q <= (keep_q << KeepW) | (CmpStages*KeepW)'({ch_last, ch_tag});
   end
+  assign {last_keep, tag_keep} = keep_q[CmpStages*KeepW-1 -: KeepW];
 
-  ///////////////////////////////////
-  // Stage 5: active = le(tmin, tmax) //
-  ///////////////////////////////////
+  //////////////////////////////////////////////////////
+  // active = le(tmin, tmax), after the step of z     //
+  //////////////////////////////////////////////////////
 
   logic         le_valid, active;
   logic         unused_le_lt, unused_le_eq;
@@ -329,9 +390,9 @@ module rc_ray_setup #(
   ) u_le (
     .clk_i,
     .rst_ni,
-    .valid_i(step_valid[3]),
-    .a_i    (lo_c[3*W +: W]),
-    .b_i    (hi_c[3*W +: W]),
+    .valid_i(chain_valid & last_keep),
+    .a_i    (max_res),
+    .b_i    (min_res),
     .valid_o(le_valid),
     .lt_o   (unused_le_lt),
     .le_o   (active),
@@ -340,28 +401,37 @@ module rc_ray_setup #(
     .max_o  (unused_le_max)
   );
 
-  logic [CmpStages*2*W-1:0] fin_q;
-  logic [W-1:0]             tmin_f, tmax_f;
+  localparam int unsigned FinW = 2 * W + TagW;  // {tmin, tmax, tag}
+  logic [CmpStages*FinW-1:0] fin_q;
+  logic [W-1:0]              tmin_f, tmax_f;
+  logic [TagW-1:0]           tag_f;
   always_ff @(posedge clk_i) begin
-    fin_q <= (fin_q << (2*W)) | (CmpStages*2*W)'({lo_c[3*W +: W], hi_c[3*W +: W]});
+    fin_q <= (fin_q << FinW) | (CmpStages*FinW)'({max_res, min_res, tag_keep});
   end
-  assign {tmin_f, tmax_f} = fin_q[CmpStages*2*W-1 -: 2*W];
+  assign {tmin_f, tmax_f, tag_f} = fin_q[CmpStages*FinW-1 -: FinW];
+
+  // inv of x, y, z: the divider's results of InvDly, InvDly - AxisGap and InvDly - 2 AxisGap
+  // cycles before the FIFO write.
+  logic [3*W-1:0] inv_f;
+  for (genvar a = 0; a < 3; a++) begin : g_inv_f
+    assign inv_f[a*W +: W] = inv_q[(InvDly-a*AxisGap)*W-1 -: W];
+  end
 
   /////////////////////////////
   // Output FIFO and credits //
   /////////////////////////////
 
   rc_credit_fifo #(
-    .Width(OutW),
-    .Depth(FifoDepth)
+    .Width   (OutW),
+    .Depth   (FifoDepth),
+    .MemArray(1'b1)
   ) u_fifo (
     .clk_i,
     .rst_ni,
     .take_i    (take),
-    .credit_o  (ready_o),
+    .credit_o  (credit),
     .wr_valid_i(le_valid),
-    .wr_data_i ({tag_q[PipeLat*TagW-1 -: TagW], inv_q[InvDly*3*W-1 -: 3*W], tmin_f, tmax_f,
-                 active}),
+    .wr_data_i ({tag_f, inv_f, tmin_f, tmax_f, active}),
     .valid_o,
     .ready_i,
     .data_o    ({tag_o, inv_o, tmin_o, tmax_o, active_o})
@@ -380,13 +450,18 @@ module rc_ray_setup #(
     .on_o (checks_on)
   );
 
-  // The three axes' units run in lock step; their valid chains must agree.
-  AxesLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                   (&div_valid == |div_valid) && (&mm_valid == |mm_valid));
   // The divider and the subtracts are aligned (same Stages), so their results meet.
   SubDivAligned_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                    div_valid == unused_sub_lo_valid &&
-                                    div_valid == unused_sub_hi_valid);
+                                    div_valid == sub_lo_valid && div_valid == sub_hi_valid);
+  // Both multipliers, and the flags beside the slice, run in lock step with the axis stream.
+  SliceLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                    mul_valid == mul_hi_valid && mm_valid == ch_valid_side &&
+                                    chain_valid == unused_max_valid);
+  // A ray's axes reach the chain AxisGap cycles apart, x first: an axis other than x finds the
+  // previous axis of its own ray just out of the compares, and x finds none in flight.
+  ChainOrder_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 mm_valid |-> (ch_first ? !(chain_valid && !last_keep)
+                                                        : chain_valid && !last_keep));
   // tmin starts at +0 and only grows through non-NaN values, so it is never NaN.
   TminNotNan_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  le_valid |-> !is_nan(tmin_f[W-2:0]) && !is_nan(tmax_f[W-2:0]));

@@ -546,18 +546,22 @@ void run_random(const char* unit, const char* function, uint64_t n, uint64_t see
   EXPECT_EQ(h.outputs(), h.cases());
 }
 
-// Latency, full throughput and the credit limit: back to back with ready_i high, then with
-// ready_i low until ready_o drops.
+// Latency, full throughput and the credit limit: back to back with ready_i high (an operation
+// taken every `interval` cycles: the unit's throughput), then with ready_i low until ready_o
+// drops.
 template <class V, class U, class CaseFn>
-void run_timing(const char* unit, int64_t want_latency, uint64_t want_depth, CaseFn make) {
+void run_timing(const char* unit, int64_t want_latency, uint64_t want_depth, CaseFn make,
+                uint64_t interval = 1) {
   StreamHarness<V, U> h(7, false);
   Gen g(8);
   h.set_ready_mode(1);
   const uint64_t n = 1000;
   const uint64_t start = h.cycle();
-  for (uint64_t i = 0; i < n; ++i) h.push(make(g));  // each push takes exactly one cycle
+  // The first push is taken at once, each later one `interval` cycles after the one before.
+  for (uint64_t i = 0; i < n; ++i) h.push(make(g));
   const uint64_t cycles = h.cycle() - start;
-  EXPECT_EQ(cycles, n) << unit << ": not one operation per cycle";
+  EXPECT_EQ(cycles, (n - 1) * interval + 1)
+      << unit << ": not one operation per " << interval << " cycle(s)";
   h.drain();
   EXPECT_EQ(h.latency(), want_latency) << unit << ": latency";
   // ready_i low: the unit must take exactly its FIFO depth of operations, then hold ready_o low.
@@ -633,8 +637,9 @@ TEST(CoreUnits, RaySetupRandom) {
   EXPECT_GT(skipped_axes, 10'000u);
 }
 
+// rc_ray_setup runs the three axes of a ray through one arithmetic slice: one ray per 3 cycles.
 TEST(CoreUnits, RaySetupTiming) {
-  run_timing<Vrc_ray_setup, SetupUnit>("rc_ray_setup", 19, 20, setup_case);
+  run_timing<Vrc_ray_setup, SetupUnit>("rc_ray_setup", 20, 7, setup_case, 3);
 }
 
 TEST(CoreUnits, ShadeRandom) {
