@@ -25,7 +25,7 @@
 //   x, y, z of a ray pass on consecutive cycles through 3 multipliers and 2 adders, then the
 //   length's 2 adders, the square root and the divider see one operation per ray) while the ray
 //   FIFO has credits (RayFifoDepth rays in flight or stored): a packet every 12 cycles at best,
-//   above what rc_core sustains (docs/fpga.md).
+//   the rate of rc_core's ray set-up (one ray per 3 cycles).
 // - Parameters: ExpW, FracW: the format; CoordW: bits of width_i/height_i (CoordW <= FracW + 1,
 //   so every coordinate converts exactly); RayFifoDepth: rays buffered (>= 4).
 // - Illegal input: start_i while busy_o; camera or size inputs changing while busy_o.
