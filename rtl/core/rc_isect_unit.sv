@@ -1,4 +1,5 @@
-// rc_isect_unit: the intersection unit, one ray against one triangle per cycle.
+// rc_isect_unit: the intersection unit, one ray against one triangle every two cycles (one
+// transform unit used twice) or, with SharedXform = 0, every cycle (two transform units).
 //
 // Contract
 // - Function: exactly rc::intersect() (tb/golden/trace.hpp; docs/architecture.md, "Intersection
@@ -22,20 +23,27 @@
 //   outputs taken = operations in flight + FIFO occupancy (one registered counter), so the FIFO
 //   always has room for everything in flight. PipeLat + 2 is the least depth that sustains one
 //   input per cycle (in steady state PipeLat results are in flight and one waits in the FIFO).
-// - Latency: PipeLat = (MulStages + 3 * AddStages) + DivStages + MulStages + 2 * AddStages +
-//   CmpStages cycles through the arithmetic (20 + 11 + 2 + 12 + 1 = 46 at the defaults mul 2,
-//   add 6, div 11, cmp 1: the rc_fp_* default latencies), plus the FIFO's output register:
-//   valid_o rises PipeLat + 1 = 47 cycles
-//   after an accepted input when ready_i is high and the FIFO is empty.
-// - Throughput: one ray-triangle pair per cycle (with ready_i held high, ready_o stays 1).
+//   With SharedXform = 1, ready_o is also 0 in the cycle after an accepted input (the transform
+//   unit's first pass; a register, so ready_o still depends only on registered state).
+// - Latency: PipeLat = IssueLat + (MulStages + 3 * AddStages) + DivStages + MulStages +
+//   2 * AddStages + CmpStages cycles, IssueLat = 2 with SharedXform (input register, second
+//   pass) and 0 without (2 + 20 + 11 + 2 + 12 + 1 = 48 at the defaults mul 2, add 6, div 11,
+//   cmp 1: the rc_fp_* default latencies), plus the FIFO's output register: valid_o rises
+//   PipeLat + 1 = 49 cycles (47 with SharedXform = 0) after an accepted input when ready_i is
+//   high and the FIFO is empty.
+// - Throughput: SharedXform = 1: one ray-triangle pair every two cycles (with ready_i held high,
+//   ready_o is 1 every other cycle); SharedXform = 0: one pair per cycle (ready_o stays 1).
 // - Parameters: ExpW (>= 2), FracW (>= 1): the format; TagW (>= 1): width of the tag carried
 //   alongside; MulStages, AddStages, DivStages, CmpStages (>= 1): latencies of the rc_fp_*
-//   instances.
+//   instances; SharedXform: 1 (default) = one transform unit for d' then o' (9 multipliers and
+//   9 adders fewer, about 7,000 ECP5 LUT4 sites: docs/fpga.md), 0 = two transform units.
 // - Illegal input: none; every bit pattern of every input is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (valid pipelines, FIFO
 //   pointers and counters); data registers have no reset.
 //
-// Pipeline (cycle numbers at the defaults, counted from the accepted input):
+// Pipeline (cycle numbers at the defaults with SharedXform = 0, counted from the accepted input;
+// SharedXform = 1 registers the input at cycle 0, starts d' at 1 and o' at 2, and keeps d' one
+// cycle in xd_q, so everything below happens 2 cycles later):
 //   0   o' and d' transforms start (two rc_xform_unit, valid-only)
 //   20  t = -o'z / d'z starts; o'x, o'y, d'x, d'y, d'z and the side band wait DivStages
 //   31  t*d'x, t*d'y start; lt(0,t), lt(t,best_t), eq(t,best_t) start
@@ -47,13 +55,14 @@
 //   46  hit = flag b && le(u+v, 1.0); the result enters the output FIFO
 //   47  valid_o
 module rc_isect_unit #(
-  parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
-  parameter int unsigned FracW     = rc_pkg::Fp24FracW,
-  parameter int unsigned TagW      = 8,
-  parameter int unsigned MulStages = rc_pkg::FpStagesMul,
-  parameter int unsigned AddStages = rc_pkg::FpStagesAdd,
-  parameter int unsigned DivStages = rc_pkg::FpStagesDiv,
-  parameter int unsigned CmpStages = rc_pkg::FpStagesCmp
+  parameter int unsigned ExpW        = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW       = rc_pkg::Fp24FracW,
+  parameter int unsigned TagW        = 8,
+  parameter int unsigned MulStages   = rc_pkg::FpStagesMul,
+  parameter int unsigned AddStages   = rc_pkg::FpStagesAdd,
+  parameter int unsigned DivStages   = rc_pkg::FpStagesDiv,
+  parameter int unsigned CmpStages   = rc_pkg::FpStagesCmp,
+  parameter bit          SharedXform = 1'b1
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -92,7 +101,9 @@ module rc_isect_unit #(
 
   localparam int unsigned W        = 1 + ExpW + FracW;
   localparam int unsigned XformLat = MulStages + 3 * AddStages;
-  localparam int unsigned PipeLat  = XformLat + DivStages + MulStages + 2 * AddStages + CmpStages;
+  localparam int unsigned IssueLat = SharedXform ? 2 : 0;
+  localparam int unsigned PipeLat  = IssueLat + XformLat + DivStages + MulStages + 2 * AddStages +
+                                     CmpStages;
 
   localparam logic [W-1:0] Zero = '0;
   // 1.0: sign 0, exponent field = bias, fraction 0.
@@ -100,6 +111,16 @@ module rc_isect_unit #(
 
   logic in_fire;
   assign in_fire = valid_i & ready_o;
+
+`ifndef SYNTHESIS
+  // Assertions are checked only once out of reset.
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+`endif
 
   ///////////////////////////////
   // Transforms: o' and d'     //
@@ -109,31 +130,121 @@ module rc_isect_unit #(
   localparam int unsigned SbW = TagW + 32 + W + 1;
   logic           tri_lt;
   logic [SbW-1:0] sb_x;
-  logic           xo_valid, xd_valid, xo_ready, xd_ready;
+  logic           xo_valid;
   logic [3*W-1:0] xo, xd;
-  logic           xd_tag;
+  logic           issue_busy;  // the input side cannot take a pair this cycle
 
   assign tri_lt = $signed(tri_i) < $signed(best_tri_i);
 
-  rc_xform_unit #(
-    .ExpW(ExpW), .FracW(FracW), .TagW(SbW), .MulStages(MulStages), .AddStages(AddStages),
-    .Backpressure(1'b0)
-  ) u_xform_org (
-    .clk_i, .rst_ni,
-    .valid_i(in_fire), .ready_o(xo_ready), .m_i, .v_i(org_i), .translate_i(1'b1),
-    .tag_i({tag_i, tri_i, best_t_i, tri_lt}),
-    .valid_o(xo_valid), .ready_i(1'b1), .r_o(xo), .tag_o(sb_x)
-  );
+  if (SharedXform) begin : g_shared_xform
+    // One transform unit, used twice per pair. The accepted pair is registered (m_q, sb_q,
+    // org_q; v_q starts with dir); the cycle after (pass 1) the unit transforms d' = M dir, and
+    // the cycle after that (pass 2) o' = M (org, 1), with v_q reloaded from org_q. m_q and the
+    // operand vector come straight from registers into the multipliers. A pair can be accepted
+    // in pass 2's cycle (the registers are only overwritten at its end), so one pair every two
+    // cycles. d' leaves the transform unit a cycle before o' and waits in xd_q.
+    logic [12*W-1:0] m_q;
+    logic [3*W-1:0]  v_q, org_q;
+    logic [SbW-1:0]  sb_q;
+    logic            pass1_q, pass2_q;
+    logic            xf_valid, xf_ready, xf_pass2;
+    logic [3*W-1:0]  xf_r;
+    logic [SbW-1:0]  xf_sb;
 
-  rc_xform_unit #(
-    .ExpW(ExpW), .FracW(FracW), .TagW(1), .MulStages(MulStages), .AddStages(AddStages),
-    .Backpressure(1'b0)
-  ) u_xform_dir (
-    .clk_i, .rst_ni,
-    .valid_i(in_fire), .ready_o(xd_ready), .m_i, .v_i(dir_i), .translate_i(1'b0),
-    .tag_i(1'b0),
-    .valid_o(xd_valid), .ready_i(1'b1), .r_o(xd), .tag_o(xd_tag)
-  );
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        pass1_q <= 1'b0;
+        pass2_q <= 1'b0;
+      end else begin
+        pass1_q <= in_fire;
+        pass2_q <= pass1_q;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (in_fire) begin
+        m_q   <= m_i;
+        org_q <= org_i;
+        sb_q  <= {tag_i, tri_i, best_t_i, tri_lt};
+      end
+      if (in_fire) begin
+        v_q <= dir_i;
+      end else if (pass1_q) begin
+        v_q <= org_q;
+      end
+    end
+    assign issue_busy = pass1_q;
+
+    rc_xform_unit #(
+      .ExpW(ExpW), .FracW(FracW), .TagW(SbW + 1), .MulStages(MulStages), .AddStages(AddStages),
+      .Backpressure(1'b0)
+    ) u_xform (
+      .clk_i, .rst_ni,
+      .valid_i(pass1_q | pass2_q), .ready_o(xf_ready), .m_i(m_q), .v_i(v_q),
+      .translate_i(pass2_q), .tag_i({sb_q, pass2_q}),
+      .valid_o(xf_valid), .ready_i(1'b1), .r_o(xf_r), .tag_o({xf_sb, xf_pass2})
+    );
+
+    logic [3*W-1:0] xd_q;
+    always_ff @(posedge clk_i) begin
+      if (xf_valid && !xf_pass2) begin
+        xd_q <= xf_r;
+      end
+    end
+    assign xo_valid = xf_valid & xf_pass2;
+    assign xo       = xf_r;
+    assign xd       = xd_q;
+    assign sb_x     = xf_sb;
+
+    logic unused_xf;
+    assign unused_xf = xf_ready;
+
+`ifndef SYNTHESIS
+    // Passes alternate d', o': a pass-2 result always follows a pass-1 result by one cycle.
+    // (Checked on registered flags: Verilator 5.006 miscompiles the sampling of the tag delay
+    // line that an assertion on xf_pass2 itself would need.)
+    logic d_prev_q, order_bad_q;
+    always_ff @(posedge clk_i) begin
+      d_prev_q    <= xf_valid & ~xf_pass2;
+      order_bad_q <= xo_valid & ~d_prev_q;
+    end
+    PassOrder_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  !order_bad_q);
+`endif
+  end else begin : g_two_xforms
+    // Two transform units side by side, one pair per cycle.
+    logic xo_ready, xd_ready, xd_valid, xd_tag;
+
+    rc_xform_unit #(
+      .ExpW(ExpW), .FracW(FracW), .TagW(SbW), .MulStages(MulStages), .AddStages(AddStages),
+      .Backpressure(1'b0)
+    ) u_xform_org (
+      .clk_i, .rst_ni,
+      .valid_i(in_fire), .ready_o(xo_ready), .m_i, .v_i(org_i), .translate_i(1'b1),
+      .tag_i({tag_i, tri_i, best_t_i, tri_lt}),
+      .valid_o(xo_valid), .ready_i(1'b1), .r_o(xo), .tag_o(sb_x)
+    );
+
+    rc_xform_unit #(
+      .ExpW(ExpW), .FracW(FracW), .TagW(1), .MulStages(MulStages), .AddStages(AddStages),
+      .Backpressure(1'b0)
+    ) u_xform_dir (
+      .clk_i, .rst_ni,
+      .valid_i(in_fire), .ready_o(xd_ready), .m_i, .v_i(dir_i), .translate_i(1'b0),
+      .tag_i(1'b0),
+      .valid_o(xd_valid), .ready_i(1'b1), .r_o(xd), .tag_o(xd_tag)
+    );
+
+    assign issue_busy = 1'b0;
+
+    logic unused_x2;
+    assign unused_x2 = ^{xo_ready, xd_ready, xd_tag};
+
+`ifndef SYNTHESIS
+    // The two transforms run in lockstep; diverging valids would mean misaligned delay lines.
+    XformLockstep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                      xo_valid == xd_valid);
+`endif
+  end
 
   ///////////////////////////////
   // t = -o'z / d'z            //
@@ -311,7 +422,7 @@ module rc_isect_unit #(
 
   // Unused outputs of the shared building blocks (min/max, redundant valids and predicates).
   logic unused_outputs;
-  assign unused_outputs = ^{xo_ready, xd_ready, xd_valid, xd_tag, v_valid,
+  assign unused_outputs = ^{v_valid,
                             c0t_valid, c0t_le, c0t_eq, c0t_min, c0t_max,
                             ctb_valid, ctb_le, ctb_min, ctb_max,
                             c0u_valid, c0u_lt, c0u_eq, c0u_min, c0u_max,
@@ -324,10 +435,13 @@ module rc_isect_unit #(
 
   // The credit counter, FIFO pointers and their checks (credit bound, room for every write,
   // stable output until taken) live in rc_credit_fifo. Depth = PipeLat + 2 sustains one
-  // ray-triangle pair per cycle; the deep, wide FIFO (27 x 137 bits at the defaults) is kept in
-  // distributed RAM (MemArray).
+  // ray-triangle pair per cycle (more than the shared transform's one per two cycles needs, but
+  // a shallower one saves nothing: the deep, wide FIFO, 50 x 137 bits at the defaults, is a
+  // memory array (MemArray) that synthesis maps to RAM).
+  logic credit;
+  assign ready_o = credit & ~issue_busy;
   rc_credit_fifo #(.Width(TagW + 32 + 1 + 4 * W), .Depth(PipeLat + 2), .MemArray(1'b1)) u_fifo (
-    .clk_i, .rst_ni, .take_i(in_fire), .credit_o(ready_o), .wr_valid_i(pipe_valid),
+    .clk_i, .rst_ni, .take_i(in_fire), .credit_o(credit), .wr_valid_i(pipe_valid),
     .wr_data_i({pipe_tag, pipe_tri, pipe_hit, pipe_dz, pipe_t, pipe_v, pipe_u}),
     .valid_o, .ready_i, .data_o({tag_o, tri_o, hit_o, dz_o, t_o, v_o, u_o})
   );
@@ -337,15 +451,9 @@ module rc_isect_unit #(
   ////////////////
 
 `ifndef SYNTHESIS
-  logic checks_on;
-  rc_checks_on u_checks_on (
-    .clk_i,
-    .rst_ni,
-    .on_o (checks_on)
-  );
   // The parallel pipelines run in lockstep; diverging valids would mean misaligned delay lines.
   Lockstep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               (xo_valid == xd_valid) && (tdx_valid == tdy_valid) &&
+                               (tdx_valid == tdy_valid) &&
                                (u_valid == v_valid) && (c0t_valid == ctb_valid) &&
                                (c0u_valid == c0v_valid));
   // The consumer qualifies everything with valid_o, so it must be known once out of reset.
