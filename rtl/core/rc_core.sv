@@ -34,7 +34,9 @@
 //   triangle reads and tests, then shading). Packets are taken at least 11 cycles apart, one
 //   per 12 cycles at most while they follow back to back (ray set-up takes one ray per 3 cycles,
 //   and the next packet is taken once ray 3 of the one before has entered it); Threads packets
-//   are in flight; framebuffer writes leave at up to one per cycle. Every memory response asked
+//   are in flight; the intersection unit tests one ray-triangle pair every IsectInterval cycles
+//   (2, the default: one transform unit used twice; 1: two transform units, more area);
+//   framebuffer writes leave at up to one per cycle. Every memory response asked
 //   for is taken eventually (rsp_ready may be low for a while, never for ever).
 // - Illegal input: configuration changes while busy; a response with a tag that is not
 //   outstanding, or two responses for one request (assertions catch both).
@@ -46,6 +48,7 @@ module rc_core #(
   parameter int unsigned StackDepth     = rc_pkg::KdtreeStackDepth,
   parameter int unsigned ListTags       = rc_pkg::CoreListTags,
   parameter int unsigned WatchdogCycles = rc_pkg::CoreWatchdogCycles,
+  parameter int unsigned IsectInterval  = rc_pkg::CoreIsectInterval,
   // Derived (do not override).
   parameter int unsigned W              = 1 + ExpW + FracW,
   parameter int unsigned TagW           = rc_pkg::CoreTagBits,
@@ -161,8 +164,9 @@ module rc_core #(
 
   if (Threads < 1 || Threads > rc_pkg::CoreMaxThreads || RidW > TagW || LtW > TagW ||
       ThrW + 3 > 16 || StackDepth < 1 || (1 << SpIdxW) != StackDepth || ListTags < 2 ||
-      W > 32 || FracW < 7 || WatchdogCycles < 2) begin : g_param_check
-    $error("rc_core: need 1 <= Threads <= CoreMaxThreads, StackDepth a power of two, ListTags >= 2 and at most 2^TagW, an fp format of at most 32 bits with FracW >= 7");
+      W > 32 || FracW < 7 || WatchdogCycles < 2 || IsectInterval < 1 ||
+      IsectInterval > 2) begin : g_param_check
+    $error("rc_core: need 1 <= Threads <= CoreMaxThreads, StackDepth a power of two, ListTags >= 2 and at most 2^TagW, an fp format of at most 32 bits with FracW >= 7, IsectInterval 1 or 2");
   end
 
   // Thread states (one per thread; exactly one unit owns a thread at a time).
@@ -787,9 +791,10 @@ module rc_core #(
   logic [W-1:0]      io_t, io_u, io_v_bits, io_dz;
 
   rc_isect_unit #(
-    .ExpW (ExpW),
-    .FracW(FracW),
-    .TagW (ThrW + 3)
+    .ExpW       (ExpW),
+    .FracW      (FracW),
+    .TagW       (ThrW + 3),
+    .SharedXform(IsectInterval == 2)
   ) u_isect (
     .clk_i,
     .rst_ni,

@@ -142,7 +142,7 @@ double share(uint64_t part, uint64_t whole) {
 nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
   const auto perf = [&r](int64_t k) { return r.perf[static_cast<size_t>(k)]; };
   const Counters& c = r.frame.counters;
-  const double eff = share(std::max(c.traversal_steps / 4, c.triangle_tests), r.cycles);
+  const double eff = share(harness::ideal_cycles(c), r.cycles);
   nlohmann::json busy = {{"setup", share(perf(spec::kCorePerfSetupBusy), r.cycles)},
                          {"trav", share(perf(spec::kCorePerfTravBusy), r.cycles)},
                          {"list", share(perf(spec::kCorePerfListBusy), r.cycles)},
@@ -303,7 +303,7 @@ harness::BoardSimResult run_board(const RenderArgs& a, const RenderInput& in,
 
 nlohmann::json board_json(const harness::BoardSimResult& r) {
   const Counters& c = r.frame.counters;
-  const double eff = share(std::max(c.traversal_steps / 4, c.triangle_tests), r.cycles);
+  const double eff = share(harness::ideal_cycles(c), r.cycles);
   nlohmann::json perf_all = nlohmann::json::array();
   for (uint64_t v : r.perf) perf_all.push_back(v);
   return {{"cycles", r.cycles},

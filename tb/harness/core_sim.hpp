@@ -62,6 +62,11 @@ std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
 // The golden model's counters from the core's performance counters (by number) and error_o.
 Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf, uint32_t error_bits);
 
+// The fewest cycles a core needs for a frame with these counters, the ideal of the efficiency
+// figure (efficiency = ideal_cycles / cycles): its four traversal sub-units take one step each
+// per cycle, its intersection unit one ray-triangle test every spec::kCoreIsectInterval cycles.
+uint64_t ideal_cycles(const Counters& c);
+
 // Applies the stall recipe of `stall_seed` to the port parameters (keeps latency and limits).
 void apply_stall_recipe(std::array<MemoryParams, kCorePorts>& memory, uint64_t stall_seed);
 

@@ -1,4 +1,6 @@
 // The parts of the core harness that do not depend on a verilated model (core_sim.hpp).
+#include <algorithm>
+
 #include "core_sim.hpp"
 
 namespace rc::harness {
@@ -70,6 +72,11 @@ Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf_val
   c.errors = perf(spec::kCorePerfFailedPackets);
   c.error_bits = error_bits & (kErrMalformedNode | kErrBadAddress | kErrStackOverflow);
   return c;
+}
+
+uint64_t ideal_cycles(const Counters& c) {
+  return std::max(c.traversal_steps / 4,
+                  c.triangle_tests * static_cast<uint64_t>(spec::kCoreIsectInterval));
 }
 
 }  // namespace rc::harness

@@ -61,10 +61,9 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
       static_cast<unsigned long long>(cmp.differing + counters.size()),
       static_cast<unsigned long long>(r.cycles),
       r.cycles ? static_cast<double>(f.counters.rays) / static_cast<double>(r.cycles) : 0.0,
-      r.cycles ? static_cast<double>(
-                     std::max(f.counters.traversal_steps / 4, f.counters.triangle_tests)) /
-                     static_cast<double>(r.cycles)
-               : 0.0,
+      r.cycles
+          ? static_cast<double>(harness::ideal_cycles(f.counters)) / static_cast<double>(r.cycles)
+          : 0.0,
       r.cycles_per_second);
   if (!cmp.equal()) {
     const auto pix = static_cast<size_t>(cmp.first);
