@@ -237,6 +237,40 @@ module rc_core #(
     end
   end
 
+  // Fields of the flat per-thread control vectors (thread t at [t*X +: X]), read and written
+  // through loops over the threads: a decoder and one 2:1 multiplexer per bit. A variable
+  // part-select (v[i*X +: X]) is the same function, but Yosys 0.23 builds it as a shifter of the
+  // whole vector by i*X, data and mask, which cost this module tens of thousands of LUT4s.
+  function automatic logic [3:0] get4(input logic [Threads*4-1:0] v, input logic [ThrW-1:0] i);
+    get4 = '0;
+    for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) get4 = v[t*4 +: 4];
+  endfunction
+  function automatic logic [Threads*4-1:0] put4(input logic [Threads*4-1:0] v,
+                                                input logic [ThrW-1:0] i, input logic [3:0] x);
+    put4 = v;
+    for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) put4[t*4 +: 4] = x;
+  endfunction
+  function automatic logic [2:0] get3(input logic [Threads*3-1:0] v, input logic [ThrW-1:0] i);
+    get3 = '0;
+    for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) get3 = v[t*3 +: 3];
+  endfunction
+  function automatic logic [Threads*3-1:0] put3(input logic [Threads*3-1:0] v,
+                                                input logic [ThrW-1:0] i, input logic [2:0] x);
+    put3 = v;
+    for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) put3[t*3 +: 3] = x;
+  endfunction
+  function automatic logic [SpW-1:0] getsp(input logic [Threads*SpW-1:0] v,
+                                           input logic [ThrW-1:0] i);
+    getsp = '0;
+    for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) getsp = v[t*SpW +: SpW];
+  endfunction
+  function automatic logic [Threads*SpW-1:0] putsp(input logic [Threads*SpW-1:0] v,
+                                                   input logic [ThrW-1:0] i,
+                                                   input logic [SpW-1:0] x);
+    putsp = v;
+    for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) putsp[t*SpW +: SpW] = x;
+  endfunction
+
   function automatic logic [2:0] popcount4(input logic [3:0] m);
     popcount4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
   endfunction
@@ -357,7 +391,7 @@ module rc_core #(
   assign su_r    = su_tag[1:0];
   assign su_last = su_v & (su_r == 2'd3);
   always_comb begin
-    su_mask_new = mask_q[su_thr*4 +: 4];
+    su_mask_new = get4(mask_q, su_thr);
     su_mask_new[su_r] = su_active & vmask_q[32'(su_thr)*4 + 32'(su_r)];
   end
 
@@ -430,7 +464,7 @@ module rc_core #(
   assign nr_upper = node_rsp_data_i[rc_pkg::KdNodeValueLsb +: 32];
   assign nr_leaf  = nr_kind == 2'(rc_pkg::KdNodeKindLeaf);
   assign nr_axis  = nr_leaf ? 2'd0 : nr_kind;
-  assign nr_mask  = mask_q[nr_thr*4 +: 4];
+  assign nr_mask  = get4(mask_q, nr_thr);
 
   // The golden model's checks (trace_packet): a split wider than the format, NaN or infinite;
   // children not after the parent, or the right child outside the node section.
@@ -511,11 +545,11 @@ module rc_core #(
   assign tr_thr  = trav_tag_all[0 +: ThrW];
   assign tr_axis = nax_m[tr_thr];
   assign tr_idx  = nidx_m[tr_thr];
-  assign tr_mask = mask_q[tr_thr*4 +: 4];
+  assign tr_mask = get4(mask_q, tr_thr);
   assign tr_lo   = tmin_m[tr_thr];
   assign tr_hi   = tmax_m[tr_thr];
   assign tr_dir  = dir_m[tr_thr];
-  assign tr_sp   = sp_q[tr_thr*SpW +: SpW];
+  assign tr_sp   = getsp(sp_q, tr_thr);
   assign tr_lead = lowest4(tr_mask);
 
   always_comb begin
@@ -576,8 +610,8 @@ module rc_core #(
     .idx_o  (pp_thr)
   );
 
-  assign pp_sp  = sp_q[pp_thr*SpW +: SpW];
-  assign pp_end = (|err_q[pp_thr*3 +: 3]) | (pp_sp == '0);
+  assign pp_sp  = getsp(sp_q, pp_thr);
+  assign pp_end = (|get3(err_q, pp_thr)) | (pp_sp == '0);
 
   // Stack entry: {node, mask, tmin[4], tmax[4]}; read one cycle after the pop is chosen.
   always_ff @(posedge clk_i) begin
@@ -597,7 +631,7 @@ module rc_core #(
   end
 
   // Cull: ray r stays only if le(tmin_r, best_t_r), by the format's comparison.
-  assign pop1_best_t = gate_t(bt_m[pop1_thr_q], bhit_q[pop1_thr_q*4 +: 4]);
+  assign pop1_best_t = gate_t(bt_m[pop1_thr_q], get4(bhit_q, pop1_thr_q));
   logic [3:0] pop_cmp_v;
   for (genvar r = 0; r < 4; r++) begin : g_pop_cmp
     logic unused_lt, unused_eq;
@@ -762,7 +796,7 @@ module rc_core #(
   assign ti_tag  = tri_rsp_tag_i[LtW-1:0];
   assign ti_thr  = tp_thr_m[ti_tag];
   assign ti_tri  = tp_tri_m[ti_tag];
-  assign ti_mask = mask_q[ti_thr*4 +: 4];
+  assign ti_mask = get4(mask_q, ti_thr);
   assign ti_rem  = ti_mask & ~ifd_done_q;
   assign ti_r    = lowest4(ti_rem);
   assign ti_last = (ti_rem & ~(4'd1 << ti_r)) == 4'd0;
@@ -782,8 +816,8 @@ module rc_core #(
 
   assign ti_org_all = org_m[ti_thr];
   assign ti_dir_all = dir_m[ti_thr];
-  assign ti_bt      = gate_t(bt_m[ti_thr], bhit_q[ti_thr*4 +: 4]);
-  assign ti_btri    = gate_tri(btri_m[ti_thr], bhit_q[ti_thr*4 +: 4]);
+  assign ti_bt      = gate_t(bt_m[ti_thr], get4(bhit_q, ti_thr));
+  assign ti_btri    = gate_tri(btri_m[ti_thr], get4(bhit_q, ti_thr));
 
   logic              io_v, io_hit;
   logic [ThrW+2:0]   io_tag;
@@ -832,8 +866,8 @@ module rc_core #(
   assign wb_last     = io_tag[ThrW+2];
   assign wb_r        = io_tag[ThrW +: 2];
   assign wb_thr      = io_tag[ThrW-1:0];
-  assign wb_bt_all   = gate_t(bt_m[wb_thr], bhit_q[wb_thr*4 +: 4]);
-  assign wb_btri_all = gate_tri(btri_m[wb_thr], bhit_q[wb_thr*4 +: 4]);
+  assign wb_bt_all   = gate_t(bt_m[wb_thr], get4(bhit_q, wb_thr));
+  assign wb_btri_all = gate_tri(btri_m[wb_thr], get4(bhit_q, wb_thr));
   assign wb_bt       = wb_bt_all[wb_r*W +: W];
   assign wb_btri     = wb_btri_all[wb_r*32 +: 32];
   assign wb_better   = io_v & io_hit & ((io_t < wb_bt) | ((io_t == wb_bt) & (io_tri < wb_btri)));
@@ -867,10 +901,10 @@ module rc_core #(
   );
 
   assign shp_take = shp_any & ~sh_busy_q;
-  assign shp_none = vmask_q[shp_thr*4 +: 4] == 4'd0;
+  assign shp_none = get4(vmask_q, shp_thr) == 4'd0;
 
   assign sh_valid_r = vmask_q[sh_thr_q*4 + 32'(sh_r_q)];
-  assign sh_hit_r   = bhit_q[sh_thr_q*4 + 32'(sh_r_q)] & ~(|err_q[sh_thr_q*3 +: 3]);
+  assign sh_hit_r   = bhit_q[sh_thr_q*4 + 32'(sh_r_q)] & ~(|get3(err_q, sh_thr_q));
   assign sreq_free  = ~shd_req_valid_q | shd_req_ready_i;
   assign sh_to_shd  = sh_busy_q & sh_valid_r & sh_hit_r & sreq_free;
   assign sh_to_miss = sh_busy_q & sh_valid_r & ~sh_hit_r & miss_free;
@@ -1067,78 +1101,78 @@ module rc_core #(
 
     // A packet enters a free thread.
     if (acc_take) begin
-      st_d[acc_thr*4 +: 4]     = StSetup;
-      mask_d[acc_thr*4 +: 4]   = '0;
-      vmask_d[acc_thr*4 +: 4]  = pkt_mask_i;
-      bhit_d[acc_thr*4 +: 4]   = '0;
-      sp_d[acc_thr*SpW +: SpW] = '0;
-      err_d[acc_thr*3 +: 3]    = '0;
+      st_d = put4(st_d, acc_thr, StSetup);
+      mask_d = put4(mask_d, acc_thr, '0);
+      vmask_d = put4(vmask_d, acc_thr, pkt_mask_i);
+      bhit_d = put4(bhit_d, acc_thr, '0);
+      sp_d = putsp(sp_d, acc_thr, '0);
+      err_d = put3(err_d, acc_thr, '0);
     end
 
     // Ray set-up results; after the fourth ray the packet starts at the root (or has no ray in
     // the scene box and goes straight to the pop, which ends it).
     if (su_v) begin
-      mask_d[su_thr*4 +: 4] = su_mask_new;
-      if (su_last) st_d[su_thr*4 +: 4] = (|su_mask_new) ? StFetch : StPop;
+      mask_d = put4(mask_d, su_thr, su_mask_new);
+      if (su_last) st_d = put4(st_d, su_thr, (|su_mask_new) ? StFetch : StPop);
     end
 
     // Node fetch.
     if (fe_take) begin
       if (fe_bad) begin
-        err_d[fe_thr*3 + ErrMalformed] = 1'b1;
+        err_d = put3(err_d, fe_thr, get3(err_d, fe_thr) | 3'(1 << ErrMalformed));
         ev_err[ErrMalformed]           = 1'b1;
-        st_d[fe_thr*4 +: 4]            = StPop;
+        st_d = put4(st_d, fe_thr, StPop);
       end else begin
-        st_d[fe_thr*4 +: 4] = StNode;
+        st_d = put4(st_d, fe_thr, StNode);
       end
     end
 
     // Node response: an inner node stays in StNode for the traversal sub-units.
     if (nr_take) begin
       if (node_rsp_error_i) begin
-        err_d[nr_thr*3 + ErrBadAddr] = 1'b1;
+        err_d = put3(err_d, nr_thr, get3(err_d, nr_thr) | 3'(1 << ErrBadAddr));
         ev_err[ErrBadAddr]           = 1'b1;
-        st_d[nr_thr*4 +: 4]          = StPop;
+        st_d = put4(st_d, nr_thr, StPop);
       end else if (nr_leaf) begin
         if (nr_leaf_bad) begin
-          err_d[nr_thr*3 + ErrBadAddr] = 1'b1;
+          err_d = put3(err_d, nr_thr, get3(err_d, nr_thr) | 3'(1 << ErrBadAddr));
           ev_err[ErrBadAddr]           = 1'b1;
-          st_d[nr_thr*4 +: 4]          = StPop;
+          st_d = put4(st_d, nr_thr, StPop);
         end else if (nr_upper == 32'd0) begin
-          st_d[nr_thr*4 +: 4] = StPop;
+          st_d = put4(st_d, nr_thr, StPop);
         end else begin
-          st_d[nr_thr*4 +: 4] = StLeaf;
+          st_d = put4(st_d, nr_thr, StLeaf);
         end
       end else if (nr_malformed) begin
-        err_d[nr_thr*3 + ErrMalformed] = 1'b1;
+        err_d = put3(err_d, nr_thr, get3(err_d, nr_thr) | 3'(1 << ErrMalformed));
         ev_err[ErrMalformed]           = 1'b1;
-        st_d[nr_thr*4 +: 4]            = StPop;
+        st_d = put4(st_d, nr_thr, StPop);
       end
     end
 
     // Traversal result: push the second child if both got rays, continue in the first.
     if (tr_v) begin
       if (tr_overflow) begin
-        err_d[tr_thr*3 + ErrOverflow] = 1'b1;
+        err_d = put3(err_d, tr_thr, get3(err_d, tr_thr) | 3'(1 << ErrOverflow));
         ev_err[ErrOverflow]           = 1'b1;
-        st_d[tr_thr*4 +: 4]           = StPop;
+        st_d = put4(st_d, tr_thr, StPop);
       end else begin
-        st_d[tr_thr*4 +: 4]   = StFetch;
-        mask_d[tr_thr*4 +: 4] = (|tr_a_mask) ? tr_a_mask : tr_b_mask;
-        if (tr_push) sp_d[tr_thr*SpW +: SpW] = tr_sp + SpW'(1);
+        st_d = put4(st_d, tr_thr, StFetch);
+        mask_d = put4(mask_d, tr_thr, (|tr_a_mask) ? tr_a_mask : tr_b_mask);
+        if (tr_push) sp_d = putsp(sp_d, tr_thr, tr_sp + SpW'(1));
       end
     end
 
     // The list unit takes a leaf.
-    if (lp_take) st_d[lp_thr*4 +: 4] = StLeafRun;
+    if (lp_take) st_d = put4(st_d, lp_thr, StLeafRun);
 
     // Failed list entries and triangle reads.
     if (lr_dec) begin
-      err_d[lr_thr*3 + ErrBadAddr] = 1'b1;
+      err_d = put3(err_d, lr_thr, get3(err_d, lr_thr) | 3'(1 << ErrBadAddr));
       ev_err[ErrBadAddr]           = 1'b1;
     end
     if (te_dec) begin
-      err_d[ti_thr*3 + ErrBadAddr] = 1'b1;
+      err_d = put3(err_d, ti_thr, get3(err_d, ti_thr) | 3'(1 << ErrBadAddr));
       ev_err[ErrBadAddr]           = 1'b1;
     end
     // A leaf is done when its last triangle has been tested against all active rays.
@@ -1149,37 +1183,39 @@ module rc_core #(
     // Pop.
     if (pp_any) begin
       if (pp_end) begin
-        st_d[pp_thr*4 +: 4] = StDone;
+        st_d = put4(st_d, pp_thr, StDone);
       end else begin
-        st_d[pp_thr*4 +: 4]     = StPopping;
-        sp_d[pp_thr*SpW +: SpW] = pp_sp - SpW'(1);
+        st_d = put4(st_d, pp_thr, StPopping);
+        sp_d = putsp(sp_d, pp_thr, pp_sp - SpW'(1));
       end
     end
     if (pop2_v) begin
       if (|pop2_mask) begin
-        st_d[pop2_thr_q*4 +: 4]   = StFetch;
-        mask_d[pop2_thr_q*4 +: 4] = pop2_mask;
+        st_d = put4(st_d, pop2_thr_q, StFetch);
+        mask_d = put4(mask_d, pop2_thr_q, pop2_mask);
       end else begin
-        st_d[pop2_thr_q*4 +: 4] = StPop;
+        st_d = put4(st_d, pop2_thr_q, StPop);
       end
     end
 
     // Hits.
-    if (wb_better) bhit_d[wb_thr*4 + 32'(wb_r)] = 1'b1;
+    if (wb_better) bhit_d = put4(bhit_d, wb_thr, get4(bhit_d, wb_thr) | (4'd1 << wb_r));
 
     // Shading: a traced packet's rays, then its framebuffer writes; the last write frees it.
     if (shp_take) begin
-      st_d[shp_thr*4 +: 4]  = shp_none ? StFree : StShade;
-      fbw_d[shp_thr*3 +: 3] = popcount4(vmask_q[shp_thr*4 +: 4]);
+      st_d = put4(st_d, shp_thr, shp_none ? StFree : StShade);
+      fbw_d = put3(fbw_d, shp_thr, popcount4(get4(vmask_q, shp_thr)));
     end
     if (sr_take) begin
-      serr_d[32'(sr_rid)] = shd_rsp_error_i;
+      for (int unsigned k = 0; k < Threads * 4; k++) begin
+        if (sr_rid == RidW'(k)) serr_d[k] = shd_rsp_error_i;
+      end
       if (shd_rsp_error_i) ev_err[ErrBadAddr] = 1'b1;
     end
     if (sh_in_take && mat_rsp_error_i) ev_err[ErrBadAddr] = 1'b1;
     if (fb_take) begin
-      fbw_d[fb_thr*3 +: 3] = fbw_q[fb_thr*3 +: 3] - 3'd1;
-      if (fbw_q[fb_thr*3 +: 3] == 3'd1) st_d[fb_thr*4 +: 4] = StFree;
+      fbw_d = put3(fbw_d, fb_thr, get3(fbw_q, fb_thr) - 3'd1);
+      if (get3(fbw_q, fb_thr) == 3'd1) st_d = put4(st_d, fb_thr, StFree);
     end
   end
 
@@ -1389,7 +1425,7 @@ module rc_core #(
     perf_inc[3*rc_pkg::CorePerfStackPushes +: 3]      = 3'(tr_v && tr_push && !tr_overflow);
     perf_inc[3*rc_pkg::CorePerfStackPops +: 3]        = 3'(pp_any && !pp_end);
     perf_inc[3*rc_pkg::CorePerfCulledPops +: 3]       = 3'(pop2_v && pop2_mask == 4'd0);
-    perf_inc[3*rc_pkg::CorePerfFailedPackets +: 3]    = 3'(pp_any && (|err_q[pp_thr*3 +: 3]));
+    perf_inc[3*rc_pkg::CorePerfFailedPackets +: 3]    = 3'(pp_any && (|get3(err_q, pp_thr)));
     perf_inc[3*rc_pkg::CorePerfSetupBusy +: 3]        = 3'(su_take);
     perf_inc[3*rc_pkg::CorePerfTravBusy +: 3]         = 3'(nr_take && nr_inner_ok);
     perf_inc[3*rc_pkg::CorePerfListBusy +: 3]         = 3'(li_take);
