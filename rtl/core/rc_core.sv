@@ -271,6 +271,45 @@ module rc_core #(
     for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) putsp[t*SpW +: SpW] = x;
   endfunction
 
+  // Lane i (a ray, 0..3) of a four-ray vector: selected and replaced through loops, a 4:1
+  // multiplexer per bit (a variable part-select v[i*X +: X] becomes a shifter in Yosys 0.23).
+  function automatic logic [W-1:0] lane_w(input logic [4*W-1:0] v, input logic [1:0] i);
+    lane_w = '0;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_w = v[r*W +: W];
+  endfunction
+  function automatic logic [4*W-1:0] put_lane_w(input logic [4*W-1:0] v, input logic [1:0] i,
+                                                input logic [W-1:0] x);
+    put_lane_w = v;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) put_lane_w[r*W +: W] = x;
+  endfunction
+  function automatic logic [3*W-1:0] lane_3w(input logic [12*W-1:0] v, input logic [1:0] i);
+    lane_3w = '0;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_3w = v[r*3*W +: 3*W];
+  endfunction
+  function automatic logic [12*W-1:0] put_lane_3w(input logic [12*W-1:0] v, input logic [1:0] i,
+                                                  input logic [3*W-1:0] x);
+    put_lane_3w = v;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) put_lane_3w[r*3*W +: 3*W] = x;
+  endfunction
+  function automatic logic [31:0] lane_32(input logic [127:0] v, input logic [1:0] i);
+    lane_32 = '0;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_32 = v[r*32 +: 32];
+  endfunction
+  function automatic logic [127:0] put_lane_32(input logic [127:0] v, input logic [1:0] i,
+                                               input logic [31:0] x);
+    put_lane_32 = v;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) put_lane_32[r*32 +: 32] = x;
+  endfunction
+  // Component a (an axis, 0..2) of ray r of a four-ray 3-vector [(3r + a)*W +: W]; a = 3 reads
+  // the next ray's x as the part-select it replaces did (never used: inner nodes have a < 3).
+  function automatic logic [W-1:0] axis_w(input logic [12*W-1:0] v, input int unsigned r,
+                                          input logic [1:0] a);
+    axis_w = '0;
+    for (int unsigned k = 0; k < 4; k++) begin
+      if (a == 2'(k) && 3 * r + k < 12) axis_w = v[(3*r+k)*W +: W];
+    end
+  endfunction
+
   function automatic logic [2:0] popcount4(input logic [3:0] m);
     popcount4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
   endfunction
@@ -342,8 +381,8 @@ module rc_core #(
   logic [3:0]      su_mask_new;
   logic            su_last;
 
-  assign su_org  = org_m[feed_thr_q][feed_r_q*3*W +: 3*W];
-  assign su_dir  = dir_m[feed_thr_q][feed_r_q*3*W +: 3*W];
+  assign su_org  = lane_3w(org_m[feed_thr_q], feed_r_q);
+  assign su_dir  = lane_3w(dir_m[feed_thr_q], feed_r_q);
   assign su_take = feed_busy_q & su_ready;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -485,8 +524,8 @@ module rc_core #(
   assign nr_inv_all = inv_m[nr_thr];
   always_comb begin
     for (int unsigned r = 0; r < 4; r++) begin
-      nr_org[r*W +: W] = nr_org_all[(3 * r + 32'(nr_axis)) * W +: W];
-      nr_inv[r*W +: W] = nr_inv_all[(3 * r + 32'(nr_axis)) * W +: W];
+      nr_org[r*W +: W] = axis_w(nr_org_all, r, nr_axis);
+      nr_inv[r*W +: W] = axis_w(nr_inv_all, r, nr_axis);
     end
   end
 
@@ -554,7 +593,9 @@ module rc_core #(
 
   always_comb begin
     for (int unsigned r = 0; r < 4; r++) begin
-      tr_sign[r] = tr_dir[(3 * r + 32'(tr_axis)) * W + W - 1];
+      logic [W-1:0] d;
+      d          = axis_w(tr_dir, r, tr_axis);
+      tr_sign[r] = d[W-1];
     end
   end
   // The lead ray's near child first (left child when its direction sign bit is 0).
@@ -837,10 +878,10 @@ module rc_core #(
     .tag_i     ({ti_last, ti_r, ti_thr}),
     .tri_i     (ti_tri),
     .m_i       (tri_rsp_data_i),
-    .org_i     (ti_org_all[ti_r*3*W +: 3*W]),
-    .dir_i     (ti_dir_all[ti_r*3*W +: 3*W]),
-    .best_t_i  (ti_bt[ti_r*W +: W]),
-    .best_tri_i(ti_btri[ti_r*32 +: 32]),
+    .org_i     (lane_3w(ti_org_all, ti_r)),
+    .dir_i     (lane_3w(ti_dir_all, ti_r)),
+    .best_t_i  (lane_w(ti_bt, ti_r)),
+    .best_tri_i(lane_32(ti_btri, ti_r)),
     .valid_o   (io_v),
     .ready_i   (1'b1),
     .tag_o     (io_tag),
@@ -868,8 +909,8 @@ module rc_core #(
   assign wb_thr      = io_tag[ThrW-1:0];
   assign wb_bt_all   = gate_t(bt_m[wb_thr], get4(bhit_q, wb_thr));
   assign wb_btri_all = gate_tri(btri_m[wb_thr], get4(bhit_q, wb_thr));
-  assign wb_bt       = wb_bt_all[wb_r*W +: W];
-  assign wb_btri     = wb_btri_all[wb_r*32 +: 32];
+  assign wb_bt       = lane_w(wb_bt_all, wb_r);
+  assign wb_btri     = lane_32(wb_btri_all, wb_r);
   assign wb_better   = io_v & io_hit & ((io_t < wb_bt) | ((io_t == wb_bt) & (io_tri < wb_btri)));
 
   ////////////////////////////////////////
@@ -935,7 +976,7 @@ module rc_core #(
       if (sh_to_shd) begin
         shd_req_valid_q <= 1'b1;
         shd_req_rid_q   <= {sh_thr_q, sh_r_q};
-        shd_req_index_q <= sh_btri[sh_r_q*32 +: 32];
+        shd_req_index_q <= lane_32(sh_btri, sh_r_q);
       end
       if (miss_take) miss_v_q <= 1'b0;
       if (sh_to_miss) begin
@@ -1013,9 +1054,9 @@ module rc_core #(
     .valid_i  (mat_rsp_valid_i),
     .ready_o  (sh_ready),
     .tag_i    (mr_rid),
-    .dz_i     (mr_dz_all[mr_r*W +: W]),
+    .dz_i     (lane_w(mr_dz_all, mr_r)),
     .nlen_i   (nlen_m[32'(mr_rid)]),
-    .inv_len_i(mr_ilen_all[mr_r*W +: W]),
+    .inv_len_i(lane_w(mr_ilen_all, mr_r)),
     .kd_i     (mr_kd),
     .ambient_i(ambient_i),
     .diffuse_i(diffuse_i),
@@ -1068,13 +1109,13 @@ module rc_core #(
   assign fb_bv_all   = bv_m[fb_thr];
 
   assign fb_valid_o = fb_valid_q;
-  assign fb_pixel_o = fb_pix_all[fb_r*32 +: 32];
+  assign fb_pixel_o = lane_32(fb_pix_all, fb_r);
   assign fb_rgb_o   = fb_rgb_q;
   assign fb_hit_o   = fb_hit_q;
-  assign fb_tri_o   = fb_hit_q ? fb_btri_all[fb_r*32 +: 32] : 32'd0;
-  assign fb_t_o     = fb_hit_q ? fb_bt_all[fb_r*W +: W] : '0;
-  assign fb_u_o     = fb_hit_q ? fb_bu_all[fb_r*W +: W] : '0;
-  assign fb_v_o     = fb_hit_q ? fb_bv_all[fb_r*W +: W] : '0;
+  assign fb_tri_o   = fb_hit_q ? lane_32(fb_btri_all, fb_r) : 32'd0;
+  assign fb_t_o     = fb_hit_q ? lane_w(fb_bt_all, fb_r) : '0;
+  assign fb_u_o     = fb_hit_q ? lane_w(fb_bu_all, fb_r) : '0;
+  assign fb_v_o     = fb_hit_q ? lane_w(fb_bv_all, fb_r) : '0;
 
   ////////////////////////////////////////
   // Thread state updates               //
@@ -1269,19 +1310,19 @@ module rc_core #(
     su_inv_new  = su_inv_q;
     su_tmin_new = su_tmin_q;
     su_tmax_new = su_tmax_q;
-    su_inv_new[su_r*3*W +: 3*W] = su_inv;
-    su_tmin_new[su_r*W +: W]    = su_tmin;
-    su_tmax_new[su_r*W +: W]    = su_tmax;
+    su_inv_new  = put_lane_3w(su_inv_new, su_r, su_inv);
+    su_tmin_new = put_lane_w(su_tmin_new, su_r, su_tmin);
+    su_tmax_new = put_lane_w(su_tmax_new, su_r, su_tmax);
     wb_bt_new   = wb_bt_all;
     wb_bu_new   = bu_m[wb_thr];
     wb_bv_new   = bv_m[wb_thr];
     wb_bdz_new  = bdz_m[wb_thr];
     wb_btri_new = wb_btri_all;
-    wb_bt_new[wb_r*W +: W]      = io_t;
-    wb_bu_new[wb_r*W +: W]      = io_u;
-    wb_bv_new[wb_r*W +: W]      = io_v_bits;
-    wb_bdz_new[wb_r*W +: W]     = io_dz;
-    wb_btri_new[wb_r*32 +: 32]  = io_tri;
+    wb_bt_new   = put_lane_w(wb_bt_new, wb_r, io_t);
+    wb_bu_new   = put_lane_w(wb_bu_new, wb_r, io_u);
+    wb_bv_new   = put_lane_w(wb_bv_new, wb_r, io_v_bits);
+    wb_bdz_new  = put_lane_w(wb_bdz_new, wb_r, io_dz);
+    wb_btri_new = put_lane_32(wb_btri_new, wb_r, io_tri);
   end
 
   logic             cur_we;
