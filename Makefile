@@ -4,7 +4,8 @@
 #   make render       the main job on the built-in default scene (out/default.png and stats)
 #   make lint         Verilator --lint-only -Wall over all RTL, plus a Yosys read of all RTL
 #   make synth-units  Yosys synth_ecp5 of each arithmetic unit: LUTs, flip-flops, multipliers
-#   make synth-core   Yosys synth_ecp5 of the whole core (rc_core): utilisation and LFE5U-85F share
+#   make synth-core   Yosys synth_ecp5 of the whole core (rc_core): utilisation and LFE5U-85F share,
+#                     then its slowest register-to-register paths (fpga/logic_depth.py, estimated)
 #   make synth-xilinx Yosys synth_xilinx (7-series) of the whole core: utilisation and XC7A200T
 #                     share (SYNTH_XILINX_UNITS=rc_fp_add,rc_fp_mul,... picks other top modules)
 #   make pnr-units    nextpnr-ecp5 place and route of each unit on the ULX3S's LFE5U-85F: Fmax
@@ -97,9 +98,11 @@ synth-units: deps $(GEN_PKG)
 	$(PYTHON) fpga/synth_units.py --build $(BUILD) $(RTL_FILES)
 
 # The whole core (rc_core at its default parameters) through Yosys synth_ecp5: utilisation and its
-# share of the LFE5U-85F. Takes about 8 minutes on one core.
+# share of the LFE5U-85F, then fpga/logic_depth.py: the slowest register-to-register paths by an
+# estimate of cell and net delays (the netlist is BUILD/synth/rc_core.json). About 4 minutes.
 synth-core: deps $(GEN_PKG)
 	$(PYTHON) fpga/synth_units.py --build $(BUILD) --units rc_core $(RTL_FILES)
+	$(PYTHON) fpga/logic_depth.py $(BUILD)/synth/rc_core.json --top 15 --paths 3
 
 # The whole core (or SYNTH_XILINX_UNITS, comma-separated) through Yosys synth_xilinx for the
 # Xilinx 7-series (flattened, out of context): LUTs, flip-flops, CARRY4, DSP48E1, block and

@@ -8,7 +8,8 @@ For every unit in UNITS (or --units, e.g. --units rc_core for the whole core) th
 given RTL files (the file list of rtl/rtl_files.f) at the unit's default parameters (fp24), reads
 `stat -json`, and prints a table of the family's cells and the unit's share of the family's device:
   ecp5 (default): `synth_ecp5 -top <unit>`: LUT4s, flip-flops, 18x18 multipliers, carry cells, wide
-      muxes and block RAMs; share of the LFE5U-85F (ULX3S). Logs and JSON in BUILD_DIR/synth/.
+      muxes and block RAMs; share of the LFE5U-85F (ULX3S). Logs and JSON in BUILD_DIR/synth/,
+      with the netlist (<unit>.json) for fpga/logic_depth.py.
   xc7: `synth_xilinx -family xc7 -flatten -noiopad -noclkbuf -top <unit>` (flattened like
       synth_ecp5; out of context: no I/O or clock buffers, as the unit is not a chip top): LUTs
       (LUT1..LUT6, with a second table per size), LUTs used as memory (LUTRAM and SRL cells, in
@@ -101,8 +102,9 @@ def synth(unit, files, out_dir, params, family):
     log = out_dir / f"{unit}.log"
     stat = out_dir / f"{unit}.stat.json"
     chparams = "".join(f"chparam -set {k} {v} {unit}; " for k, v in params)
+    netlist = f"; write_json {out_dir / (unit + '.json')}" if family["synth"] == "synth_ecp5" else ""
     script = (f"read_verilog -sv {' '.join(files)}; {chparams}"
-              f"{family['synth']} -top {unit}; tee -q -o {stat} stat -json")
+              f"{family['synth']} -top {unit}; tee -q -o {stat} stat -json{netlist}")
     start = time.monotonic()
     res = subprocess.run(["yosys", "-l", str(log), "-q", "-p", script],
                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)

@@ -26,7 +26,8 @@
 //   CoreStatus* bits: malformed node, bad address (also any error response), stack overflow,
 //   watchdog (work held and no handshake completed for WatchdogCycles cycles).
 // - Performance counters: perf_o = counter number perf_sel_i (CoreStatus/CorePerf* of rc_pkg),
-//   combinational from registers; numbers >= CorePerfCount read 0.
+//   combinational from registers; numbers >= CorePerfCount read 0. The counters count an event
+//   one cycle after it (registered increments): read them from the cycle after idle_o rises on.
 // - Handshakes: valid never depends on ready on any port; a valid with its payload stays until
 //   taken.
 // - Latency and throughput: not fixed; a packet takes as long as its walk through the tree (ray
@@ -210,6 +211,7 @@ module rc_core #(
   logic [4*W-1:0]    ilen_m [0:Threads-1];
   logic [127:0]      pix_m  [0:Threads-1];
   logic [NodeW-1:0]  node_m [0:Threads-1];     // current node
+  logic [Threads-1:0] nbad_q;                   // current node >= node_count_i
   logic [4*W-1:0]    tmin_m [0:Threads-1];     // current intervals
   logic [4*W-1:0]    tmax_m [0:Threads-1];
   logic [NodeW-1:0]  nidx_m [0:Threads-1];     // inner node in the traversal sub-units
@@ -237,38 +239,23 @@ module rc_core #(
     end
   end
 
-  // Fields of the flat per-thread control vectors (thread t at [t*X +: X]), read and written
-  // through loops over the threads: a decoder and one 2:1 multiplexer per bit. A variable
+  // Fields of the flat per-thread control vectors (thread t at [t*X +: X]), read through loops
+  // over the threads: a decoder and one 2:1 multiplexer per bit (they are written per thread, in
+  // the thread state update below). A variable
   // part-select (v[i*X +: X]) is the same function, but Yosys 0.23 builds it as a shifter of the
   // whole vector by i*X, data and mask, which cost this module tens of thousands of LUT4s.
   function automatic logic [3:0] get4(input logic [Threads*4-1:0] v, input logic [ThrW-1:0] i);
     get4 = '0;
     for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) get4 = v[t*4 +: 4];
   endfunction
-  function automatic logic [Threads*4-1:0] put4(input logic [Threads*4-1:0] v,
-                                                input logic [ThrW-1:0] i, input logic [3:0] x);
-    put4 = v;
-    for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) put4[t*4 +: 4] = x;
-  endfunction
   function automatic logic [2:0] get3(input logic [Threads*3-1:0] v, input logic [ThrW-1:0] i);
     get3 = '0;
     for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) get3 = v[t*3 +: 3];
-  endfunction
-  function automatic logic [Threads*3-1:0] put3(input logic [Threads*3-1:0] v,
-                                                input logic [ThrW-1:0] i, input logic [2:0] x);
-    put3 = v;
-    for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) put3[t*3 +: 3] = x;
   endfunction
   function automatic logic [SpW-1:0] getsp(input logic [Threads*SpW-1:0] v,
                                            input logic [ThrW-1:0] i);
     getsp = '0;
     for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) getsp = v[t*SpW +: SpW];
-  endfunction
-  function automatic logic [Threads*SpW-1:0] putsp(input logic [Threads*SpW-1:0] v,
-                                                   input logic [ThrW-1:0] i,
-                                                   input logic [SpW-1:0] x);
-    putsp = v;
-    for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) putsp[t*SpW +: SpW] = x;
   endfunction
 
   // Lane i (a ray, 0..3) of a four-ray vector: selected and replaced through loops, a 4:1
@@ -461,7 +448,9 @@ module rc_core #(
   assign nreq_free = ~node_req_valid_q | node_req_ready_i;
   assign fe_take   = fe_any & nreq_free;
   assign fe_node   = node_m[fe_thr];
-  assign fe_bad    = {{(32 - NodeW){1'b0}}, fe_node} >= node_count_i;
+  // Whether the thread's current node is outside the node section: kept per thread (nbad_q, set
+  // with node_m) so that the check is not on the path from the fetch choice to the thread states.
+  assign fe_bad    = nbad_q[fe_thr];
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -711,14 +700,15 @@ module rc_core #(
   logic                tag_avail;
   logic [LtW-1:0]      tag_new;
 
+  // The lowest free tag: the lowest set bit of tf_q (x & -x, a carry chain), its index as an OR
+  // of the one-hot bits (no chain through the tags).
+  logic [ListTags-1:0] tag_first;
+  assign tag_avail = |tf_q;
+  assign tag_first = tf_q & (~tf_q + ListTags'(1));
   always_comb begin
-    tag_avail = 1'b0;
-    tag_new   = '0;
+    tag_new = '0;
     for (int unsigned i = 0; i < ListTags; i++) begin
-      if (!tag_avail && tf_q[i]) begin
-        tag_avail = 1'b1;
-        tag_new   = LtW'(i);
-      end
+      if (tag_first[i]) tag_new = tag_new | LtW'(i);
     end
   end
 
@@ -1129,124 +1119,97 @@ module rc_core #(
   assign te_dec = ti_err_take;
   assign io_dec = io_v & wb_last;
 
+  // The thread state update, per thread as a flat AND-OR of its events: each event (a take of a
+  // scheduler or unit with its thread number) is decoded to a one-hot thread vector, and every
+  // event that writes a field applies only to threads in one state (a packet is taken by a free
+  // thread, a fetch by a StFetch thread, ...), so at most one event writes each field of a thread
+  // in a cycle (assertions below). No priority chain runs through the events: the depth from a
+  // scheduler's choice to the state registers is a decoder and an OR tree.
+  function automatic logic [Threads-1:0] hot(input logic en, input logic [ThrW-1:0] i);
+    for (int unsigned t = 0; t < Threads; t++) hot[t] = en && (i == ThrW'(t));
+  endfunction
+
+  logic [Threads-1:0] h_acc, h_su, h_fe, h_nr, h_tr, h_lp, h_lr, h_te, h_pp, h_p2, h_wb, h_shp, h_fb;
+  assign h_acc = hot(acc_take, acc_thr);
+  assign h_su  = hot(su_v, su_thr);
+  assign h_fe  = hot(fe_take, fe_thr);
+  assign h_nr  = hot(nr_take, nr_thr);
+  assign h_tr  = hot(tr_v, tr_thr);
+  assign h_lp  = hot(lp_take, lp_thr);
+  assign h_lr  = hot(lr_dec, lr_thr);
+  assign h_te  = hot(te_dec, ti_thr);
+  assign h_pp  = hot(pp_any, pp_thr);
+  assign h_p2  = hot(pop2_v, pop2_thr_q);
+  assign h_wb  = hot(wb_better, wb_thr);
+  assign h_shp = hot(shp_take, shp_thr);
+  assign h_fb  = hot(fb_take, fb_thr);
+
+  // The thread-independent parts of each event's new values.
+  logic [3:0] su_st, nr_st, tr_st, pp_st, p2_st, shp_st;
+  logic       nr_st_we, nr_bad_addr, nr_malf, tr_mask_we;
+  logic [3:0] tr_next_mask;
+  assign su_st       = (|su_mask_new) ? StFetch : StPop;
+  assign nr_bad_addr = node_rsp_error_i | (nr_leaf & nr_leaf_bad);
+  assign nr_malf     = ~node_rsp_error_i & ~nr_leaf & nr_malformed;
+  assign nr_st_we    = node_rsp_error_i | nr_leaf | nr_malformed;
+  assign nr_st       = (node_rsp_error_i || !nr_leaf || nr_leaf_bad || nr_upper == 32'd0) ?
+                       StPop : StLeaf;
+  assign tr_st       = tr_overflow ? StPop : StFetch;
+  assign tr_mask_we  = ~tr_overflow;
+  assign tr_next_mask = (|tr_a_mask) ? tr_a_mask : tr_b_mask;
+  assign pp_st       = pp_end ? StDone : StPopping;
+  assign p2_st       = (|pop2_mask) ? StFetch : StPop;
+  assign shp_st      = shp_none ? StFree : StShade;
+
   always_comb begin
-    st_d    = st_q;
-    mask_d  = mask_q;
-    vmask_d = vmask_q;
-    bhit_d  = bhit_q;
-    sp_d    = sp_q;
-    err_d   = err_q;
-    fbw_d   = fbw_q;
-    serr_d  = serr_q;
-    ev_err  = '0;
-
-    // A packet enters a free thread.
-    if (acc_take) begin
-      st_d = put4(st_d, acc_thr, StSetup);
-      mask_d = put4(mask_d, acc_thr, '0);
-      vmask_d = put4(vmask_d, acc_thr, pkt_mask_i);
-      bhit_d = put4(bhit_d, acc_thr, '0);
-      sp_d = putsp(sp_d, acc_thr, '0);
-      err_d = put3(err_d, acc_thr, '0);
-    end
-
-    // Ray set-up results; after the fourth ray the packet starts at the root (or has no ray in
-    // the scene box and goes straight to the pop, which ends it).
-    if (su_v) begin
-      mask_d = put4(mask_d, su_thr, su_mask_new);
-      if (su_last) st_d = put4(st_d, su_thr, (|su_mask_new) ? StFetch : StPop);
-    end
-
-    // Node fetch.
-    if (fe_take) begin
-      if (fe_bad) begin
-        err_d = put3(err_d, fe_thr, get3(err_d, fe_thr) | 3'(1 << ErrMalformed));
-        ev_err[ErrMalformed]           = 1'b1;
-        st_d = put4(st_d, fe_thr, StPop);
-      end else begin
-        st_d = put4(st_d, fe_thr, StNode);
-      end
-    end
-
-    // Node response: an inner node stays in StNode for the traversal sub-units.
-    if (nr_take) begin
-      if (node_rsp_error_i) begin
-        err_d = put3(err_d, nr_thr, get3(err_d, nr_thr) | 3'(1 << ErrBadAddr));
-        ev_err[ErrBadAddr]           = 1'b1;
-        st_d = put4(st_d, nr_thr, StPop);
-      end else if (nr_leaf) begin
-        if (nr_leaf_bad) begin
-          err_d = put3(err_d, nr_thr, get3(err_d, nr_thr) | 3'(1 << ErrBadAddr));
-          ev_err[ErrBadAddr]           = 1'b1;
-          st_d = put4(st_d, nr_thr, StPop);
-        end else if (nr_upper == 32'd0) begin
-          st_d = put4(st_d, nr_thr, StPop);
-        end else begin
-          st_d = put4(st_d, nr_thr, StLeaf);
-        end
-      end else if (nr_malformed) begin
-        err_d = put3(err_d, nr_thr, get3(err_d, nr_thr) | 3'(1 << ErrMalformed));
-        ev_err[ErrMalformed]           = 1'b1;
-        st_d = put4(st_d, nr_thr, StPop);
-      end
-    end
-
-    // Traversal result: push the second child if both got rays, continue in the first.
-    if (tr_v) begin
-      if (tr_overflow) begin
-        err_d = put3(err_d, tr_thr, get3(err_d, tr_thr) | 3'(1 << ErrOverflow));
-        ev_err[ErrOverflow]           = 1'b1;
-        st_d = put4(st_d, tr_thr, StPop);
-      end else begin
-        st_d = put4(st_d, tr_thr, StFetch);
-        mask_d = put4(mask_d, tr_thr, (|tr_a_mask) ? tr_a_mask : tr_b_mask);
-        if (tr_push) sp_d = putsp(sp_d, tr_thr, tr_sp + SpW'(1));
-      end
-    end
-
-    // The list unit takes a leaf.
-    if (lp_take) st_d = put4(st_d, lp_thr, StLeafRun);
-
-    // Failed list entries and triangle reads.
-    if (lr_dec) begin
-      err_d = put3(err_d, lr_thr, get3(err_d, lr_thr) | 3'(1 << ErrBadAddr));
-      ev_err[ErrBadAddr]           = 1'b1;
-    end
-    if (te_dec) begin
-      err_d = put3(err_d, ti_thr, get3(err_d, ti_thr) | 3'(1 << ErrBadAddr));
-      ev_err[ErrBadAddr]           = 1'b1;
-    end
-    // A leaf is done when its last triangle has been tested against all active rays.
+    serr_d = serr_q;
+    ev_err = '0;
     for (int unsigned t = 0; t < Threads; t++) begin
-      if (pend_zero[t]) st_d[t*4 +: 4] = StPop;
+      logic [10:0] we;
+      logic [3:0]  st_or, mask_or;
+      logic [2:0]  err_or;
+      logic        fb_last;
+      fb_last = fbw_q[t*3 +: 3] == 3'd1;
+      we = {h_acc[t], h_su[t] & su_last, h_fe[t], h_nr[t] & nr_st_we, h_tr[t], h_lp[t],
+            pend_zero[t], h_pp[t], h_p2[t], h_shp[t], h_fb[t] & fb_last};
+      st_or = ({4{we[10]}} & StSetup) | ({4{we[9]}} & su_st) |
+              ({4{we[8]}} & (nbad_q[t] ? StPop : StNode)) | ({4{we[7]}} & nr_st) |
+              ({4{we[6]}} & tr_st) | ({4{we[5]}} & StLeafRun) | ({4{we[4]}} & StPop) |
+              ({4{we[3]}} & pp_st) | ({4{we[2]}} & p2_st) | ({4{we[1]}} & shp_st) |
+              ({4{we[0]}} & StFree);
+      st_d[t*4 +: 4] = (|we) ? st_or : st_q[t*4 +: 4];
+
+      // Active rays: set-up results, the traversal's continuing child, a popped entry.
+      mask_or = ({4{h_su[t]}} & su_mask_new) | ({4{h_tr[t] & tr_mask_we}} & tr_next_mask) |
+                ({4{h_p2[t]}} & pop2_mask);
+      mask_d[t*4 +: 4] = h_acc[t] ? 4'd0 :
+                         (h_su[t] | (h_tr[t] & tr_mask_we) | (h_p2[t] & (|pop2_mask))) ?
+                         mask_or : mask_q[t*4 +: 4];
+      vmask_d[t*4 +: 4] = h_acc[t] ? pkt_mask_i : vmask_q[t*4 +: 4];
+      bhit_d[t*4 +: 4] = h_acc[t] ? 4'd0 :
+                         bhit_q[t*4 +: 4] | ({4{h_wb[t]}} & (4'd1 << wb_r));
+      sp_d[t*SpW +: SpW] = h_acc[t] ? '0 :
+                           (h_tr[t] & ~tr_overflow & tr_push) ? tr_sp + SpW'(1) :
+                           (h_pp[t] & ~pp_end) ? pp_sp - SpW'(1) : sp_q[t*SpW +: SpW];
+
+      // Error bits (sticky for the packet): the events' bits ORed in.
+      err_or = '0;
+      err_or[ErrMalformed] = (h_fe[t] & nbad_q[t]) | (h_nr[t] & nr_malf);
+      err_or[ErrBadAddr]   = (h_nr[t] & nr_bad_addr) | h_lr[t] | h_te[t];
+      err_or[ErrOverflow]  = h_tr[t] & tr_overflow;
+      err_d[t*3 +: 3] = h_acc[t] ? 3'd0 : err_q[t*3 +: 3] | err_or;
+
+      // Framebuffer writes still due: set when shading takes the packet, counted down by writes.
+      fbw_d[t*3 +: 3] = h_shp[t] ? popcount4(vmask_q[t*4 +: 4]) :
+                        h_fb[t] ? fbw_q[t*3 +: 3] - 3'd1 : fbw_q[t*3 +: 3];
     end
 
-    // Pop.
-    if (pp_any) begin
-      if (pp_end) begin
-        st_d = put4(st_d, pp_thr, StDone);
-      end else begin
-        st_d = put4(st_d, pp_thr, StPopping);
-        sp_d = putsp(sp_d, pp_thr, pp_sp - SpW'(1));
-      end
-    end
-    if (pop2_v) begin
-      if (|pop2_mask) begin
-        st_d = put4(st_d, pop2_thr_q, StFetch);
-        mask_d = put4(mask_d, pop2_thr_q, pop2_mask);
-      end else begin
-        st_d = put4(st_d, pop2_thr_q, StPop);
-      end
-    end
-
-    // Hits.
-    if (wb_better) bhit_d = put4(bhit_d, wb_thr, get4(bhit_d, wb_thr) | (4'd1 << wb_r));
-
-    // Shading: a traced packet's rays, then its framebuffer writes; the last write frees it.
-    if (shp_take) begin
-      st_d = put4(st_d, shp_thr, shp_none ? StFree : StShade);
-      fbw_d = put3(fbw_d, shp_thr, popcount4(get4(vmask_q, shp_thr)));
-    end
+    // The sticky status bits of the whole core.
+    if (fe_take && fe_bad) ev_err[ErrMalformed] = 1'b1;
+    if (nr_take && nr_malf) ev_err[ErrMalformed] = 1'b1;
+    if (nr_take && nr_bad_addr) ev_err[ErrBadAddr] = 1'b1;
+    if (tr_v && tr_overflow) ev_err[ErrOverflow] = 1'b1;
+    if (lr_dec || te_dec) ev_err[ErrBadAddr] = 1'b1;
     if (sr_take) begin
       for (int unsigned k = 0; k < Threads * 4; k++) begin
         if (sr_rid == RidW'(k)) serr_d[k] = shd_rsp_error_i;
@@ -1254,10 +1217,6 @@ module rc_core #(
       if (shd_rsp_error_i) ev_err[ErrBadAddr] = 1'b1;
     end
     if (sh_in_take && mat_rsp_error_i) ev_err[ErrBadAddr] = 1'b1;
-    if (fb_take) begin
-      fbw_d = put3(fbw_d, fb_thr, get3(fbw_q, fb_thr) - 3'd1);
-      if (get3(fbw_q, fb_thr) == 3'd1) st_d = put4(st_d, fb_thr, StFree);
-    end
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -1363,6 +1322,7 @@ module rc_core #(
     // The current entry: one write port (at most one of pop, traversal, set-up per cycle).
     if (cur_we) begin
       node_m[cur_thr] <= cur_node;
+      nbad_q[cur_thr] <= {{(32 - NodeW){1'b0}}, cur_node} >= node_count_i;
       tmin_m[cur_thr] <= cur_tmin;
       tmax_m[cur_thr] <= cur_tmax;
     end
@@ -1480,18 +1440,30 @@ module rc_core #(
     perf_inc[3*rc_pkg::CorePerfFbWrites +: 3]         = 3'(fb_take);
   end
 
+  // The increments are registered first (perf_inc_q, and the pushed stack depth in push_v_q /
+  // push_depth_q), so that no event logic shares a cycle with the 64-bit adders: the counters lag
+  // the events by one cycle.
+  logic [3*NPerf-1:0] perf_inc_q;
+  logic               push_v_q;
+  logic [SpW:0]       push_depth_q;
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      perf_q <= '0;
+      perf_inc_q   <= '0;
+      push_v_q     <= 1'b0;
+      push_depth_q <= '0;
+      perf_q       <= '0;
     end else begin
+      perf_inc_q   <= perf_inc;
+      push_v_q     <= tr_v && tr_push && !tr_overflow;
+      push_depth_q <= (SpW + 1)'(tr_sp) + (SpW + 1)'(1);
       for (int unsigned k = 0; k < NPerf; k++) begin
         if (k == rc_pkg::CorePerfMaxStack) begin
-          if (tr_v && tr_push && !tr_overflow &&
-              64'(tr_sp) + 64'd1 > perf_q[k*64 +: 64]) begin
-            perf_q[k*64 +: 64] <= 64'(tr_sp) + 64'd1;
+          if (push_v_q && 64'(push_depth_q) > perf_q[k*64 +: 64]) begin
+            perf_q[k*64 +: 64] <= 64'(push_depth_q);
           end
         end else begin
-          perf_q[k*64 +: 64] <= perf_q[k*64 +: 64] + 64'(perf_inc[3*k +: 3]);
+          perf_q[k*64 +: 64] <= perf_q[k*64 +: 64] + 64'(perf_inc_q[3*k +: 3]);
         end
       end
     end
@@ -1519,6 +1491,26 @@ module rc_core #(
   logic [31:0] wb_pend;
   assign wb_pend = pend_m[wb_thr];
 
+  // The flat thread state update relies on these: at most one event per thread and cycle among
+  // those that write its state, mask or stack pointer, each for a thread in the state it leaves.
+  for (genvar t = 0; t < Threads; t++) begin : g_event_checks
+    logic [3:0] st_t;
+    assign st_t = st_q[t*4 +: 4];
+    EventsExclusive_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                        $onehot0({h_acc[t], h_su[t], h_fe[t], h_nr[t], h_tr[t],
+                                                  h_lp[t], pend_zero[t], h_pp[t], h_p2[t],
+                                                  h_shp[t], h_fb[t]}));
+    EventState_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                   (!h_acc[t] || st_t == StFree) &&
+                                   (!h_fe[t] || st_t == StFetch) &&
+                                   (!h_lp[t] || st_t == StLeaf) &&
+                                   (!(pend_zero[t] || h_lr[t] || h_te[t] || h_wb[t]) ||
+                                    st_t == StLeafRun) &&
+                                   (!h_pp[t] || st_t == StPop) &&
+                                   (!h_p2[t] || st_t == StPopping) &&
+                                   (!h_shp[t] || st_t == StDone) &&
+                                   (!h_fb[t] || st_t == StShade));
+  end
   // The four traversal sub-units take the same operations, so they stay in lock step.
   TravLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    (&trav_ready_all || ~|trav_ready_all) &&

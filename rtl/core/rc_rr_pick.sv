@@ -3,7 +3,7 @@
 // Contract
 // - req_i bit i: requester i wants service. valid_o = |req_i; idx_o = the first requester at or
 //   after the rotating pointer (wrapping around), combinational from req_i and the pointer
-//   register.
+//   register (log depth in N: a mask, a lowest-set-bit carry chain and an OR tree).
 // - take_i: the choice is used this cycle (only with valid_o); the pointer then moves to idx_o + 1
 //   so that every requester is served within N takes of asking (no starvation).
 // - Latency: 0 (combinational choice); the pointer updates at the clock edge.
@@ -27,23 +27,24 @@ module rc_rr_pick #(
   end
 
   logic [IdxW-1:0] ptr_q;
-  logic            found;
+  logic [N-1:0]    at_or_after, upper, sel, first;
 
-  // The first set bit at or after ptr_q: scan i = 0 .. N-1 over (ptr_q + i) mod N.
+  // The first set bit at or after ptr_q, wrapping around: the requests at or above the pointer
+  // if there are any, else all of them; the lowest set bit of that (x & -x, a carry chain), then
+  // its index as an OR of the one-hot bits (log depth; no chain through the N requesters).
   always_comb begin
-    found = 1'b0;
+    for (int unsigned i = 0; i < N; i++) at_or_after[i] = IdxW'(i) >= ptr_q;
+  end
+  assign upper = req_i & at_or_after;
+  assign sel   = (|upper) ? upper : req_i;
+  assign first = sel & (~sel + N'(1));
+  always_comb begin
     idx_o = '0;
     for (int unsigned i = 0; i < N; i++) begin
-      logic [IdxW:0] j;
-      j = {1'b0, ptr_q} + (IdxW + 1)'(i);
-      if (j >= (IdxW + 1)'(N)) j = j - (IdxW + 1)'(N);
-      if (!found && req_i[j[IdxW-1:0]]) begin
-        found = 1'b1;
-        idx_o = j[IdxW-1:0];
-      end
+      if (first[i]) idx_o = idx_o | IdxW'(i);
     end
   end
-  assign valid_o = found;
+  assign valid_o = |req_i;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
