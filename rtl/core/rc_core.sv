@@ -1352,12 +1352,15 @@ module rc_core #(
     end
   end
 
-  // Tag pool.
+  // Tag pool, per tag as a flat AND-OR: the taken tag is the one-hot lowest free tag itself
+  // (tag_first, not its index decoded again), and a tag is freed only while it is in use
+  // (ListRspTag_A, TriRspTag_A), so taking and freeing never meet on one tag.
   always_comb begin
-    tf_d = tf_q;
-    if (li_take) tf_d[tag_new] = 1'b0;
-    if (lr_dec) tf_d[lr_tag] = 1'b1;
-    if (tri_rsp_valid_i && tri_rsp_ready_o) tf_d[ti_tag] = 1'b1;
+    for (int unsigned i = 0; i < ListTags; i++) begin
+      tf_d[i] = (tf_q[i] & ~(li_take & tag_first[i])) |
+                (lr_dec & (lr_tag == LtW'(i))) |
+                (tri_rsp_valid_i & tri_rsp_ready_o & (ti_tag == LtW'(i)));
+    end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
