@@ -1129,7 +1129,8 @@ module rc_core #(
     for (int unsigned t = 0; t < Threads; t++) hot[t] = en && (i == ThrW'(t));
   endfunction
 
-  logic [Threads-1:0] h_acc, h_su, h_fe, h_nr, h_tr, h_lp, h_lr, h_te, h_pp, h_p2, h_wb, h_shp, h_fb;
+  logic [Threads-1:0] h_acc, h_su, h_fe, h_nr, h_tr, h_lp, h_lr, h_te, h_pp, h_p2, h_wb;
+  logic [Threads-1:0] h_shp, h_fb;
   assign h_acc = hot(acc_take, acc_thr);
   assign h_su  = hot(su_v, su_thr);
   assign h_fe  = hot(fe_take, fe_thr);
