@@ -76,8 +76,8 @@ def analyse(mod):
                     if isinstance(b, int):
                         driver[b] = cn
         for ip, op, dl in ARCS.get(c["type"], []):
-            ins = [p for p in conns if p == ip or (base(p) == ip and p != ip)]
-            outs = [p for p in conns if p == op or (base(p) == op and p != op)]
+            ins = [p for p in conns if ip in (p, base(p))]
+            outs = [p for p in conns if op in (p, base(p))]
             for i in ins:
                 route = 0.0 if ip in DEDICATED else NET_NS
                 for ib in conns[i]:

@@ -241,9 +241,9 @@ module rc_core #(
 
   // Fields of the flat per-thread control vectors (thread t at [t*X +: X]), read through loops
   // over the threads: a decoder and one 2:1 multiplexer per bit (they are written per thread, in
-  // the thread state update below). A variable
-  // part-select (v[i*X +: X]) is the same function, but Yosys 0.23 builds it as a shifter of the
-  // whole vector by i*X, data and mask, which cost this module tens of thousands of LUT4s.
+  // the thread state update below). A variable part-select (v[i*X +: X]) is the same function,
+  // but Yosys 0.23 builds it as a shifter of the whole vector by i*X, data and mask, which cost
+  // this module tens of thousands of LUT4s.
   function automatic logic [3:0] get4(input logic [Threads*4-1:0] v, input logic [ThrW-1:0] i);
     get4 = '0;
     for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) get4 = v[t*4 +: 4];
@@ -559,7 +559,7 @@ module rc_core #(
   assign trav_ready = trav_ready_all[0];
 
   // Traversal result: the packet's two children.
-  logic             tr_v, tr_push, tr_overflow;
+  logic             tr_v, tr_push, tr_overflow, tr_push_ok;
   logic [ThrW-1:0]  tr_thr;
   logic [1:0]       tr_axis, tr_lead;
   logic [NodeW-1:0] tr_idx, tr_first, tr_second;
@@ -614,6 +614,7 @@ module rc_core #(
   end
   assign tr_push     = (|tr_a_mask) & (|tr_b_mask);
   assign tr_overflow = tr_push & (tr_sp == SpW'(StackDepth));
+  assign tr_push_ok  = tr_v & tr_push & ~tr_overflow;  // the second child goes on the stack
 
   ////////////////////////////////////////
   // Pop: stack read, cull, continue    //
@@ -1190,7 +1191,7 @@ module rc_core #(
       bhit_d[t*4 +: 4] = h_acc[t] ? 4'd0 :
                          bhit_q[t*4 +: 4] | ({4{h_wb[t]}} & (4'd1 << wb_r));
       sp_d[t*SpW +: SpW] = h_acc[t] ? '0 :
-                           (h_tr[t] & ~tr_overflow & tr_push) ? tr_sp + SpW'(1) :
+                           (h_tr[t] & tr_push_ok) ? tr_sp + SpW'(1) :
                            (h_pp[t] & ~pp_end) ? pp_sp - SpW'(1) : sp_q[t*SpW +: SpW];
 
       // Error bits (sticky for the packet): the events' bits ORed in.
@@ -1336,10 +1337,9 @@ module rc_core #(
       lcnt_m[nr_thr] <= nr_upper;
       pend_m[nr_thr] <= nr_upper;
     end
-    if (tr_v && !tr_overflow) begin
-      if (tr_push) begin
-        stack_m[32'(tr_thr)*StackDepth + 32'(tr_sp[SpIdxW-1:0])] <= {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
-      end
+    if (tr_push_ok) begin
+      stack_m[32'(tr_thr)*StackDepth + 32'(tr_sp[SpIdxW-1:0])] <=
+          {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
     end
     if (wb_better) begin
       bt_m[wb_thr]   <= wb_bt_new;
@@ -1427,7 +1427,7 @@ module rc_core #(
                                                     nr_upper == 32'd0);
     perf_inc[3*rc_pkg::CorePerfListEntries +: 3]      = 3'(lr_take);
     perf_inc[3*rc_pkg::CorePerfTriangleTests +: 3]    = 3'(is_take);
-    perf_inc[3*rc_pkg::CorePerfStackPushes +: 3]      = 3'(tr_v && tr_push && !tr_overflow);
+    perf_inc[3*rc_pkg::CorePerfStackPushes +: 3]      = 3'(tr_push_ok);
     perf_inc[3*rc_pkg::CorePerfStackPops +: 3]        = 3'(pp_any && !pp_end);
     perf_inc[3*rc_pkg::CorePerfCulledPops +: 3]       = 3'(pop2_v && pop2_mask == 4'd0);
     perf_inc[3*rc_pkg::CorePerfFailedPackets +: 3]    = 3'(pp_any && (|get3(err_q, pp_thr)));
@@ -1444,26 +1444,24 @@ module rc_core #(
     perf_inc[3*rc_pkg::CorePerfFbWrites +: 3]         = 3'(fb_take);
   end
 
-  // The increments are registered first (perf_inc_q, and the pushed stack depth in push_v_q /
-  // push_depth_q), so that no event logic shares a cycle with the 64-bit adders: the counters lag
-  // the events by one cycle.
+  // The increments are registered first (perf_inc_q, and the stack depth after a push in
+  // push_depth_q, valid with the registered push count), so that no event logic shares a cycle
+  // with the 64-bit adders: the counters lag the events by one cycle.
   logic [3*NPerf-1:0] perf_inc_q;
-  logic               push_v_q;
   logic [SpW:0]       push_depth_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       perf_inc_q   <= '0;
-      push_v_q     <= 1'b0;
       push_depth_q <= '0;
       perf_q       <= '0;
     end else begin
       perf_inc_q   <= perf_inc;
-      push_v_q     <= tr_v && tr_push && !tr_overflow;
       push_depth_q <= (SpW + 1)'(tr_sp) + (SpW + 1)'(1);
       for (int unsigned k = 0; k < NPerf; k++) begin
         if (k == rc_pkg::CorePerfMaxStack) begin
-          if (push_v_q && 64'(push_depth_q) > perf_q[k*64 +: 64]) begin
+          if (perf_inc_q[3*rc_pkg::CorePerfStackPushes] &&
+              64'(push_depth_q) > perf_q[k*64 +: 64]) begin
             perf_q[k*64 +: 64] <= 64'(push_depth_q);
           end
         end else begin
