@@ -178,7 +178,7 @@ module rc_core #(
   localparam logic [3:0] StLeaf    = 4'd4;  // leaf waiting for the list unit
   localparam logic [3:0] StLeafRun = 4'd5;  // leaf triangles in the list/intersection units
   localparam logic [3:0] StPop     = 4'd6;  // waiting to pop
-  localparam logic [3:0] StPopping = 4'd7;  // stack entry read and culled
+  localparam logic [3:0] StPopping = 4'd7;  // chosen to pop: stack read, entry culled
   localparam logic [3:0] StDone    = 4'd8;  // traced, waiting for shading
   localparam logic [3:0] StShade   = 4'd9;  // rays in shading / framebuffer writes
 
@@ -327,11 +327,14 @@ module rc_core #(
   // Packet input //
   //////////////////
 
-  logic            acc_any, acc_take;
+  logic            acc_any, acc_take, acc_v_q;
   logic [ThrW-1:0] acc_thr;
   logic            feed_busy_q;
   logic [ThrW-1:0] feed_thr_q;
   logic [1:0]      feed_r_q;
+  logic [12*W-1:0] feed_org_q, feed_dir_q;
+  logic [4*W-1:0]  feed_ilen_q;
+  logic [127:0]    feed_pix_q;
 
   rc_rr_pick #(
     .N   (Threads),
@@ -368,22 +371,39 @@ module rc_core #(
   logic [3:0]      su_mask_new;
   logic            su_last;
 
-  assign su_org  = lane_3w(org_m[feed_thr_q], feed_r_q);
-  assign su_dir  = lane_3w(dir_m[feed_thr_q], feed_r_q);
+  // The taken packet is registered here (feed_*_q) and written to the per-thread arrays from
+  // these registers in the next cycle (acc_v_q, thread feed_thr_q): the scheduler's choice,
+  // acc_thr, then drives no write port of the wide arrays (a fan-out of hundreds of
+  // distributed-RAM cells, run 4's critical net). The feeder reads its rays from the same
+  // registers; nothing reads the thread's array words before its rays leave ray set-up.
+  assign su_org  = lane_3w(feed_org_q, feed_r_q);
+  assign su_dir  = lane_3w(feed_dir_q, feed_r_q);
   assign su_take = feed_busy_q & su_ready;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      acc_v_q     <= 1'b0;
       feed_busy_q <= 1'b0;
       feed_thr_q  <= '0;
       feed_r_q    <= '0;
-    end else if (acc_take) begin
-      feed_busy_q <= 1'b1;
-      feed_thr_q  <= acc_thr;
-      feed_r_q    <= '0;
-    end else if (su_take) begin
-      feed_r_q <= feed_r_q + 2'd1;
-      if (feed_r_q == 2'd3) feed_busy_q <= 1'b0;
+    end else begin
+      acc_v_q <= acc_take;
+      if (acc_take) begin
+        feed_busy_q <= 1'b1;
+        feed_thr_q  <= acc_thr;
+        feed_r_q    <= '0;
+      end else if (su_take) begin
+        feed_r_q <= feed_r_q + 2'd1;
+        if (feed_r_q == 2'd3) feed_busy_q <= 1'b0;
+      end
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (acc_take) begin
+      feed_org_q  <= pkt_org_i;
+      feed_dir_q  <= pkt_dir_i;
+      feed_ilen_q <= pkt_inv_len_i;
+      feed_pix_q  <= pkt_pixel_i;
     end
   end
 
@@ -620,8 +640,8 @@ module rc_core #(
   // Pop: stack read, cull, continue    //
   ////////////////////////////////////////
 
-  logic             pp_any, pp_end;
-  logic [ThrW-1:0]  pp_thr;
+  logic             pp_any, pp_v_q, pp_end;
+  logic [ThrW-1:0]  pp_thr, pp_thr_q;
   logic [SpW-1:0]   pp_sp;
   logic             pop1_v_q;
   logic [ThrW-1:0]  pop1_thr_q, pop2_thr_q;
@@ -641,24 +661,34 @@ module rc_core #(
     .idx_o  (pp_thr)
   );
 
-  assign pp_sp  = getsp(sp_q, pp_thr);
-  assign pp_end = (|get3(err_q, pp_thr)) | (pp_sp == '0);
-
-  // Stack entry: {node, mask, tmin[4], tmax[4]}; read one cycle after the pop is chosen.
-  always_ff @(posedge clk_i) begin
-    if (pp_any && !pp_end) begin
-      pop1_entry_q <= stack_m[32'(pp_thr)*StackDepth + 32'(SpIdxW'(pp_sp - SpW'(1)))];
-    end
-    pop1_thr_q   <= pp_thr;
-    pop2_thr_q   <= pop1_thr_q;
-    pop2_entry_q <= pop1_entry_q;
-  end
+  // The pop in four cycles: the choice (the thread goes to StPopping) is registered (pp_v_q,
+  // pp_thr_q); in the next cycle the thread's stack pointer and error bits decide: an empty
+  // stack or an error ends the packet's walk (StDone), otherwise the top entry is read and the
+  // pointer decremented; then the entry is culled against the best hits, and then it becomes
+  // the current entry. The choice thus never meets the stack pointer's read in one cycle.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      pp_v_q   <= 1'b0;
+      pp_thr_q <= '0;
       pop1_v_q <= 1'b0;
     end else begin
-      pop1_v_q <= pp_any & ~pp_end;
+      pp_v_q   <= pp_any;
+      pp_thr_q <= pp_thr;
+      pop1_v_q <= pp_v_q & ~pp_end;
     end
+  end
+
+  assign pp_sp  = getsp(sp_q, pp_thr_q);
+  assign pp_end = (|get3(err_q, pp_thr_q)) | (pp_sp == '0);
+
+  // Stack entry: {node, mask, tmin[4], tmax[4]}.
+  always_ff @(posedge clk_i) begin
+    if (pp_v_q && !pp_end) begin
+      pop1_entry_q <= stack_m[32'(pp_thr_q)*StackDepth + 32'(SpIdxW'(pp_sp - SpW'(1)))];
+    end
+    pop1_thr_q   <= pp_thr_q;
+    pop2_thr_q   <= pop1_thr_q;
+    pop2_entry_q <= pop1_entry_q;
   end
 
   // Cull: ray r stays only if le(tmin_r, best_t_r), by the format's comparison.
@@ -815,28 +845,56 @@ module rc_core #(
   // against the active rays in turn    //
   ////////////////////////////////////////
 
-  logic            is_ready, is_valid, is_take, ti_err_take, ti_last;
+  // The triangle response is taken into an issue register (ti_*_q) with its tag's thread and
+  // triangle index, read from the tag pool here; from the register, the triangle goes to the
+  // intersection unit once per active ray of its thread (lowest ray first). So the tag pool's
+  // read and the reads of the thread's rays and best hits (wide distributed RAMs addressed by
+  // the thread) are in different cycles. A failed triangle read passes the register too and
+  // leaves it in one cycle. The register takes the next response in the cycle its last ray
+  // goes (ready depends on the intersection unit's ready, never the reverse).
+  logic            is_ready, is_valid, is_take, ti_err_take, ti_last, ti_free, ti_load;
+  logic            ti_v_q, ti_err_q;
   logic [LtW-1:0]  ti_tag;
-  logic [ThrW-1:0] ti_thr;
-  logic [31:0]     ti_tri;
+  logic [ThrW-1:0] ti_thr, ti_thr_q;
+  logic [31:0]     ti_tri_q;
+  logic [12*W-1:0] ti_m_q;
   logic [3:0]      ti_mask, ti_rem, ifd_done_q;
   logic [1:0]      ti_r;
   logic [12*W-1:0] ti_org_all, ti_dir_all;
   logic [4*W-1:0]  ti_bt;
   logic [127:0]    ti_btri;
 
-  assign ti_tag  = tri_rsp_tag_i[LtW-1:0];
-  assign ti_thr  = tp_thr_m[ti_tag];
-  assign ti_tri  = tp_tri_m[ti_tag];
-  assign ti_mask = get4(mask_q, ti_thr);
+  assign ti_tag          = tri_rsp_tag_i[LtW-1:0];
+  assign ti_thr          = tp_thr_m[ti_tag];
+  assign ti_free         = ~ti_v_q | ti_err_q | (is_ready & ti_last);
+  assign ti_load         = tri_rsp_valid_i & ti_free;
+  assign tri_rsp_ready_o = ti_free;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ti_v_q   <= 1'b0;
+      ti_err_q <= 1'b0;
+    end else if (ti_free) begin
+      ti_v_q   <= tri_rsp_valid_i;
+      ti_err_q <= tri_rsp_valid_i & tri_rsp_error_i;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (ti_load) begin
+      ti_thr_q <= ti_thr;
+      ti_tri_q <= tp_tri_m[ti_tag];
+      ti_m_q   <= tri_rsp_data_i;
+    end
+  end
+
+  assign ti_mask = get4(mask_q, ti_thr_q);
   assign ti_rem  = ti_mask & ~ifd_done_q;
   assign ti_r    = lowest4(ti_rem);
   assign ti_last = (ti_rem & ~(4'd1 << ti_r)) == 4'd0;
 
-  assign is_valid        = tri_rsp_valid_i & ~tri_rsp_error_i;
-  assign is_take         = is_valid & is_ready;
-  assign ti_err_take     = tri_rsp_valid_i & tri_rsp_error_i;
-  assign tri_rsp_ready_o = tri_rsp_error_i | (is_ready & ti_last);
+  assign is_valid    = ti_v_q & ~ti_err_q;
+  assign is_take     = is_valid & is_ready;
+  assign ti_err_take = ti_v_q & ti_err_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -846,15 +904,15 @@ module rc_core #(
     end
   end
 
-  assign ti_org_all = org_m[ti_thr];
-  assign ti_dir_all = dir_m[ti_thr];
-  assign ti_bt      = gate_t(bt_m[ti_thr], get4(bhit_q, ti_thr));
-  assign ti_btri    = gate_tri(btri_m[ti_thr], get4(bhit_q, ti_thr));
+  assign ti_org_all = org_m[ti_thr_q];
+  assign ti_dir_all = dir_m[ti_thr_q];
+  assign ti_bt      = gate_t(bt_m[ti_thr_q], get4(bhit_q, ti_thr_q));
+  assign ti_btri    = gate_tri(btri_m[ti_thr_q], get4(bhit_q, ti_thr_q));
 
-  logic              io_v, io_hit;
-  logic [ThrW+2:0]   io_tag;
-  logic [31:0]       io_tri;
-  logic [W-1:0]      io_t, io_u, io_v_bits, io_dz;
+  logic              iu_v, iu_hit;
+  logic [ThrW+2:0]   iu_tag;
+  logic [31:0]       iu_tri;
+  logic [W-1:0]      iu_t, iu_u, iu_v_bits, iu_dz;
 
   rc_isect_unit #(
     .ExpW       (ExpW),
@@ -866,23 +924,49 @@ module rc_core #(
     .rst_ni,
     .valid_i   (is_valid),
     .ready_o   (is_ready),
-    .tag_i     ({ti_last, ti_r, ti_thr}),
-    .tri_i     (ti_tri),
-    .m_i       (tri_rsp_data_i),
+    .tag_i     ({ti_last, ti_r, ti_thr_q}),
+    .tri_i     (ti_tri_q),
+    .m_i       (ti_m_q),
     .org_i     (lane_3w(ti_org_all, ti_r)),
     .dir_i     (lane_3w(ti_dir_all, ti_r)),
     .best_t_i  (lane_w(ti_bt, ti_r)),
     .best_tri_i(lane_32(ti_btri, ti_r)),
-    .valid_o   (io_v),
+    .valid_o   (iu_v),
     .ready_i   (1'b1),
-    .tag_o     (io_tag),
-    .tri_o     (io_tri),
-    .hit_o     (io_hit),
-    .t_o       (io_t),
-    .u_o       (io_u),
-    .v_o       (io_v_bits),
-    .dz_o      (io_dz)
+    .tag_o     (iu_tag),
+    .tri_o     (iu_tri),
+    .hit_o     (iu_hit),
+    .t_o       (iu_t),
+    .u_o       (iu_u),
+    .v_o       (iu_v_bits),
+    .dz_o      (iu_dz)
   );
+
+  // The unit's results are registered (io_*) before the write-back, so the unit's output FIFO
+  // read and the best-hit read, compare and write are in different cycles.
+  logic              io_v_q, io_hit_q;
+  logic [ThrW+2:0]   io_tag_q;
+  logic [31:0]       io_tri_q;
+  logic [W-1:0]      io_t_q, io_u_q, io_v_bits_q, io_dz_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      io_v_q <= 1'b0;
+    end else begin
+      io_v_q <= iu_v;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (iu_v) begin
+      io_tag_q    <= iu_tag;
+      io_tri_q    <= iu_tri;
+      io_hit_q    <= iu_hit;
+      io_t_q      <= iu_t;
+      io_u_q      <= iu_u;
+      io_v_bits_q <= iu_v_bits;
+      io_dz_q     <= iu_dz;
+    end
+  end
 
   // Write-back: the hit replaces the ray's best if (t, tri) is smaller, compared again here
   // because other tests of the same ray may have finished since this one read its best. Accepted
@@ -895,21 +979,22 @@ module rc_core #(
   logic [4*W-1:0]  wb_bt_all;
   logic [127:0]    wb_btri_all;
 
-  assign wb_last     = io_tag[ThrW+2];
-  assign wb_r        = io_tag[ThrW +: 2];
-  assign wb_thr      = io_tag[ThrW-1:0];
+  assign wb_last     = io_tag_q[ThrW+2];
+  assign wb_r        = io_tag_q[ThrW +: 2];
+  assign wb_thr      = io_tag_q[ThrW-1:0];
   assign wb_bt_all   = gate_t(bt_m[wb_thr], get4(bhit_q, wb_thr));
   assign wb_btri_all = gate_tri(btri_m[wb_thr], get4(bhit_q, wb_thr));
   assign wb_bt       = lane_w(wb_bt_all, wb_r);
   assign wb_btri     = lane_32(wb_btri_all, wb_r);
-  assign wb_better   = io_v & io_hit & ((io_t < wb_bt) | ((io_t == wb_bt) & (io_tri < wb_btri)));
+  assign wb_better   = io_v_q & io_hit_q &
+                       ((io_t_q < wb_bt) | ((io_t_q == wb_bt) & (io_tri_q < wb_btri)));
 
   ////////////////////////////////////////
   // Shading and framebuffer writes     //
   ////////////////////////////////////////
 
-  logic            shp_any, shp_take, shp_none;
-  logic [ThrW-1:0] shp_thr;
+  logic            shp_any, shp_take, shp_none, shp_v_q;
+  logic [ThrW-1:0] shp_thr, shp_thr_q;
   logic            sh_busy_q;
   logic [ThrW-1:0] sh_thr_q;
   logic [1:0]      sh_r_q;
@@ -932,8 +1017,12 @@ module rc_core #(
     .idx_o  (shp_thr)
   );
 
-  assign shp_take = shp_any & ~sh_busy_q;
-  assign shp_none = get4(vmask_q, shp_thr) == 4'd0;
+  // A traced packet is chosen (it goes to StShade) and the choice registered (shp_v_q,
+  // shp_thr_q); in the next cycle its rays start to pass shading one by one (sh_busy_q), or a
+  // packet without rays is freed. So the choice never meets the thread's ray mask and the
+  // shading sequencer in one cycle.
+  assign shp_take = shp_any & ~sh_busy_q & ~shp_v_q;
+  assign shp_none = get4(vmask_q, shp_thr_q) == 4'd0;
 
   assign sh_valid_r = vmask_q[sh_thr_q*4 + 32'(sh_r_q)];
   assign sh_hit_r   = bhit_q[sh_thr_q*4 + 32'(sh_r_q)] & ~(|get3(err_q, sh_thr_q));
@@ -945,6 +1034,8 @@ module rc_core #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      shp_v_q         <= 1'b0;
+      shp_thr_q       <= '0;
       sh_busy_q       <= 1'b0;
       sh_thr_q        <= '0;
       sh_r_q          <= '0;
@@ -954,9 +1045,11 @@ module rc_core #(
       miss_v_q        <= 1'b0;
       miss_rid_q      <= '0;
     end else begin
-      if (shp_take && !shp_none) begin
+      shp_v_q   <= shp_take;
+      shp_thr_q <= shp_thr;
+      if (shp_v_q && !shp_none) begin
         sh_busy_q <= 1'b1;
-        sh_thr_q  <= shp_thr;
+        sh_thr_q  <= shp_thr_q;
         sh_r_q    <= '0;
       end
       if (sh_adv) begin
@@ -1118,7 +1211,7 @@ module rc_core #(
 
   assign lr_dec = lr_take & lr_bad;
   assign te_dec = ti_err_take;
-  assign io_dec = io_v & wb_last;
+  assign io_dec = io_v_q & wb_last;
 
   // The thread state update, per thread as a flat AND-OR of its events: each event (a take of a
   // scheduler or unit with its thread number) is decoded to a one-hot thread vector, and every
@@ -1130,8 +1223,8 @@ module rc_core #(
     for (int unsigned t = 0; t < Threads; t++) hot[t] = en && (i == ThrW'(t));
   endfunction
 
-  logic [Threads-1:0] h_acc, h_su, h_fe, h_nr, h_tr, h_lp, h_lr, h_te, h_pp, h_p2, h_wb;
-  logic [Threads-1:0] h_shp, h_fb;
+  logic [Threads-1:0] h_acc, h_su, h_fe, h_nr, h_tr, h_lp, h_lr, h_te, h_pp, h_pe, h_p2, h_wb;
+  logic [Threads-1:0] h_shp, h_sx, h_fb;
   assign h_acc = hot(acc_take, acc_thr);
   assign h_su  = hot(su_v, su_thr);
   assign h_fe  = hot(fe_take, fe_thr);
@@ -1139,15 +1232,17 @@ module rc_core #(
   assign h_tr  = hot(tr_v, tr_thr);
   assign h_lp  = hot(lp_take, lp_thr);
   assign h_lr  = hot(lr_dec, lr_thr);
-  assign h_te  = hot(te_dec, ti_thr);
+  assign h_te  = hot(te_dec, ti_thr_q);
   assign h_pp  = hot(pp_any, pp_thr);
+  assign h_pe  = hot(pp_v_q, pp_thr_q);
   assign h_p2  = hot(pop2_v, pop2_thr_q);
   assign h_wb  = hot(wb_better, wb_thr);
   assign h_shp = hot(shp_take, shp_thr);
+  assign h_sx  = hot(shp_v_q, shp_thr_q);
   assign h_fb  = hot(fb_take, fb_thr);
 
   // The thread-independent parts of each event's new values.
-  logic [3:0] su_st, nr_st, tr_st, pp_st, p2_st, shp_st;
+  logic [3:0] su_st, nr_st, tr_st, p2_st;
   logic       nr_st_we, nr_bad_addr, nr_malf, tr_mask_we;
   logic [3:0] tr_next_mask;
   assign su_st       = (|su_mask_new) ? StFetch : StPop;
@@ -1159,26 +1254,25 @@ module rc_core #(
   assign tr_st       = tr_overflow ? StPop : StFetch;
   assign tr_mask_we  = ~tr_overflow;
   assign tr_next_mask = (|tr_a_mask) ? tr_a_mask : tr_b_mask;
-  assign pp_st       = pp_end ? StDone : StPopping;
   assign p2_st       = (|pop2_mask) ? StFetch : StPop;
-  assign shp_st      = shp_none ? StFree : StShade;
 
   always_comb begin
     serr_d = serr_q;
     ev_err = '0;
     for (int unsigned t = 0; t < Threads; t++) begin
-      logic [10:0] we;
+      logic [12:0] we;
       logic [3:0]  st_or, mask_or;
       logic [2:0]  err_or;
       logic        fb_last;
       fb_last = fbw_q[t*3 +: 3] == 3'd1;
       we = {h_acc[t], h_su[t] & su_last, h_fe[t], h_nr[t] & nr_st_we, h_tr[t], h_lp[t],
-            pend_zero[t], h_pp[t], h_p2[t], h_shp[t], h_fb[t] & fb_last};
-      st_or = ({4{we[10]}} & StSetup) | ({4{we[9]}} & su_st) |
-              ({4{we[8]}} & (nbad_q[t] ? StPop : StNode)) | ({4{we[7]}} & nr_st) |
-              ({4{we[6]}} & tr_st) | ({4{we[5]}} & StLeafRun) | ({4{we[4]}} & StPop) |
-              ({4{we[3]}} & pp_st) | ({4{we[2]}} & p2_st) | ({4{we[1]}} & shp_st) |
-              ({4{we[0]}} & StFree);
+            pend_zero[t], h_pp[t], h_pe[t] & pp_end, h_p2[t], h_shp[t], h_sx[t] & shp_none,
+            h_fb[t] & fb_last};
+      st_or = ({4{we[12]}} & StSetup) | ({4{we[11]}} & su_st) |
+              ({4{we[10]}} & (nbad_q[t] ? StPop : StNode)) | ({4{we[9]}} & nr_st) |
+              ({4{we[8]}} & tr_st) | ({4{we[7]}} & StLeafRun) | ({4{we[6]}} & StPop) |
+              ({4{we[5]}} & StPopping) | ({4{we[4]}} & StDone) | ({4{we[3]}} & p2_st) |
+              ({4{we[2]}} & StShade) | ({4{we[1]}} & StFree) | ({4{we[0]}} & StFree);
       st_d[t*4 +: 4] = (|we) ? st_or : st_q[t*4 +: 4];
 
       // Active rays: set-up results, the traversal's continuing child, a popped entry.
@@ -1192,7 +1286,7 @@ module rc_core #(
                          bhit_q[t*4 +: 4] | ({4{h_wb[t]}} & (4'd1 << wb_r));
       sp_d[t*SpW +: SpW] = h_acc[t] ? '0 :
                            (h_tr[t] & tr_push_ok) ? tr_sp + SpW'(1) :
-                           (h_pp[t] & ~pp_end) ? pp_sp - SpW'(1) : sp_q[t*SpW +: SpW];
+                           (h_pe[t] & ~pp_end) ? pp_sp - SpW'(1) : sp_q[t*SpW +: SpW];
 
       // Error bits (sticky for the packet): the events' bits ORed in.
       err_or = '0;
@@ -1202,7 +1296,7 @@ module rc_core #(
       err_d[t*3 +: 3] = h_acc[t] ? 3'd0 : err_q[t*3 +: 3] | err_or;
 
       // Framebuffer writes still due: set when shading takes the packet, counted down by writes.
-      fbw_d[t*3 +: 3] = h_shp[t] ? popcount4(vmask_q[t*4 +: 4]) :
+      fbw_d[t*3 +: 3] = h_sx[t] ? popcount4(vmask_q[t*4 +: 4]) :
                         h_fb[t] ? fbw_q[t*3 +: 3] - 3'd1 : fbw_q[t*3 +: 3];
     end
 
@@ -1248,7 +1342,7 @@ module rc_core #(
   logic [2*Threads-1:0] pend_dec;                // thread t at [2t +: 2]
   always_comb begin
     for (int unsigned t = 0; t < Threads; t++) begin
-      pend_dec[2*t +: 2] = 2'(lr_dec && lr_thr == ThrW'(t)) + 2'(te_dec && ti_thr == ThrW'(t)) +
+      pend_dec[2*t +: 2] = 2'(lr_dec && lr_thr == ThrW'(t)) + 2'(te_dec && ti_thr_q == ThrW'(t)) +
                     2'(io_dec && wb_thr == ThrW'(t));
       pend_zero[t] = (pend_dec[2*t +: 2] != 2'd0) && (pend_m[t] == 32'(pend_dec[2*t +: 2]));
     end
@@ -1279,11 +1373,11 @@ module rc_core #(
     wb_bv_new   = bv_m[wb_thr];
     wb_bdz_new  = bdz_m[wb_thr];
     wb_btri_new = wb_btri_all;
-    wb_bt_new   = put_lane_w(wb_bt_new, wb_r, io_t);
-    wb_bu_new   = put_lane_w(wb_bu_new, wb_r, io_u);
-    wb_bv_new   = put_lane_w(wb_bv_new, wb_r, io_v_bits);
-    wb_bdz_new  = put_lane_w(wb_bdz_new, wb_r, io_dz);
-    wb_btri_new = put_lane_32(wb_btri_new, wb_r, io_tri);
+    wb_bt_new   = put_lane_w(wb_bt_new, wb_r, io_t_q);
+    wb_bu_new   = put_lane_w(wb_bu_new, wb_r, io_u_q);
+    wb_bv_new   = put_lane_w(wb_bv_new, wb_r, io_v_bits_q);
+    wb_bdz_new  = put_lane_w(wb_bdz_new, wb_r, io_dz_q);
+    wb_btri_new = put_lane_32(wb_btri_new, wb_r, io_tri_q);
   end
 
   logic             cur_we;
@@ -1314,11 +1408,11 @@ module rc_core #(
   end
 
   always_ff @(posedge clk_i) begin
-    if (acc_take) begin
-      org_m[acc_thr]  <= pkt_org_i;
-      dir_m[acc_thr]  <= pkt_dir_i;
-      ilen_m[acc_thr] <= pkt_inv_len_i;
-      pix_m[acc_thr]  <= pkt_pixel_i;
+    if (acc_v_q) begin
+      org_m[feed_thr_q]  <= feed_org_q;
+      dir_m[feed_thr_q]  <= feed_dir_q;
+      ilen_m[feed_thr_q] <= feed_ilen_q;
+      pix_m[feed_thr_q]  <= feed_pix_q;
     end
     if (su_last) inv_m[su_thr] <= su_inv_new;
     // The current entry: one write port (at most one of pop, traversal, set-up per cycle).
@@ -1428,9 +1522,9 @@ module rc_core #(
     perf_inc[3*rc_pkg::CorePerfListEntries +: 3]      = 3'(lr_take);
     perf_inc[3*rc_pkg::CorePerfTriangleTests +: 3]    = 3'(is_take);
     perf_inc[3*rc_pkg::CorePerfStackPushes +: 3]      = 3'(tr_push_ok);
-    perf_inc[3*rc_pkg::CorePerfStackPops +: 3]        = 3'(pp_any && !pp_end);
+    perf_inc[3*rc_pkg::CorePerfStackPops +: 3]        = 3'(pp_v_q && !pp_end);
     perf_inc[3*rc_pkg::CorePerfCulledPops +: 3]       = 3'(pop2_v && pop2_mask == 4'd0);
-    perf_inc[3*rc_pkg::CorePerfFailedPackets +: 3]    = 3'(pp_any && (|get3(err_q, pp_thr)));
+    perf_inc[3*rc_pkg::CorePerfFailedPackets +: 3]    = 3'(pp_v_q && (|get3(err_q, pp_thr_q)));
     perf_inc[3*rc_pkg::CorePerfSetupBusy +: 3]        = 3'(su_take);
     perf_inc[3*rc_pkg::CorePerfTravBusy +: 3]         = 3'(nr_take && nr_inner_ok);
     perf_inc[3*rc_pkg::CorePerfListBusy +: 3]         = 3'(li_take);
@@ -1500,8 +1594,8 @@ module rc_core #(
     assign st_t = st_q[t*4 +: 4];
     EventsExclusive_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                         $onehot0({h_acc[t], h_su[t], h_fe[t], h_nr[t], h_tr[t],
-                                                  h_lp[t], pend_zero[t], h_pp[t], h_p2[t],
-                                                  h_shp[t], h_fb[t]}));
+                                                  h_lp[t], pend_zero[t], h_pp[t], h_pe[t],
+                                                  h_p2[t], h_shp[t], h_sx[t], h_fb[t]}));
     EventState_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    (!h_acc[t] || st_t == StFree) &&
                                    (!h_fe[t] || st_t == StFetch) &&
@@ -1509,8 +1603,9 @@ module rc_core #(
                                    (!(pend_zero[t] || h_lr[t] || h_te[t] || h_wb[t]) ||
                                     st_t == StLeafRun) &&
                                    (!h_pp[t] || st_t == StPop) &&
-                                   (!h_p2[t] || st_t == StPopping) &&
+                                   (!(h_pe[t] || h_p2[t]) || st_t == StPopping) &&
                                    (!h_shp[t] || st_t == StDone) &&
+                                   (!h_sx[t] || st_t == StShade) &&
                                    (!h_fb[t] || st_t == StShade));
   end
   // The four traversal sub-units take the same operations, so they stay in lock step.
@@ -1538,7 +1633,7 @@ module rc_core #(
                                 is_valid |-> ti_rem != 4'd0);
   // Intersection results belong to threads in their leaf, with triangles still outstanding.
   IsectOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                 io_v |-> st_q[wb_thr*4 +: 4] == StLeafRun && wb_pend != 32'd0);
+                                 io_v_q |-> st_q[wb_thr*4 +: 4] == StLeafRun && wb_pend != 32'd0);
   // A pop result belongs to a thread that is popping.
   PopOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                pop2_v |-> st_q[pop2_thr_q*4 +: 4] == StPopping);
