@@ -970,24 +970,52 @@ module rc_core #(
 
   // Write-back: the hit replaces the ray's best if (t, tri) is smaller, compared again here
   // because other tests of the same ray may have finished since this one read its best. Accepted
-  // t are positive and finite, so their encodings order like their values.
-  logic            wb_last, wb_better;
-  logic [1:0]      wb_r;
-  logic [ThrW-1:0] wb_thr;
-  logic [W-1:0]    wb_bt;
-  logic [31:0]     wb_btri;
+  // t are positive and finite, so their encodings order like their values. Two cycles: the
+  // registered result reads its ray's best hit into wb_*_q (the best being written in the same
+  // cycle is forwarded when it is the same ray's); then the compare and the write. So the best
+  // hit's read and the write enables it decides are in different cycles. The leaf's triangle
+  // count goes down with the write, so its pop sees every write.
+  logic            wb_v_q, wb_last_q, wb_hit_q, wb_better, wb_fwd;
+  logic [1:0]      wb_r_q, io_r;
+  logic [ThrW-1:0] wb_thr_q, io_thr;
+  logic [W-1:0]    io_bt, wb_bt_q, wb_t_q, wb_u_q, wb_vb_q, wb_dz_q;
+  logic [31:0]     io_btri, wb_btri_q, wb_tri_q;
   logic [4*W-1:0]  wb_bt_all;
   logic [127:0]    wb_btri_all;
 
-  assign wb_last     = io_tag_q[ThrW+2];
-  assign wb_r        = io_tag_q[ThrW +: 2];
-  assign wb_thr      = io_tag_q[ThrW-1:0];
-  assign wb_bt_all   = gate_t(bt_m[wb_thr], get4(bhit_q, wb_thr));
-  assign wb_btri_all = gate_tri(btri_m[wb_thr], get4(bhit_q, wb_thr));
-  assign wb_bt       = lane_w(wb_bt_all, wb_r);
-  assign wb_btri     = lane_32(wb_btri_all, wb_r);
-  assign wb_better   = io_v_q & io_hit_q &
-                       ((io_t_q < wb_bt) | ((io_t_q == wb_bt) & (io_tri_q < wb_btri)));
+  assign io_r    = io_tag_q[ThrW +: 2];
+  assign io_thr  = io_tag_q[ThrW-1:0];
+  assign io_bt   = lane_w(gate_t(bt_m[io_thr], get4(bhit_q, io_thr)), io_r);
+  assign io_btri = lane_32(gate_tri(btri_m[io_thr], get4(bhit_q, io_thr)), io_r);
+  assign wb_fwd  = wb_better & (wb_thr_q == io_thr) & (wb_r_q == io_r);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      wb_v_q <= 1'b0;
+    end else begin
+      wb_v_q <= io_v_q;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (io_v_q) begin
+      wb_last_q <= io_tag_q[ThrW+2];
+      wb_r_q      <= io_r;
+      wb_thr_q    <= io_thr;
+      wb_hit_q  <= io_hit_q;
+      wb_t_q    <= io_t_q;
+      wb_tri_q  <= io_tri_q;
+      wb_u_q    <= io_u_q;
+      wb_vb_q   <= io_v_bits_q;
+      wb_dz_q   <= io_dz_q;
+      wb_bt_q   <= wb_fwd ? wb_t_q : io_bt;
+      wb_btri_q <= wb_fwd ? wb_tri_q : io_btri;
+    end
+  end
+
+  assign wb_bt_all   = gate_t(bt_m[wb_thr_q], get4(bhit_q, wb_thr_q));
+  assign wb_btri_all = gate_tri(btri_m[wb_thr_q], get4(bhit_q, wb_thr_q));
+  assign wb_better   = wb_v_q & wb_hit_q &
+                       ((wb_t_q < wb_bt_q) | ((wb_t_q == wb_bt_q) & (wb_tri_q < wb_btri_q)));
 
   ////////////////////////////////////////
   // Shading and framebuffer writes     //
@@ -1211,7 +1239,7 @@ module rc_core #(
 
   assign lr_dec = lr_take & lr_bad;
   assign te_dec = ti_err_take;
-  assign io_dec = io_v_q & wb_last;
+  assign io_dec = wb_v_q & wb_last_q;
 
   // The thread state update, per thread as a flat AND-OR of its events: each event (a take of a
   // scheduler or unit with its thread number) is decoded to a one-hot thread vector, and every
@@ -1236,7 +1264,7 @@ module rc_core #(
   assign h_pp  = hot(pp_any, pp_thr);
   assign h_pe  = hot(pp_v_q, pp_thr_q);
   assign h_p2  = hot(pop2_v, pop2_thr_q);
-  assign h_wb  = hot(wb_better, wb_thr);
+  assign h_wb  = hot(wb_better, wb_thr_q);
   assign h_shp = hot(shp_take, shp_thr);
   assign h_sx  = hot(shp_v_q, shp_thr_q);
   assign h_fb  = hot(fb_take, fb_thr);
@@ -1283,7 +1311,7 @@ module rc_core #(
                          mask_or : mask_q[t*4 +: 4];
       vmask_d[t*4 +: 4] = h_acc[t] ? pkt_mask_i : vmask_q[t*4 +: 4];
       bhit_d[t*4 +: 4] = h_acc[t] ? 4'd0 :
-                         bhit_q[t*4 +: 4] | ({4{h_wb[t]}} & (4'd1 << wb_r));
+                         bhit_q[t*4 +: 4] | ({4{h_wb[t]}} & (4'd1 << wb_r_q));
       sp_d[t*SpW +: SpW] = h_acc[t] ? '0 :
                            (h_tr[t] & tr_push_ok) ? tr_sp + SpW'(1) :
                            (h_pe[t] & ~pp_end) ? pp_sp - SpW'(1) : sp_q[t*SpW +: SpW];
@@ -1343,7 +1371,7 @@ module rc_core #(
   always_comb begin
     for (int unsigned t = 0; t < Threads; t++) begin
       pend_dec[2*t +: 2] = 2'(lr_dec && lr_thr == ThrW'(t)) + 2'(te_dec && ti_thr_q == ThrW'(t)) +
-                    2'(io_dec && wb_thr == ThrW'(t));
+                    2'(io_dec && wb_thr_q == ThrW'(t));
       pend_zero[t] = (pend_dec[2*t +: 2] != 2'd0) && (pend_m[t] == 32'(pend_dec[2*t +: 2]));
     end
   end
@@ -1369,15 +1397,15 @@ module rc_core #(
     su_tmin_new = put_lane_w(su_tmin_new, su_r, su_tmin);
     su_tmax_new = put_lane_w(su_tmax_new, su_r, su_tmax);
     wb_bt_new   = wb_bt_all;
-    wb_bu_new   = bu_m[wb_thr];
-    wb_bv_new   = bv_m[wb_thr];
-    wb_bdz_new  = bdz_m[wb_thr];
+    wb_bu_new   = bu_m[wb_thr_q];
+    wb_bv_new   = bv_m[wb_thr_q];
+    wb_bdz_new  = bdz_m[wb_thr_q];
     wb_btri_new = wb_btri_all;
-    wb_bt_new   = put_lane_w(wb_bt_new, wb_r, io_t_q);
-    wb_bu_new   = put_lane_w(wb_bu_new, wb_r, io_u_q);
-    wb_bv_new   = put_lane_w(wb_bv_new, wb_r, io_v_bits_q);
-    wb_bdz_new  = put_lane_w(wb_bdz_new, wb_r, io_dz_q);
-    wb_btri_new = put_lane_32(wb_btri_new, wb_r, io_tri_q);
+    wb_bt_new   = put_lane_w(wb_bt_new, wb_r_q, wb_t_q);
+    wb_bu_new   = put_lane_w(wb_bu_new, wb_r_q, wb_u_q);
+    wb_bv_new   = put_lane_w(wb_bv_new, wb_r_q, wb_vb_q);
+    wb_bdz_new  = put_lane_w(wb_bdz_new, wb_r_q, wb_dz_q);
+    wb_btri_new = put_lane_32(wb_btri_new, wb_r_q, wb_tri_q);
   end
 
   logic             cur_we;
@@ -1436,11 +1464,11 @@ module rc_core #(
           {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
     end
     if (wb_better) begin
-      bt_m[wb_thr]   <= wb_bt_new;
-      bu_m[wb_thr]   <= wb_bu_new;
-      bv_m[wb_thr]   <= wb_bv_new;
-      bdz_m[wb_thr]  <= wb_bdz_new;
-      btri_m[wb_thr] <= wb_btri_new;
+      bt_m[wb_thr_q]   <= wb_bt_new;
+      bu_m[wb_thr_q]   <= wb_bu_new;
+      bv_m[wb_thr_q]   <= wb_bv_new;
+      bdz_m[wb_thr_q]  <= wb_bdz_new;
+      btri_m[wb_thr_q] <= wb_btri_new;
     end
     for (int unsigned t = 0; t < Threads; t++) begin
       if (pend_dec[2*t +: 2] != 2'd0) pend_m[t] <= pend_m[t] - 32'(pend_dec[2*t +: 2]);
@@ -1585,7 +1613,7 @@ module rc_core #(
     .on_o (checks_on)
   );
   logic [31:0] wb_pend;
-  assign wb_pend = pend_m[wb_thr];
+  assign wb_pend = pend_m[wb_thr_q];
 
   // The flat thread state update relies on these: at most one event per thread and cycle among
   // those that write its state, mask or stack pointer, each for a thread in the state it leaves.
@@ -1633,7 +1661,7 @@ module rc_core #(
                                 is_valid |-> ti_rem != 4'd0);
   // Intersection results belong to threads in their leaf, with triangles still outstanding.
   IsectOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                 io_v_q |-> st_q[wb_thr*4 +: 4] == StLeafRun && wb_pend != 32'd0);
+                                 wb_v_q |-> st_q[wb_thr_q*4 +: 4] == StLeafRun && wb_pend != 32'd0);
   // A pop result belongs to a thread that is popping.
   PopOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                pop2_v |-> st_q[pop2_thr_q*4 +: 4] == StPopping);

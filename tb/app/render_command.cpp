@@ -39,7 +39,7 @@ struct RenderArgs {
   uint32_t latency = 16;
   uint64_t stall_seed = 0;
   uint64_t watchdog = 200000;
-  std::string threads_rtl = "default", trace, trace_window;
+  std::string threads_rtl = "default", isect_interval_rtl = "default", trace, trace_window;
 };
 
 void parse_size(const std::string& text, uint32_t& w, uint32_t& h) {
@@ -138,11 +138,27 @@ double share(uint64_t part, uint64_t whole) {
   return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
 }
 
+// The verilated core model that --threads-rtl and --isect-interval-rtl name.
+harness::CoreModel rtl_model(const RenderArgs& a) {
+  if (a.threads_rtl != "1" && a.threads_rtl != "default")
+    throw Error("--threads-rtl: expected 1 or default, got '" + a.threads_rtl + "'");
+  if (a.isect_interval_rtl != "1" && a.isect_interval_rtl != "default")
+    throw Error("--isect-interval-rtl: expected 1 or default, got '" + a.isect_interval_rtl + "'");
+  if (a.threads_rtl == "1" && a.isect_interval_rtl == "1")
+    throw Error(
+        "--threads-rtl 1 and --isect-interval-rtl 1: no core model has both "
+        "(one of them at a time)");
+  if (a.threads_rtl == "1") return harness::CoreModel::kThreads1;
+  if (a.isect_interval_rtl == "1") return harness::CoreModel::kIsect1;
+  return harness::CoreModel::kDefault;
+}
+
 // The RTL run's figures: for --stats and for the summary on stdout.
 nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
   const auto perf = [&r](int64_t k) { return r.perf[static_cast<size_t>(k)]; };
   const Counters& c = r.frame.counters;
-  const double eff = share(harness::ideal_cycles(c), r.cycles);
+  const double eff =
+      share(harness::ideal_cycles(c, harness::isect_interval(rtl_model(a))), r.cycles);
   nlohmann::json busy = {{"setup", share(perf(spec::kCorePerfSetupBusy), r.cycles)},
                          {"trav", share(perf(spec::kCorePerfTravBusy), r.cycles)},
                          {"list", share(perf(spec::kCorePerfListBusy), r.cycles)},
@@ -173,6 +189,7 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
           {"wall_seconds", r.seconds},
           {"error_bits", r.error_bits},
           {"threads", a.threads_rtl},
+          {"isect_interval", harness::isect_interval(rtl_model(a))},
           {"latency", a.latency},
           {"stall_seed", a.stall_seed},
           {"perf", perf_all}};
@@ -214,12 +231,7 @@ harness::CoreSimResult run_rtl(const RenderArgs& a, const RenderInput& in,
     parse_window(a.trace_window, so.trace_first, so.trace_last);
   }
   so.progress = !a.quiet;
-  harness::CoreModel model = harness::CoreModel::kDefault;
-  if (a.threads_rtl == "1")
-    model = harness::CoreModel::kThreads1;
-  else if (a.threads_rtl != "default")
-    throw Error("--threads-rtl: expected 1 or default, got '" + a.threads_rtl + "'");
-  return harness::render_rtl(in.image, opt, so, model);
+  return harness::render_rtl(in.image, opt, so, rtl_model(a));
 }
 
 // --check: the golden model's frame against the RTL's, bit for bit. Returns whether they agree.
@@ -541,6 +553,10 @@ void add_render_commands(CLI::App& app, Action* action) {
       ->capture_default_str();
   cmd->add_option("--threads-rtl", args->threads_rtl,
                   "rtl: the core's packet threads: default or 1")
+      ->capture_default_str();
+  cmd->add_option("--isect-interval-rtl", args->isect_interval_rtl,
+                  "rtl: cycles per ray-triangle test of the core's intersection unit: default "
+                  "(docs/spec.toml [core] isect_interval) or 1 (two transform units)")
       ->capture_default_str();
   cmd->add_option("--trace", args->trace, "rtl: write an FST waveform");
   cmd->add_option("--trace-window", args->trace_window, "rtl: trace only cycles FIRST:LAST");

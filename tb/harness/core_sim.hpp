@@ -64,8 +64,9 @@ Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf, ui
 
 // The fewest cycles a core needs for a frame with these counters, the ideal of the efficiency
 // figure (efficiency = ideal_cycles / cycles): its four traversal sub-units take one step each
-// per cycle, its intersection unit one ray-triangle test every spec::kCoreIsectInterval cycles.
-uint64_t ideal_cycles(const Counters& c);
+// per cycle, its intersection unit one ray-triangle test every isect_interval cycles.
+uint64_t ideal_cycles(const Counters& c,
+                      uint32_t isect_interval = static_cast<uint32_t>(spec::kCoreIsectInterval));
 
 // Applies the stall recipe of `stall_seed` to the port parameters (keeps latency and limits).
 void apply_stall_recipe(std::array<MemoryParams, kCorePorts>& memory, uint64_t stall_seed);
@@ -113,8 +114,14 @@ class CoreSim {
   std::unique_ptr<State> s_;
 };
 
-// Which verilated model render_rtl() runs.
-enum class CoreModel { kDefault, kThreads1 };
+// Which verilated model render_rtl() runs: the default parameters, Threads = 1, or
+// IsectInterval = 1.
+enum class CoreModel { kDefault, kThreads1, kIsect1 };
+
+// The intersection interval (cycles per ray-triangle test) of a model.
+inline uint32_t isect_interval(CoreModel m) {
+  return m == CoreModel::kIsect1 ? 1u : static_cast<uint32_t>(spec::kCoreIsectInterval);
+}
 
 // Renders an fp24 image through the verilated core. Throws scene::Error for an image in another
 // format and CoreSimError for a failed run.

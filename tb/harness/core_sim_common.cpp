@@ -74,9 +74,8 @@ Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf_val
   return c;
 }
 
-uint64_t ideal_cycles(const Counters& c) {
-  return std::max(c.traversal_steps / 4,
-                  c.triangle_tests * static_cast<uint64_t>(spec::kCoreIsectInterval));
+uint64_t ideal_cycles(const Counters& c, uint32_t isect_interval) {
+  return std::max(c.traversal_steps / 4, c.triangle_tests * uint64_t{isect_interval});
 }
 
 }  // namespace rc::harness

@@ -41,9 +41,10 @@ std::string hit_text(const HitRecord& h) {
 // the first differing pixel with its packet and both hit records. Counters: all of them must
 // match for an image without errors; after an error only packets, rays, failed packets and the
 // error bits must (CounterDifference::required; the others are printed).
-// `repro`: the raycore command that reruns the case (empty where there is none).
+// `repro`: the raycore command that reruns the case (empty where there is none);
+// `model`: the core model that ran (for the efficiency's ideal).
 void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimResult& r,
-                      const std::string& repro = "") {
+                      const std::string& repro = "", CoreModel model = CoreModel::kDefault) {
   const Frame& f = r.frame;
   const ExactComparison cmp = compare_exact(gold, f);
   std::vector<std::string> counters;
@@ -62,7 +63,8 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
       static_cast<unsigned long long>(r.cycles),
       r.cycles ? static_cast<double>(f.counters.rays) / static_cast<double>(r.cycles) : 0.0,
       r.cycles
-          ? static_cast<double>(harness::ideal_cycles(f.counters)) / static_cast<double>(r.cycles)
+          ? static_cast<double>(harness::ideal_cycles(f.counters, harness::isect_interval(model))) /
+                static_cast<double>(r.cycles)
           : 0.0,
       r.cycles_per_second);
   if (!cmp.equal()) {
@@ -107,7 +109,7 @@ struct Mode {
 const Mode kModes[] = {
     {"lat16", CoreModel::kDefault, 0},      {"stall1", CoreModel::kDefault, 1},
     {"stall2", CoreModel::kDefault, 2},     {"t1", CoreModel::kThreads1, 0},
-    {"t1_stall3", CoreModel::kThreads1, 3},
+    {"t1_stall3", CoreModel::kThreads1, 3}, {"i1_stall4", CoreModel::kIsect1, 4},
 };
 
 void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.input; }
@@ -148,8 +150,9 @@ TEST_P(CoreRtl, MatchesGoldenBitForBit) {
       " --engine rtl --check -o /tmp/rc_case.png --size " + std::to_string(c.width) + "x" +
       std::to_string(c.height) + (c.auto_camera ? " --auto-camera" : "") +
       (mode.stall_seed ? " --stall-seed " + std::to_string(mode.stall_seed) : "") +
-      (mode.model == CoreModel::kThreads1 ? " --threads-rtl 1" : "");
-  expect_bit_exact(std::string(c.input) + " " + mode.name, gold, r, repro);
+      (mode.model == CoreModel::kThreads1 ? " --threads-rtl 1" : "") +
+      (mode.model == CoreModel::kIsect1 ? " --isect-interval-rtl 1" : "");
+  expect_bit_exact(std::string(c.input) + " " + mode.name, gold, r, repro, mode.model);
   EXPECT_EQ(gold.counters.errors, 0u);
   if (mode.stall_seed != 0) {
     uint64_t refused = 0;
@@ -193,7 +196,7 @@ std::string case_name(const testing::TestParamInfo<std::tuple<SceneCase, int>>& 
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CoreRtl,
-                         testing::Combine(testing::ValuesIn(kScenes), testing::Range(0, 5)),
+                         testing::Combine(testing::ValuesIn(kScenes), testing::Range(0, 6)),
                          case_name);
 
 //////////////////////////////////
