@@ -329,6 +329,7 @@ module rc_core #(
 
   logic            acc_any, acc_take, acc_v_q;
   logic [ThrW-1:0] acc_thr;
+  logic [Threads-1:0] g_acc;
   logic            feed_busy_q;
   logic [ThrW-1:0] feed_thr_q;
   logic [1:0]      feed_r_q;
@@ -345,7 +346,8 @@ module rc_core #(
     .req_i  (free_vec),
     .take_i (acc_take),
     .valid_o(acc_any),
-    .idx_o  (acc_thr)
+    .idx_o  (acc_thr),
+    .grant_o(g_acc)
   );
 
   // Ready from registers only: a free thread and an idle set-up feeder.
@@ -447,6 +449,7 @@ module rc_core #(
 
   logic             fe_any, fe_take, fe_bad;
   logic [ThrW-1:0]  fe_thr;
+  logic [Threads-1:0] g_fe;
   logic [NodeW-1:0] fe_node;
   logic             nreq_free;
   logic             node_req_valid_q;
@@ -462,7 +465,8 @@ module rc_core #(
     .req_i  (fetch_vec),
     .take_i (fe_take),
     .valid_o(fe_any),
-    .idx_o  (fe_thr)
+    .idx_o  (fe_thr),
+    .grant_o(g_fe)
   );
 
   assign nreq_free = ~node_req_valid_q | node_req_ready_i;
@@ -642,6 +646,7 @@ module rc_core #(
 
   logic             pp_any, pp_v_q, pp_end;
   logic [ThrW-1:0]  pp_thr, pp_thr_q;
+  logic [Threads-1:0] g_pp;
   logic [SpW-1:0]   pp_sp;
   logic             pop1_v_q;
   logic [ThrW-1:0]  pop1_thr_q, pop2_thr_q;
@@ -658,7 +663,8 @@ module rc_core #(
     .req_i  (pop_vec),
     .take_i (pp_any),
     .valid_o(pp_any),
-    .idx_o  (pp_thr)
+    .idx_o  (pp_thr),
+    .grant_o(g_pp)
   );
 
   // The pop in four cycles: the choice (the thread goes to StPopping) is registered (pp_v_q,
@@ -745,6 +751,7 @@ module rc_core #(
 
   logic            lp_any, lp_take;
   logic [ThrW-1:0] lp_thr;
+  logic [Threads-1:0] g_lp;
   logic            lu_busy_q;
   logic [ThrW-1:0] lu_thr_q;
   logic [31:0]     lu_idx_q, lu_left_q;
@@ -762,7 +769,8 @@ module rc_core #(
     .req_i  (leaf_vec),
     .take_i (lp_take),
     .valid_o(lp_any),
-    .idx_o  (lp_thr)
+    .idx_o  (lp_thr),
+    .grant_o(g_lp)
   );
 
   assign lp_take   = lp_any & ~lu_busy_q;
@@ -1023,6 +1031,7 @@ module rc_core #(
 
   logic            shp_any, shp_take, shp_none, shp_v_q;
   logic [ThrW-1:0] shp_thr, shp_thr_q;
+  logic [Threads-1:0] g_shp;
   logic            sh_busy_q;
   logic [ThrW-1:0] sh_thr_q;
   logic [1:0]      sh_r_q;
@@ -1042,7 +1051,8 @@ module rc_core #(
     .req_i  (done_vec),
     .take_i (shp_take),
     .valid_o(shp_any),
-    .idx_o  (shp_thr)
+    .idx_o  (shp_thr),
+    .grant_o(g_shp)
   );
 
   // A traced packet is chosen (it goes to StShade) and the choice registered (shp_v_q,
@@ -1253,19 +1263,21 @@ module rc_core #(
 
   logic [Threads-1:0] h_acc, h_su, h_fe, h_nr, h_tr, h_lp, h_lr, h_te, h_pp, h_pe, h_p2, h_wb;
   logic [Threads-1:0] h_shp, h_sx, h_fb;
-  assign h_acc = hot(acc_take, acc_thr);
+  // The schedulers' choices come one-hot from rc_rr_pick (grant_o): no index decode on the path
+  // from a choice to the thread states.
+  assign h_acc = {Threads{acc_take}} & g_acc;
   assign h_su  = hot(su_v, su_thr);
-  assign h_fe  = hot(fe_take, fe_thr);
+  assign h_fe  = {Threads{fe_take}} & g_fe;
   assign h_nr  = hot(nr_take, nr_thr);
   assign h_tr  = hot(tr_v, tr_thr);
-  assign h_lp  = hot(lp_take, lp_thr);
+  assign h_lp  = {Threads{lp_take}} & g_lp;
   assign h_lr  = hot(lr_dec, lr_thr);
   assign h_te  = hot(te_dec, ti_thr_q);
-  assign h_pp  = hot(pp_any, pp_thr);
+  assign h_pp  = {Threads{pp_any}} & g_pp;
   assign h_pe  = hot(pp_v_q, pp_thr_q);
   assign h_p2  = hot(pop2_v, pop2_thr_q);
   assign h_wb  = hot(wb_better, wb_thr_q);
-  assign h_shp = hot(shp_take, shp_thr);
+  assign h_shp = {Threads{shp_take}} & g_shp;
   assign h_sx  = hot(shp_v_q, shp_thr_q);
   assign h_fb  = hot(fb_take, fb_thr);
 
@@ -1408,12 +1420,13 @@ module rc_core #(
     wb_btri_new = put_lane_32(wb_btri_new, wb_r_q, wb_tri_q);
   end
 
-  logic             cur_we;
+  logic             cur_we, cur_root;
   logic [ThrW-1:0]  cur_thr;
   logic [NodeW-1:0] cur_node;
   logic [4*W-1:0]   cur_tmin, cur_tmax;
   always_comb begin
     cur_we   = 1'b0;
+    cur_root = 1'b0;
     cur_thr  = su_thr;
     cur_node = '0;
     cur_tmin = su_tmin_new;
@@ -1432,6 +1445,7 @@ module rc_core #(
       cur_tmax = (|tr_a_mask) ? tr_a_tmax : tr_b_tmax;
     end else if (su_last) begin
       cur_we   = 1'b1;
+      cur_root = 1'b1;
     end
   end
 
@@ -1446,7 +1460,10 @@ module rc_core #(
     // The current entry: one write port (at most one of pop, traversal, set-up per cycle).
     if (cur_we) begin
       node_m[cur_thr] <= cur_node;
-      nbad_q[cur_thr] <= {{(32 - NodeW){1'b0}}, cur_node} >= node_count_i;
+      // Only a packet's root (node 0, from set-up) can be outside the node section: a
+      // traversal's two children were checked against the node count with their parent
+      // (nr_malformed), and a popped entry is such a child (CurNodeInRange_A).
+      nbad_q[cur_thr] <= cur_root & (node_count_i == 32'd0);
       tmin_m[cur_thr] <= cur_tmin;
       tmax_m[cur_thr] <= cur_tmax;
     end
@@ -1646,6 +1663,11 @@ module rc_core #(
   // Traversal results belong to threads in the traversal sub-units.
   TravOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 tr_v |-> st_q[tr_thr*4 +: 4] == StNode);
+  // Only a root (set-up) can be outside the node section; every other current node is a child
+  // checked with its parent (nbad_q is written from this).
+  CurNodeInRange_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                     cur_we && !cur_root |->
+                                     {{(32 - NodeW){1'b0}}, cur_node} < node_count_i);
   // Ray set-up results belong to threads in set-up.
   SetupOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  su_v |-> st_q[su_thr*4 +: 4] == StSetup);

@@ -3,13 +3,18 @@
 // Contract
 // - req_i bit i: requester i wants service. valid_o = |req_i; idx_o = the first requester at or
 //   after the rotating pointer (wrapping around), combinational from req_i and the pointer
-//   register (log depth in N: a mask, a lowest-set-bit carry chain and an OR tree).
+//   register (log depth in N: an AND with the pointer mask, lowest-set-bit carry chains and OR
+//   trees).
 // - take_i: the choice is used this cycle (only with valid_o); the pointer then moves to idx_o + 1
 //   so that every requester is served within N takes of asking (no starvation).
+// - The pointer is kept as a mask (hi_q: the requesters at or after it), so neither the choice
+//   nor the pointer's update compares indices: the update is the bits above the chosen one.
+// - grant_o: the choice as a one-hot vector (bit idx_o set; zero without a request), for users
+//   that decode the choice per requester (no index encoding and decoding on their path).
 // - Latency: 0 (combinational choice); the pointer updates at the clock edge.
 // - Parameters: N >= 1 requesters; IdxW index bits (>= 1, 2^IdxW >= N).
 // - Illegal input: take_i without valid_o (caught by an assertion).
-// - Reset: rst_ni (active low, asynchronous) sets the pointer to 0.
+// - Reset: rst_ni (active low, asynchronous) sets the pointer to 0 (hi_q all ones).
 module rc_rr_pick #(
   parameter int unsigned N    = 8,
   parameter int unsigned IdxW = (N > 1) ? $clog2(N) : 1
@@ -19,38 +24,50 @@ module rc_rr_pick #(
   input  logic [N-1:0]    req_i,
   input  logic            take_i,
   output logic            valid_o,
-  output logic [IdxW-1:0] idx_o
+  output logic [IdxW-1:0] idx_o,
+  output logic [N-1:0]    grant_o
 );
 
   if (N < 1 || IdxW < 1 || (1 << IdxW) < N) begin : g_param_check
     $error("rc_rr_pick: need N >= 1 and 2^IdxW >= N");
   end
 
-  logic [IdxW-1:0] ptr_q;
-  logic [N-1:0]    at_or_after, upper, sel, first;
+  // hi_q bit i: requester i is at or after the pointer. After a take of requester k it holds the
+  // bits above k; all zeros (after a take of N-1) works as all ones, the pointer at 0, because
+  // the choice falls back to all requests when none at or after the pointer asks.
+  logic [N-1:0]    hi_q, hi_d;
+  logic [N-1:0]    upper, first_up, first_all, above_up, above_all;
+  logic [IdxW-1:0] idx_up, idx_all;
+  logic            any_up;
 
-  // The first set bit at or after ptr_q, wrapping around: the requests at or above the pointer
-  // if there are any, else all of them; the lowest set bit of that (x & -x, a carry chain), then
-  // its index as an OR of the one-hot bits (log depth; no chain through the N requesters).
-  always_comb begin
-    for (int unsigned i = 0; i < N; i++) at_or_after[i] = IdxW'(i) >= ptr_q;
-  end
-  assign upper = req_i & at_or_after;
-  assign sel   = (|upper) ? upper : req_i;
-  assign first = sel & (~sel + N'(1));
-  always_comb begin
-    idx_o = '0;
+  // The lowest set bit of x is x & -x, and the bits above it are ~(x ^ (x - 1)): carry chains,
+  // for the requests at or after the pointer and for all requests side by side; the index of a
+  // one-hot vector is an OR of its bits' numbers (log depth, no chain through the requesters).
+  function automatic logic [IdxW-1:0] index_of(input logic [N-1:0] one_hot);
+    index_of = '0;
     for (int unsigned i = 0; i < N; i++) begin
-      if (first[i]) idx_o = idx_o | IdxW'(i);
+      if (one_hot[i]) index_of = index_of | IdxW'(i);
     end
-  end
-  assign valid_o = |req_i;
+  endfunction
+
+  assign upper     = req_i & hi_q;
+  assign any_up    = |upper;
+  assign first_up  = upper & (~upper + N'(1));
+  assign first_all = req_i & (~req_i + N'(1));
+  assign above_up  = ~(upper ^ (upper - N'(1)));
+  assign above_all = ~(req_i ^ (req_i - N'(1)));
+  assign idx_up    = index_of(first_up);
+  assign idx_all   = index_of(first_all);
+  assign idx_o     = any_up ? idx_up : idx_all;
+  assign grant_o   = any_up ? first_up : first_all;
+  assign hi_d      = any_up ? above_up : above_all;
+  assign valid_o   = |req_i;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      ptr_q <= '0;
+      hi_q <= '1;
     end else if (take_i) begin
-      ptr_q <= ({1'b0, idx_o} + (IdxW + 1)'(1) >= (IdxW + 1)'(N)) ? '0 : idx_o + IdxW'(1);
+      hi_q <= hi_d;
     end
   end
 
@@ -65,9 +82,15 @@ module rc_rr_pick #(
   // A take uses the current choice, which only exists while someone requests.
   TakeHasChoice_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     take_i |-> valid_o);
-  // The pointer stays a valid requester number.
-  PtrInRange_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                 {1'b0, ptr_q} < (IdxW + 1)'(N));
+  // The one-hot choice and the index agree.
+  GrantIsIdx_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 grant_o == (valid_o ? N'(1) << idx_o : '0));
+  // The pointer mask is all requesters from some number up: a set bit has its upper neighbour set.
+  PtrMask_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              ((hi_q << 1) & ~hi_q) == '0);
+  // The new mask is the bits above the choice (a take needs a request, so hi_d is well defined).
+  PtrMove_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              take_i |-> hi_d == ~((N'(2) << idx_o) - N'(1)));
 `endif
 
 endmodule

@@ -2,7 +2,8 @@
 // N = 16 (the default thread count), 5 (not a power of two) and 1, exhaustively: for every pointer
 // value and every request vector, valid_o and idx_o against a plain scan (the first requester at
 // or after the pointer, wrapping around); then seeded random takes, checking after each that the
-// pointer moved to the taken index + 1 (mod N) by the choice it makes next.
+// pointer moved to the taken index + 1 (mod N) by the choice it makes next. grant_o (the choice
+// one-hot) is checked against the same reference in every case.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -59,8 +60,11 @@ class Picker {
     m_->req_i = static_cast<std::remove_reference_t<decltype(m_->req_i)>>(req);
     m_->take_i = 0;
     m_->eval();
+    grant_ = static_cast<uint32_t>(m_->grant_o);
     return m_->valid_o ? static_cast<int>(m_->idx_o) : -1;
   }
+  // grant_o at the last choice.
+  uint32_t grant() const { return grant_; }
   // Take the current choice for req (which must be non-zero); returns it.
   int take(uint32_t req) {
     const int got = choose(req);
@@ -77,6 +81,7 @@ class Picker {
 
  private:
   int n_;
+  uint32_t grant_ = 0;
   std::unique_ptr<VerilatedContext> ctx_;
   std::unique_ptr<V> m_;
 };
@@ -91,11 +96,13 @@ void run(int n, const char* what) {
     for (uint32_t req = 0; req <= all; ++req) {
       const int want = first_from(req, p, n);
       const int got = pk.choose(req);
+      const uint32_t want_grant = want < 0 ? 0u : 1u << want;
       ++cases;
-      if (got != want) {
+      if (got != want || pk.grant() != want_grant) {
         if (bad < 8)
           ADD_FAILURE() << what << ": ptr " << p << " req 0x" << std::hex << req << std::dec
-                        << ": idx " << got << ", want " << want;
+                        << ": idx " << got << ", want " << want << ", grant 0x" << std::hex
+                        << pk.grant() << std::dec;
         ++bad;
       }
       if (req == all) break;
