@@ -211,11 +211,9 @@ module rc_core #(
   logic [4*W-1:0]    ilen_m [0:Threads-1];
   logic [127:0]      pix_m  [0:Threads-1];
   logic [NodeW-1:0]  node_m [0:Threads-1];     // current node
-  logic [Threads-1:0] nbad_q;                   // current node >= node_count_i
   logic [4*W-1:0]    tmin_m [0:Threads-1];     // current intervals
   logic [4*W-1:0]    tmax_m [0:Threads-1];
-  logic [NodeW-1:0]  nidx_m [0:Threads-1];     // inner node in the traversal sub-units
-  logic [1:0]        nax_m  [0:Threads-1];
+  logic [11:0]       dsign_m [0:Threads-1];    // sign bits of dir_m (ray r axis a at 3r + a)
   logic [31:0]       loff_m [0:Threads-1];     // leaf list offset and count
   logic [31:0]       lcnt_m [0:Threads-1];
   logic [31:0]       pend_m [0:Threads-1];     // leaf triangles not yet finished
@@ -297,6 +295,11 @@ module rc_core #(
     end
   endfunction
 
+  // The sign bits of a four-ray 3-vector, component (3r + a) at bit 3r + a.
+  function automatic logic [11:0] dir_signs(input logic [12*W-1:0] v);
+    for (int unsigned k = 0; k < 12; k++) dir_signs[k] = v[k*W+W-1];
+  endfunction
+
   function automatic logic [2:0] popcount4(input logic [3:0] m);
     popcount4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
   endfunction
@@ -365,12 +368,12 @@ module rc_core #(
 
   logic            su_ready, su_take, su_v, su_active, su_valid, su_out_ready;
   logic            pop2_v;     // a pop result this cycle (the pop section below)
-  logic [RidW-1:0] su_tag;
+  logic [RidW:0]   su_tag;      // {ray exists, thread, ray}
   logic [3*W-1:0]  su_org, su_dir, su_inv;
   logic [W-1:0]    su_tmin, su_tmax;
   logic [ThrW-1:0] su_thr;
   logic [1:0]      su_r;
-  logic [3:0]      su_mask_new;
+  logic [3:0]      su_mask_new, su_mask_base, su_gmask_q, feed_vmask_q;
   logic            su_last;
 
   // The taken packet is registered here (feed_*_q) and written to the per-thread arrays from
@@ -406,19 +409,20 @@ module rc_core #(
       feed_dir_q  <= pkt_dir_i;
       feed_ilen_q <= pkt_inv_len_i;
       feed_pix_q  <= pkt_pixel_i;
+      feed_vmask_q <= pkt_mask_i;
     end
   end
 
   rc_ray_setup #(
     .ExpW (ExpW),
     .FracW(FracW),
-    .TagW (RidW)
+    .TagW (RidW + 1)
   ) u_setup (
     .clk_i,
     .rst_ni,
     .valid_i (feed_busy_q),
     .ready_o (su_ready),
-    .tag_i   ({feed_thr_q, feed_r_q}),
+    .tag_i   ({feed_vmask_q[feed_r_q], feed_thr_q, feed_r_q}),
     .org_i   (su_org),
     .dir_i   (su_dir),
     .bounds_i(bounds_i),
@@ -438,9 +442,16 @@ module rc_core #(
   assign su_thr  = su_tag[RidW-1:2];
   assign su_r    = su_tag[1:0];
   assign su_last = su_v & (su_r == 2'd3);
+  // The packet's active rays gather in su_gmask_q as its rays leave set-up (in order 0..3, one
+  // packet at a time; SetupMask_A), and whether a ray exists travels with it in the tag: no
+  // per-thread read on the way from a set-up result to the thread's state.
+  assign su_mask_base = (su_r == 2'd0) ? 4'd0 : su_gmask_q;
   always_comb begin
-    su_mask_new = get4(mask_q, su_thr);
-    su_mask_new[su_r] = su_active & vmask_q[32'(su_thr)*4 + 32'(su_r)];
+    su_mask_new = su_mask_base;
+    su_mask_new[su_r] = su_active & su_tag[RidW];
+  end
+  always_ff @(posedge clk_i) begin
+    if (su_v) su_gmask_q <= su_mask_new;
   end
 
   ////////////////////////////////////////
@@ -472,9 +483,19 @@ module rc_core #(
   assign nreq_free = ~node_req_valid_q | node_req_ready_i;
   assign fe_take   = fe_any & nreq_free;
   assign fe_node   = node_m[fe_thr];
-  // Whether the thread's current node is outside the node section: kept per thread (nbad_q, set
-  // with node_m) so that the check is not on the path from the fetch choice to the thread states.
-  assign fe_bad    = nbad_q[fe_thr];
+  // Whether the thread's current node is outside the node section. Only a packet's root (node
+  // 0) can be: a traversal's two children are checked against the node count with their parent
+  // (nr_malformed), and a popped entry is such a child (CurNodeInRange_A). So a fetch fails
+  // exactly when the node section is empty, registered (the configuration is quasi-static).
+  logic node_empty_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      node_empty_q <= 1'b0;
+    end else begin
+      node_empty_q <= node_count_i == 32'd0;
+    end
+  end
+  assign fe_bad = node_empty_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -546,27 +567,58 @@ module rc_core #(
   // Traversal: four sub-units          //
   ////////////////////////////////////////
 
-  logic [3:0]       trav_ready_all, trav_v_all;
-  logic             tr_ready;      // the traversal result is taken (below)
-  logic [4*ThrW-1:0] trav_tag_all;
-  logic [4*W-1:0]   trav_t;
-  logic [7:0]       trav_case;
-  logic [4*W-1:0]   nr_tmin, nr_tmax;
+  // What the traversal result needs of its thread besides the sub-units' t and case is read
+  // when the node response is taken and travels with the operation as the sub-units' tags, so
+  // the result reads no per-thread array or state vector: the thread, its active rays, per ray
+  // whether its direction's sign on the split axis is the lead ray's (the lowest active ray),
+  // the lead's sign, the node's index, the stack pointer and whether the stack is full (common
+  // part, used from sub-unit 0), and the ray's interval (sub-unit r). A thread in the sub-units
+  // (StNode) changes none of these until its result (TravPayload_A).
+  localparam int unsigned TrComW = ThrW + 4 + 4 + 1 + NodeW + SpW + 1;
+  localparam int unsigned TrTagW = TrComW + 2 * W;
 
-  assign nr_tmin = tmin_m[nr_thr];
-  assign nr_tmax = tmax_m[nr_thr];
+  logic [3:0]        trav_ready_all, trav_v_all;
+  logic              tr_ready;      // the traversal result is taken (below)
+  logic [4*TrTagW-1:0] trav_tag_all;
+  logic [4*W-1:0]    trav_t;
+  logic [7:0]        trav_case;
+  logic [4*W-1:0]    nr_tmin, nr_tmax;
+  logic [11:0]       nr_dsign;
+  logic [3:0]        nr_sign, nr_same;
+  logic [1:0]        nr_lead;
+  logic              nr_lsign;
+  logic [SpW-1:0]    nr_sp;
+  logic [TrComW-1:0] nr_com;
+
+  assign nr_tmin  = tmin_m[nr_thr];
+  assign nr_tmax  = tmax_m[nr_thr];
+  assign nr_dsign = dsign_m[nr_thr];
+  assign nr_sp    = getsp(sp_q, nr_thr);
+  assign nr_lead  = lowest4(nr_mask);
+  always_comb begin
+    for (int unsigned r = 0; r < 4; r++) begin
+      nr_sign[r] = 1'b0;
+      for (int unsigned a = 0; a < 3; a++) begin
+        if (nr_axis == 2'(a)) nr_sign[r] = nr_dsign[3*r+a];
+      end
+    end
+  end
+  assign nr_lsign = nr_sign[nr_lead];
+  assign nr_same  = nr_sign ^ {4{~nr_lsign}};
+  assign nr_com   = {nr_sp == SpW'(StackDepth), nr_sp, nr_idx, nr_lsign, nr_same, nr_mask,
+                     nr_thr};
 
   for (genvar r = 0; r < 4; r++) begin : g_trav
     rc_trav_step #(
       .ExpW (ExpW),
       .FracW(FracW),
-      .TagW (ThrW)
+      .TagW (TrTagW)
     ) u_step (
       .clk_i,
       .rst_ni,
       .valid_i(nr_inner_ok),
       .ready_o(trav_ready_all[r]),
-      .tag_i  (nr_thr),
+      .tag_i  ({nr_tmax[r*W +: W], nr_tmin[r*W +: W], nr_com}),
       .split_i(nr_upper[W-1:0]),
       .org_i  (nr_org[r*W +: W]),
       .inv_i  (nr_inv[r*W +: W]),
@@ -574,7 +626,7 @@ module rc_core #(
       .tmax_i (nr_tmax[r*W +: W]),
       .valid_o(trav_v_all[r]),
       .ready_i(tr_ready),
-      .tag_o  (trav_tag_all[r*ThrW +: ThrW]),
+      .tag_o  (trav_tag_all[r*TrTagW +: TrTagW]),
       .t_o    (trav_t[r*W +: W]),
       .case_o (trav_case[r*2 +: 2])
     );
@@ -583,37 +635,24 @@ module rc_core #(
   assign trav_ready = trav_ready_all[0];
 
   // Traversal result: the packet's two children.
-  logic             tr_v, tr_push, tr_overflow, tr_push_ok;
+  logic             tr_v, tr_push, tr_overflow, tr_push_ok, tr_full, tr_lsign;
   logic [ThrW-1:0]  tr_thr;
-  logic [1:0]       tr_axis, tr_lead;
   logic [NodeW-1:0] tr_idx, tr_first, tr_second;
-  logic [3:0]       tr_mask, tr_sign, tr_a_mask, tr_b_mask;
+  logic [3:0]       tr_mask, tr_same, tr_a_mask, tr_b_mask;
   logic [4*W-1:0]   tr_lo, tr_hi, tr_a_tmin, tr_a_tmax, tr_b_tmin, tr_b_tmax;
-  logic [12*W-1:0]  tr_dir;
   logic [SpW-1:0]   tr_sp;
 
   assign tr_ready = ~pop2_v;
   assign tr_v     = trav_v_all[0] & tr_ready;
-  assign tr_thr  = trav_tag_all[0 +: ThrW];
-  assign tr_axis = nax_m[tr_thr];
-  assign tr_idx  = nidx_m[tr_thr];
-  assign tr_mask = get4(mask_q, tr_thr);
-  assign tr_lo   = tmin_m[tr_thr];
-  assign tr_hi   = tmax_m[tr_thr];
-  assign tr_dir  = dir_m[tr_thr];
-  assign tr_sp   = getsp(sp_q, tr_thr);
-  assign tr_lead = lowest4(tr_mask);
-
-  always_comb begin
-    for (int unsigned r = 0; r < 4; r++) begin
-      logic [W-1:0] d;
-      d          = axis_w(tr_dir, r, tr_axis);
-      tr_sign[r] = d[W-1];
-    end
+  assign {tr_full, tr_sp, tr_idx, tr_lsign, tr_same, tr_mask, tr_thr} = trav_tag_all[0 +: TrComW];
+  for (genvar r = 0; r < 4; r++) begin : g_tr_iv
+    assign tr_lo[r*W +: W] = trav_tag_all[r*TrTagW + TrComW +: W];
+    assign tr_hi[r*W +: W] = trav_tag_all[r*TrTagW + TrComW + W +: W];
   end
+
   // The lead ray's near child first (left child when its direction sign bit is 0).
-  assign tr_first  = tr_sign[tr_lead] ? tr_idx + NodeW'(1) : tr_idx;
-  assign tr_second = tr_sign[tr_lead] ? tr_idx : tr_idx + NodeW'(1);
+  assign tr_first  = tr_lsign ? tr_idx + NodeW'(1) : tr_idx;
+  assign tr_second = tr_lsign ? tr_idx : tr_idx + NodeW'(1);
 
   always_comb begin
     for (int unsigned r = 0; r < 4; r++) begin
@@ -624,7 +663,7 @@ module rc_core #(
       t       = trav_t[r*W +: W];
       lo      = tr_lo[r*W +: W];
       hi      = tr_hi[r*W +: W];
-      same    = tr_sign[r] == tr_sign[tr_lead];
+      same    = tr_same[r];
       to_near = c != 2'd2;   // not kFarOnly
       to_far  = c != 2'd1;   // not kNearOnly
       spl     = c == 2'd3;   // kBothSplit
@@ -637,7 +676,7 @@ module rc_core #(
     end
   end
   assign tr_push     = (|tr_a_mask) & (|tr_b_mask);
-  assign tr_overflow = tr_push & (tr_sp == SpW'(StackDepth));
+  assign tr_overflow = tr_push & tr_full;
   assign tr_push_ok  = tr_v & tr_push & ~tr_overflow;  // the second child goes on the stack
 
   ////////////////////////////////////////
@@ -1309,7 +1348,7 @@ module rc_core #(
             pend_zero[t], h_pp[t], h_pe[t] & pp_end, h_p2[t], h_shp[t], h_sx[t] & shp_none,
             h_fb[t] & fb_last};
       st_or = ({4{we[12]}} & StSetup) | ({4{we[11]}} & su_st) |
-              ({4{we[10]}} & (nbad_q[t] ? StPop : StNode)) | ({4{we[9]}} & nr_st) |
+              ({4{we[10]}} & (node_empty_q ? StPop : StNode)) | ({4{we[9]}} & nr_st) |
               ({4{we[8]}} & tr_st) | ({4{we[7]}} & StLeafRun) | ({4{we[6]}} & StPop) |
               ({4{we[5]}} & StPopping) | ({4{we[4]}} & StDone) | ({4{we[3]}} & p2_st) |
               ({4{we[2]}} & StShade) | ({4{we[1]}} & StFree) | ({4{we[0]}} & StFree);
@@ -1330,7 +1369,7 @@ module rc_core #(
 
       // Error bits (sticky for the packet): the events' bits ORed in.
       err_or = '0;
-      err_or[ErrMalformed] = (h_fe[t] & nbad_q[t]) | (h_nr[t] & nr_malf);
+      err_or[ErrMalformed] = (h_fe[t] & node_empty_q) | (h_nr[t] & nr_malf);
       err_or[ErrBadAddr]   = (h_nr[t] & nr_bad_addr) | h_lr[t] | h_te[t];
       err_or[ErrOverflow]  = h_tr[t] & tr_overflow;
       err_d[t*3 +: 3] = h_acc[t] ? 3'd0 : err_q[t*3 +: 3] | err_or;
@@ -1420,13 +1459,12 @@ module rc_core #(
     wb_btri_new = put_lane_32(wb_btri_new, wb_r_q, wb_tri_q);
   end
 
-  logic             cur_we, cur_root;
+  logic             cur_we;
   logic [ThrW-1:0]  cur_thr;
   logic [NodeW-1:0] cur_node;
   logic [4*W-1:0]   cur_tmin, cur_tmax;
   always_comb begin
     cur_we   = 1'b0;
-    cur_root = 1'b0;
     cur_thr  = su_thr;
     cur_node = '0;
     cur_tmin = su_tmin_new;
@@ -1445,7 +1483,6 @@ module rc_core #(
       cur_tmax = (|tr_a_mask) ? tr_a_tmax : tr_b_tmax;
     end else if (su_last) begin
       cur_we   = 1'b1;
-      cur_root = 1'b1;
     end
   end
 
@@ -1453,6 +1490,7 @@ module rc_core #(
     if (acc_v_q) begin
       org_m[feed_thr_q]  <= feed_org_q;
       dir_m[feed_thr_q]  <= feed_dir_q;
+      dsign_m[feed_thr_q] <= dir_signs(feed_dir_q);
       ilen_m[feed_thr_q] <= feed_ilen_q;
       pix_m[feed_thr_q]  <= feed_pix_q;
     end
@@ -1460,16 +1498,8 @@ module rc_core #(
     // The current entry: one write port (at most one of pop, traversal, set-up per cycle).
     if (cur_we) begin
       node_m[cur_thr] <= cur_node;
-      // Only a packet's root (node 0, from set-up) can be outside the node section: a
-      // traversal's two children were checked against the node count with their parent
-      // (nr_malformed), and a popped entry is such a child (CurNodeInRange_A).
-      nbad_q[cur_thr] <= cur_root & (node_count_i == 32'd0);
       tmin_m[cur_thr] <= cur_tmin;
       tmax_m[cur_thr] <= cur_tmax;
-    end
-    if (nr_take && nr_inner_ok) begin
-      nidx_m[nr_thr] <= nr_idx;
-      nax_m[nr_thr]  <= nr_kind;
     end
     if (nr_take && !node_rsp_error_i && nr_leaf) begin
       loff_m[nr_thr] <= {{(32 - NodeW){1'b0}}, nr_idx};
@@ -1660,14 +1690,36 @@ module rc_core #(
   // A node response answers the node request of a thread that waits for it.
   NodeRspOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    nr_take |-> st_q[nr_thr*4 +: 4] == StNode);
+  // The payload carried through the traversal sub-units is still the thread's state.
+  logic [4*W-1:0] tr_lo_now, tr_hi_now;
+  logic [3:0]     tr_mask_now;
+  logic [SpW-1:0] tr_sp_now;
+  assign tr_lo_now   = tmin_m[tr_thr];
+  assign tr_hi_now   = tmax_m[tr_thr];
+  assign tr_mask_now = get4(mask_q, tr_thr);
+  assign tr_sp_now   = getsp(sp_q, tr_thr);
+  TravPayload_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  tr_v |-> tr_mask == tr_mask_now && tr_sp == tr_sp_now &&
+                                  tr_lo == tr_lo_now && tr_hi == tr_hi_now);
   // Traversal results belong to threads in the traversal sub-units.
   TravOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 tr_v |-> st_q[tr_thr*4 +: 4] == StNode);
-  // Only a root (set-up) can be outside the node section; every other current node is a child
-  // checked with its parent (nbad_q is written from this).
+  // Only a root (from set-up) can be outside the node section; every other current node is a
+  // child checked with its parent (fe_bad relies on this).
   CurNodeInRange_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                     cur_we && !cur_root |->
+                                     cur_we && !su_last |->
                                      {{(32 - NodeW){1'b0}}, cur_node} < node_count_i);
+  // The node count does not change under a fetch (quasi-static configuration).
+  NodeEmptyStable_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                      fe_take |-> node_empty_q == (node_count_i == 32'd0));
+  // The gathered mask is the thread's mask so far (set to 0 when the packet was taken).
+  logic [3:0] su_mask_now;
+  logic       su_vbit_now;
+  assign su_mask_now = get4(mask_q, su_thr);
+  assign su_vbit_now = vmask_q[32'(su_thr)*4 + 32'(su_r)];
+  SetupMask_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                su_v |-> su_mask_base == su_mask_now &&
+                                su_tag[RidW] == su_vbit_now);
   // Ray set-up results belong to threads in set-up.
   SetupOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  su_v |-> st_q[su_thr*4 +: 4] == StSetup);

@@ -213,9 +213,11 @@ module rc_trav_step #(
   // Output FIFO and credits //
   /////////////////////////////
 
+  // Storage as a memory array (distributed RAM): the core's tags make the entries wide.
   rc_credit_fifo #(
-    .Width(OutW),
-    .Depth(FifoDepth)
+    .Width   (OutW),
+    .Depth   (FifoDepth),
+    .MemArray(1'b1)
   ) u_fifo (
     .clk_i,
     .rst_ni,
