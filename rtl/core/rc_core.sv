@@ -730,6 +730,9 @@ module rc_core #(
   always_ff @(posedge clk_i) begin
     if (pp_v_q && !pp_end) begin
       pop1_entry_q <= stack_m[32'(pp_thr_q)*StackDepth + 32'(SpIdxW'(pp_sp - SpW'(1)))];
+      // The best hits are read with the entry: a popping thread's best hits do not change
+      // (only a thread in its leaf gets intersection results; PopBest_A).
+      pop1_best_t  <= gate_t(bt_m[pp_thr_q], get4(bhit_q, pp_thr_q));
     end
     pop1_thr_q   <= pp_thr_q;
     pop2_thr_q   <= pop1_thr_q;
@@ -737,7 +740,6 @@ module rc_core #(
   end
 
   // Cull: ray r stays only if le(tmin_r, best_t_r), by the format's comparison.
-  assign pop1_best_t = gate_t(bt_m[pop1_thr_q], get4(bhit_q, pop1_thr_q));
   logic [3:0] pop_cmp_v;
   for (genvar r = 0; r < 4; r++) begin : g_pop_cmp
     logic unused_lt, unused_eq;
@@ -1736,6 +1738,11 @@ module rc_core #(
   // Intersection results belong to threads in their leaf, with triangles still outstanding.
   IsectOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  wb_v_q |-> st_q[wb_thr_q*4 +: 4] == StLeafRun && wb_pend != 32'd0);
+  // The best hits read with the stack entry are still the thread's (the cull uses them).
+  logic [4*W-1:0] pop1_best_now;
+  assign pop1_best_now = gate_t(bt_m[pop1_thr_q], get4(bhit_q, pop1_thr_q));
+  PopBest_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              pop1_v_q |-> pop1_best_t == pop1_best_now);
   // A pop result belongs to a thread that is popping.
   PopOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                pop2_v |-> st_q[pop2_thr_q*4 +: 4] == StPopping);

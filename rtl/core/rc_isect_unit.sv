@@ -126,15 +126,14 @@ module rc_isect_unit #(
   // Transforms: o' and d'     //
   ///////////////////////////////
 
-  // Side band carried through the o' transform's tag: {tag, tri, best_t, tri < best_tri}.
-  localparam int unsigned SbW = TagW + 32 + W + 1;
-  logic           tri_lt;
+  // Side band carried through the o' transform's tag: {tag, tri, best_t, best_tri}. The
+  // triangle order (tri < best_tri, a 32-bit compare) is taken at the far end, between two
+  // registers, so it is not on the path from the core's best-hit read into the unit.
+  localparam int unsigned SbW = TagW + 32 + W + 32;
   logic [SbW-1:0] sb_x;
   logic           xo_valid;
   logic [3*W-1:0] xo, xd;
   logic           issue_busy;  // the input side cannot take a pair this cycle
-
-  assign tri_lt = $signed(tri_i) < $signed(best_tri_i);
 
   if (SharedXform) begin : g_shared_xform
     // One transform unit, used twice per pair. The accepted pair is registered (m_q, sb_q,
@@ -164,7 +163,7 @@ module rc_isect_unit #(
       if (in_fire) begin
         m_q   <= m_i;
         org_q <= org_i;
-        sb_q  <= {tag_i, tri_i, best_t_i, tri_lt};
+        sb_q  <= {tag_i, tri_i, best_t_i, best_tri_i};
       end
       if (in_fire) begin
         v_q <= dir_i;
@@ -220,7 +219,7 @@ module rc_isect_unit #(
     ) u_xform_org (
       .clk_i, .rst_ni,
       .valid_i(in_fire), .ready_o(xo_ready), .m_i, .v_i(org_i), .translate_i(1'b1),
-      .tag_i({tag_i, tri_i, best_t_i, tri_lt}),
+      .tag_i({tag_i, tri_i, best_t_i, best_tri_i}),
       .valid_o(xo_valid), .ready_i(1'b1), .r_o(xo), .tag_o(sb_x)
     );
 
@@ -270,8 +269,11 @@ module rc_isect_unit #(
   logic [W-1:0]    ox1, oy1, dx1, dy1, dz1, best_t1;
   logic [TagW-1:0] tag1;
   logic [31:0]     tri_s1;
+  logic [31:0]     best_tri1;
   logic            tri_lt1;
-  assign {tag1, tri_s1, best_t1, tri_lt1, dz1, dy1, dx1, oy1, ox1} = d1_q[DivStages*D1W-1 -: D1W];
+  assign {tag1, tri_s1, best_t1, best_tri1, dz1, dy1, dx1, oy1, ox1} =
+      d1_q[DivStages*D1W-1 -: D1W];
+  assign tri_lt1 = $signed(tri_s1) < $signed(best_tri1);
 
   ///////////////////////////////////////////////
   // t*d'x, t*d'y and the comparisons on t     //
