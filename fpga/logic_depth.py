@@ -14,7 +14,7 @@ named signals the worst path passes through.
 This is an estimate for finding deep logic in minutes instead of a place-and-route run: the cell
 delays are rough ECP5 (speed grade 6) figures and every general net costs the same NET_NS, while
 real routing depends on placement and congestion (nextpnr's routed paths in `make fpga-ecp5` have
-been 1.5 to 2 times these estimates). The ranking, not the absolute figure, is the point.
+been 1.5 to 2.5 times these estimates). The ranking, not the absolute figure, is the point.
 """
 import argparse
 import collections
