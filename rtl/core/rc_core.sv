@@ -405,10 +405,10 @@ module rc_core #(
   end
   always_ff @(posedge clk_i) begin
     if (acc_take) begin
-      feed_org_q   <= pkt_org_i;
-      feed_dir_q   <= pkt_dir_i;
-      feed_ilen_q  <= pkt_inv_len_i;
-      feed_pix_q   <= pkt_pixel_i;
+      feed_org_q  <= pkt_org_i;
+      feed_dir_q  <= pkt_dir_i;
+      feed_ilen_q <= pkt_inv_len_i;
+      feed_pix_q  <= pkt_pixel_i;
       feed_vmask_q <= pkt_mask_i;
     end
   end
@@ -1048,8 +1048,8 @@ module rc_core #(
   always_ff @(posedge clk_i) begin
     if (io_v_q) begin
       wb_last_q <= io_tag_q[ThrW+2];
-      wb_r_q    <= io_r;
-      wb_thr_q  <= io_thr;
+      wb_r_q      <= io_r;
+      wb_thr_q    <= io_thr;
       wb_hit_q  <= io_hit_q;
       wb_t_q    <= io_t_q;
       wb_tri_q  <= io_tri_q;

@@ -37,12 +37,12 @@ module rc_rr_pick #(
   // the choice falls back to all requests when none at or after the pointer asks.
   logic [N-1:0]    hi_q, hi_d;
   logic [N-1:0]    upper, first_up, first_all, above_up, above_all;
+  logic [IdxW-1:0] idx_up, idx_all;
   logic            any_up;
 
   // The lowest set bit of x is x & -x, and the bits above it are ~(x ^ (x - 1)): carry chains,
-  // for the requests at or after the pointer and for all requests side by side; the index of
-  // the one-hot choice is an OR of its bits' numbers (log depth, no chain through the
-  // requesters).
+  // for the requests at or after the pointer and for all requests side by side; the index of a
+  // one-hot vector is an OR of its bits' numbers (log depth, no chain through the requesters).
   function automatic logic [IdxW-1:0] index_of(input logic [N-1:0] one_hot);
     index_of = '0;
     for (int unsigned i = 0; i < N; i++) begin
@@ -56,8 +56,10 @@ module rc_rr_pick #(
   assign first_all = req_i & (~req_i + N'(1));
   assign above_up  = ~(upper ^ (upper - N'(1)));
   assign above_all = ~(req_i ^ (req_i - N'(1)));
+  assign idx_up    = index_of(first_up);
+  assign idx_all   = index_of(first_all);
+  assign idx_o     = any_up ? idx_up : idx_all;
   assign grant_o   = any_up ? first_up : first_all;
-  assign idx_o     = index_of(grant_o);
   assign hi_d      = any_up ? above_up : above_all;
   assign valid_o   = |req_i;
 
