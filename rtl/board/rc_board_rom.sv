@@ -8,11 +8,13 @@
 //   significant digit first); in simulation (SYNTHESIS undefined) the plusarg +<Name>=<file>
 //   overrides it, so one verilated model serves any scene.
 // - Handshake: the protocol of docs/architecture.md ("Memory ports"). req_valid_i/req_ready_o,
-//   then rsp_valid_o/rsp_ready_i. req_ready_o = !rsp_valid_o || rsp_ready_i (ready may depend on
-//   ready; rsp_valid_o comes from a register and never depends on rsp_ready_i). The response
-//   holds until taken.
-// - Latency: 1 cycle (the block RAM's registered read); throughput one request per cycle while
-//   rsp_ready_i is 1. Responses are in request order.
+//   then rsp_valid_o/rsp_ready_i. req_ready_o = !(both stages full) || rsp_ready_i (ready may
+//   depend on ready; rsp_valid_o comes from a register and never depends on rsp_ready_i). The
+//   response holds until taken.
+// - Latency: 2 cycles: the block RAM's registered read, then an output register in the fabric,
+//   so that the block RAM's slow clock-to-out (5.6 ns on the LFE5U-85F, speed grade 6) ends at a
+//   flip-flop instead of feeding the core's response checks. Throughput one request per cycle
+//   while rsp_ready_i is 1 (the two stages stall together). Responses are in request order.
 // - Parameters: Width record bits, Depth records (>= 1), IdxW index bits, TagW tag bits.
 // - Illegal input: none (every index is answered; out-of-range ones with an error).
 // - Reset: rst_ni (active low, asynchronous) clears rsp_valid_o; contents are not reset.
@@ -58,42 +60,73 @@ module rc_board_rom #(
 `endif
   end
 
-  logic             take, in_range;
+  // Stage 1 is the block RAM's read register (s1), stage 2 the output register (s2). Stage 2
+  // takes stage 1 whenever it is empty or being taken; stage 1 takes a request whenever it is
+  // empty or moving on.
+  logic             take, in_range, adv;
   logic [AddrW-1:0] addr;
-  logic             rsp_valid_q, rsp_error_q;
-  logic [TagW-1:0]  rsp_tag_q;
-  logic [Width-1:0] rsp_data_q;
+  logic             s1_valid_q, s1_error_q, s2_valid_q, s2_error_q;
+  logic [TagW-1:0]  s1_tag_q, s2_tag_q;
+  logic [Width-1:0] s1_data_q, s2_data_q;
 
-  assign req_ready_o = ~rsp_valid_q | rsp_ready_i;
+  assign adv         = s1_valid_q & (~s2_valid_q | rsp_ready_i);
+  assign req_ready_o = ~s1_valid_q | adv;
   assign take        = req_valid_i & req_ready_o;
   assign in_range    = {32'd0, req_index_i} < 64'(Depth);
   assign addr        = in_range ? AddrW'(req_index_i) : '0;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      rsp_valid_q <= 1'b0;
-    end else if (take) begin
-      rsp_valid_q <= 1'b1;
-    end else if (rsp_ready_i) begin
-      rsp_valid_q <= 1'b0;
+      s1_valid_q <= 1'b0;
+      s2_valid_q <= 1'b0;
+    end else begin
+      if (take) begin
+        s1_valid_q <= 1'b1;
+      end else if (adv) begin
+        s1_valid_q <= 1'b0;
+      end
+      if (adv) begin
+        s2_valid_q <= 1'b1;
+      end else if (rsp_ready_i) begin
+        s2_valid_q <= 1'b0;
+      end
     end
   end
 
   always_ff @(posedge clk_i) begin
     if (take) begin
-      rsp_tag_q   <= req_tag_i;
-      rsp_error_q <= ~in_range;
+      s1_tag_q   <= req_tag_i;
+      s1_error_q <= ~in_range;
+    end
+    if (adv) begin
+      s2_tag_q   <= s1_tag_q;
+      s2_error_q <= s1_error_q;
+      s2_data_q  <= s1_data_q;
     end
   end
 
   // The block RAM read port: registered, enabled by the request handshake.
   always_ff @(posedge clk_i) begin
-    if (take) rsp_data_q <= mem[addr];
+    if (take) s1_data_q <= mem[addr];
   end
 
-  assign rsp_valid_o = rsp_valid_q;
-  assign rsp_tag_o   = rsp_tag_q;
-  assign rsp_data_o  = rsp_data_q;
-  assign rsp_error_o = rsp_error_q;
+  assign rsp_valid_o = s2_valid_q;
+  assign rsp_tag_o   = s2_tag_q;
+  assign rsp_data_o  = s2_data_q;
+  assign rsp_error_o = s2_error_q;
+
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o(checks_on)
+  );
+
+  // The memory-port protocol: a response holds, unchanged, until it is taken.
+  RspHold_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    rsp_valid_o && !rsp_ready_i |=> rsp_valid_o && $stable(rsp_tag_o) &&
+    $stable(rsp_data_o) && $stable(rsp_error_o));
+`endif
 
 endmodule

@@ -223,6 +223,11 @@ module rc_core #(
   logic [4*W-1:0]    bdz_m  [0:Threads-1];
   logic [127:0]      btri_m [0:Threads-1];
   logic [W-1:0]      nlen_m [0:Threads*4-1];   // |n| of the hit triangle, per ray id
+  // The stack: thread t's entry at depth k (1 .. StackDepth, the stack pointer after its push)
+  // in slot {t, k mod StackDepth}, so a pop reads at the pointer itself (no subtraction). A
+  // thread never pushes and pops in one cycle, so a read never meets a write to its slot
+  // (no_rw_check: no collision logic around the block RAM).
+  (* no_rw_check *)
   logic [EntryW-1:0] stack_m [0:Threads*StackDepth-1];
 
   // The state vectors of the schedulers.
@@ -371,6 +376,10 @@ module rc_core #(
   logic [RidW:0]   su_tag;      // {ray exists, thread, ray}
   logic [3*W-1:0]  su_org, su_dir, su_inv;
   logic [W-1:0]    su_tmin, su_tmax;
+  logic            s0_valid, s0_ready, s0_active;
+  logic [RidW:0]   s0_tag;
+  logic [3*W-1:0]  s0_inv;
+  logic [W-1:0]    s0_tmin, s0_tmax;
   logic [ThrW-1:0] su_thr;
   logic [1:0]      su_r;
   logic [3:0]      su_mask_new, su_mask_base, su_gmask_q, feed_vmask_q;
@@ -426,14 +435,46 @@ module rc_core #(
     .org_i   (su_org),
     .dir_i   (su_dir),
     .bounds_i(bounds_i),
-    .valid_o (su_valid),
-    .ready_i (su_out_ready),
-    .tag_o   (su_tag),
-    .inv_o   (su_inv),
-    .tmin_o  (su_tmin),
-    .tmax_o  (su_tmax),
-    .active_o(su_active)
+    .valid_o (s0_valid),
+    .ready_i (s0_ready),
+    .tag_o   (s0_tag),
+    .inv_o   (s0_inv),
+    .tmin_o  (s0_tmin),
+    .tmax_o  (s0_tmax),
+    .active_o(s0_active)
   );
+
+  // Set-up results are registered (sq_*_q) before they reach the thread states and the
+  // current-entry write port, so the set-up unit's output FIFO (a distributed-RAM read) feeds
+  // only this register. One cycle of latency per ray, none per packet in steady state; the
+  // register takes the next result in the cycle its result goes.
+  logic            sq_valid_q, sq_active_q;
+  logic [RidW:0]   sq_tag_q;
+  logic [3*W-1:0]  sq_inv_q;
+  logic [W-1:0]    sq_tmin_q, sq_tmax_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      sq_valid_q <= 1'b0;
+    end else if (s0_ready) begin
+      sq_valid_q <= s0_valid;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (s0_valid && s0_ready) begin
+      sq_tag_q    <= s0_tag;
+      sq_inv_q    <= s0_inv;
+      sq_tmin_q   <= s0_tmin;
+      sq_tmax_q   <= s0_tmax;
+      sq_active_q <= s0_active;
+    end
+  end
+  assign su_valid  = sq_valid_q;
+  assign su_tag    = sq_tag_q;
+  assign su_inv    = sq_inv_q;
+  assign su_tmin   = sq_tmin_q;
+  assign su_tmax   = sq_tmax_q;
+  assign su_active = sq_active_q;
+  assign s0_ready = ~su_valid | su_out_ready;
 
   // The current-entry arrays have one write port: pop results first, then traversal results,
   // then set-up results (the other two wait; their units hold them in their output FIFOs).
@@ -447,8 +488,10 @@ module rc_core #(
   // per-thread read on the way from a set-up result to the thread's state.
   assign su_mask_base = (su_r == 2'd0) ? 4'd0 : su_gmask_q;
   always_comb begin
-    su_mask_new = su_mask_base;
-    su_mask_new[su_r] = su_active & su_tag[RidW];
+    // A mux per bit (an indexed write would synthesise as a shifter with carry chains).
+    for (int unsigned r = 0; r < 4; r++) begin
+      su_mask_new[r] = (su_r == 2'(r)) ? su_active & su_tag[RidW] : su_mask_base[r];
+    end
   end
   always_ff @(posedge clk_i) begin
     if (su_v) su_gmask_q <= su_mask_new;
@@ -461,8 +504,8 @@ module rc_core #(
   logic             fe_any, fe_take, fe_bad;
   logic [ThrW-1:0]  fe_thr;
   logic [Threads-1:0] g_fe;
-  logic [NodeW-1:0] fe_node;
-  logic             nreq_free;
+  logic             nreq_free, fq_free, fq_v_q;
+  logic [ThrW-1:0]  fq_thr_q;
   logic             node_req_valid_q;
   logic [ThrW-1:0]  node_req_thr_q;
   logic [NodeW-1:0] node_req_node_q;
@@ -480,9 +523,12 @@ module rc_core #(
     .grant_o(g_fe)
   );
 
+  // The choice is registered (fq_*_q) and the node index read from node_m in the next cycle,
+  // so the scheduler's choice addresses no distributed RAM in its own cycle (one cycle of
+  // latency per fetch). The thread is StNode from its choice, so its node_m holds meanwhile.
   assign nreq_free = ~node_req_valid_q | node_req_ready_i;
-  assign fe_take   = fe_any & nreq_free;
-  assign fe_node   = node_m[fe_thr];
+  assign fq_free   = ~fq_v_q | nreq_free;
+  assign fe_take   = fe_any & fq_free;
   // Whether the thread's current node is outside the node section. Only a packet's root (node
   // 0) can be: a traversal's two children are checked against the node count with their parent
   // (nr_malformed), and a popped entry is such a child (CurNodeInRange_A). So a fetch fails
@@ -499,15 +545,22 @@ module rc_core #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      fq_v_q           <= 1'b0;
+      fq_thr_q         <= '0;
       node_req_valid_q <= 1'b0;
       node_req_thr_q   <= '0;
       node_req_node_q  <= '0;
     end else begin
-      if (node_req_valid_q && node_req_ready_i) node_req_valid_q <= 1'b0;
+      if (fq_v_q && nreq_free) fq_v_q <= 1'b0;
       if (fe_take && !fe_bad) begin
+        fq_v_q   <= 1'b1;
+        fq_thr_q <= fe_thr;
+      end
+      if (node_req_valid_q && node_req_ready_i) node_req_valid_q <= 1'b0;
+      if (fq_v_q && nreq_free) begin
         node_req_valid_q <= 1'b1;
-        node_req_thr_q   <= fe_thr;
-        node_req_node_q  <= fe_node;
+        node_req_thr_q   <= fq_thr_q;
+        node_req_node_q  <= node_m[fq_thr_q];
       end
     end
   end
@@ -520,48 +573,115 @@ module rc_core #(
   // Node response and decode           //
   ////////////////////////////////////////
 
-  logic             trav_ready, nr_take, nr_leaf, nr_malformed, nr_leaf_bad, nr_inner_ok;
+  // The node response is registered (nq_*_q) together with its checks, computed from the
+  // response as it arrives: the node memory's output (on the board, a block RAM's) feeds only
+  // the checks' carry chains and a register, and the decode that drives the sub-units, the
+  // thread states and the leaf registers starts from flip-flops. One cycle of latency per node
+  // visit; the register takes the next response in the cycle its response goes (ready depends
+  // on the sub-units' credit, never the reverse).
+  logic             trav_ready, nr_take, nr_leaf, nr_err, nr_malformed, nr_leaf_bad, nr_inner_ok;
+  logic             nr_empty;
   logic [ThrW-1:0]  nr_thr;
-  logic [1:0]       nr_kind, nr_axis;
+  logic [1:0]       nr_axis;
   logic [NodeW-1:0] nr_idx;
   logic [31:0]      nr_upper;
   logic [3:0]       nr_mask;
-  logic [12*W-1:0]  nr_org_all, nr_inv_all;
+  logic [12*W-1:0]  n0_org_all, n0_inv_all;
   logic [4*W-1:0]   nr_org, nr_inv;
 
-  assign node_rsp_ready_o = trav_ready;
-  assign nr_take  = node_rsp_valid_i & trav_ready;
-  assign nr_thr   = node_rsp_tag_i[ThrW-1:0];
-  assign nr_kind  = node_rsp_data_i[rc_pkg::KdNodeKindLsb +: 2];
-  assign nr_idx   = node_rsp_data_i[rc_pkg::KdNodeIndexLsb +: NodeW];
-  assign nr_upper = node_rsp_data_i[rc_pkg::KdNodeValueLsb +: 32];
-  assign nr_leaf  = nr_kind == 2'(rc_pkg::KdNodeKindLeaf);
-  assign nr_axis  = nr_leaf ? 2'd0 : nr_kind;
-  assign nr_mask  = get4(mask_q, nr_thr);
+  logic             n0_take, n0_leaf, n0_split_wide, n0_split_special, n0_malformed;
+  logic             n0_leaf_bad;
+  logic [ThrW-1:0]  n0_thr;
+  logic [1:0]       n0_kind;
+  logic [NodeW-1:0] n0_idx;
+  logic [31:0]      n0_upper;
+  logic             nq_v_q;
+
+  assign node_rsp_ready_o = ~nq_v_q | trav_ready;
+  assign n0_take  = node_rsp_valid_i & node_rsp_ready_o;
+  assign n0_thr   = node_rsp_tag_i[ThrW-1:0];
+  assign n0_kind  = node_rsp_data_i[rc_pkg::KdNodeKindLsb +: 2];
+  assign n0_idx   = node_rsp_data_i[rc_pkg::KdNodeIndexLsb +: NodeW];
+  assign n0_upper = node_rsp_data_i[rc_pkg::KdNodeValueLsb +: 32];
+  assign n0_leaf  = n0_kind == 2'(rc_pkg::KdNodeKindLeaf);
 
   // The golden model's checks (trace_packet): a split wider than the format, NaN or infinite;
-  // children not after the parent, or the right child outside the node section.
-  logic nr_split_wide, nr_split_special;
+  // children not after the parent, or the right child outside the node section; a leaf's list
+  // beyond the list section.
   if (W < 32) begin : g_split_wide
-    assign nr_split_wide = |nr_upper[31:W];
+    assign n0_split_wide = |n0_upper[31:W];
   end else begin : g_split_fits
-    assign nr_split_wide = 1'b0;
+    assign n0_split_wide = 1'b0;
   end
-  assign nr_split_special = &nr_upper[W-2 -: ExpW];
-  assign nr_malformed = nr_split_wide | nr_split_special |
-                        (nr_idx <= node_m[nr_thr]) |
-                        ({{(33 - NodeW){1'b0}}, nr_idx} + 33'd1 >= {1'b0, node_count_i});
-  assign nr_leaf_bad  = {{(33 - NodeW){1'b0}}, nr_idx} + {1'b0, nr_upper} > {1'b0, list_count_i};
-  assign nr_inner_ok  = node_rsp_valid_i & ~node_rsp_error_i & ~nr_leaf & ~nr_malformed;
+  assign n0_split_special = &n0_upper[W-2 -: ExpW];
+  assign n0_malformed = n0_split_wide | n0_split_special |
+                        (n0_idx <= node_m[n0_thr]) |
+                        ({{(33 - NodeW){1'b0}}, n0_idx} + 33'd1 >= {1'b0, node_count_i});
+  assign n0_leaf_bad  = {{(33 - NodeW){1'b0}}, n0_idx} + {1'b0, n0_upper} >
+                        {1'b0, list_count_i};
 
-  assign nr_org_all = org_m[nr_thr];
-  assign nr_inv_all = inv_m[nr_thr];
-  always_comb begin
-    for (int unsigned r = 0; r < 4; r++) begin
-      nr_org[r*W +: W] = axis_w(nr_org_all, r, nr_axis);
-      nr_inv[r*W +: W] = axis_w(nr_inv_all, r, nr_axis);
+  logic             nq_err_q, nq_leaf_q, nq_malformed_q, nq_leaf_bad_q, nq_empty_q;
+  logic [ThrW-1:0]  nq_thr_q;
+  logic [1:0]       nq_kind_q;
+  logic [NodeW-1:0] nq_idx_q;
+  logic [31:0]      nq_upper_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      nq_v_q <= 1'b0;
+    end else if (node_rsp_ready_o) begin
+      nq_v_q <= node_rsp_valid_i;
     end
   end
+  always_ff @(posedge clk_i) begin
+    if (n0_take) begin
+      nq_err_q       <= node_rsp_error_i;
+      nq_leaf_q      <= n0_leaf;
+      nq_malformed_q <= n0_malformed;
+      nq_leaf_bad_q  <= n0_leaf_bad;
+      nq_empty_q     <= n0_upper == 32'd0;
+      nq_thr_q       <= n0_thr;
+      nq_kind_q      <= n0_kind;
+      nq_idx_q       <= n0_idx;
+      nq_upper_q     <= n0_upper;
+    end
+  end
+
+  assign nr_take      = nq_v_q & trav_ready;
+  assign nr_err       = nq_err_q;
+  assign nr_thr       = nq_thr_q;
+  assign nr_idx       = nq_idx_q;
+  assign nr_upper     = nq_upper_q;
+  assign nr_leaf      = nq_leaf_q;
+  assign nr_empty     = nq_empty_q;
+  assign nr_malformed = nq_malformed_q;
+  assign nr_leaf_bad  = nq_leaf_bad_q;
+  assign nr_axis      = nr_leaf ? 2'd0 : nq_kind_q;
+  assign nr_mask      = get4(mask_q, nr_thr);
+  assign nr_inner_ok  = nq_v_q & ~nr_err & ~nr_leaf & ~nr_malformed;
+
+  // The rays' origins and inverse directions on the split axis are read as the response
+  // arrives and registered with it (the thread's org_m and inv_m do not change while StNode),
+  // so the sub-units' first stage starts from flip-flops.
+  logic [1:0]     n0_axis;
+  logic [4*W-1:0] n0_org, n0_inv, nq_org_q, nq_inv_q;
+  assign n0_axis    = n0_leaf ? 2'd0 : n0_kind;
+  assign n0_org_all = org_m[n0_thr];
+  assign n0_inv_all = inv_m[n0_thr];
+  always_comb begin
+    for (int unsigned r = 0; r < 4; r++) begin
+      n0_org[r*W +: W] = axis_w(n0_org_all, r, n0_axis);
+      n0_inv[r*W +: W] = axis_w(n0_inv_all, r, n0_axis);
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (n0_take) begin
+      nq_org_q <= n0_org;
+      nq_inv_q <= n0_inv;
+    end
+  end
+  assign nr_org = nq_org_q;
+  assign nr_inv = nq_inv_q;
 
   ////////////////////////////////////////
   // Traversal: four sub-units          //
@@ -729,7 +849,7 @@ module rc_core #(
   // Stack entry: {node, mask, tmin[4], tmax[4]}.
   always_ff @(posedge clk_i) begin
     if (pp_v_q && !pp_end) begin
-      pop1_entry_q <= stack_m[32'(pp_thr_q)*StackDepth + 32'(SpIdxW'(pp_sp - SpW'(1)))];
+      pop1_entry_q <= stack_m[{pp_thr_q, pp_sp[SpIdxW-1:0]}];
       // The best hits are read with the entry: a popping thread's best hits do not change
       // (only a thread in its leaf gets intersection results; PopBest_A).
       pop1_best_t  <= gate_t(bt_m[pp_thr_q], get4(bhit_q, pp_thr_q));
@@ -793,7 +913,7 @@ module rc_core #(
   logic            lp_any, lp_take;
   logic [ThrW-1:0] lp_thr;
   logic [Threads-1:0] g_lp;
-  logic            lu_busy_q;
+  logic            lu_busy_q, lu_load_q;
   logic [ThrW-1:0] lu_thr_q;
   logic [31:0]     lu_idx_q, lu_left_q;
   logic            lreq_free, li_take;
@@ -814,13 +934,17 @@ module rc_core #(
     .grant_o(g_lp)
   );
 
+  // The choice is registered (lu_thr_q) and the leaf's list offset and count read in the next
+  // cycle (lu_load_q), so the scheduler's choice addresses no distributed RAM in its own cycle
+  // (one cycle of latency per leaf). The thread is StLeafRun from its choice.
   assign lp_take   = lp_any & ~lu_busy_q;
   assign lreq_free = ~list_req_valid_q | list_req_ready_i;
-  assign li_take   = lu_busy_q & tag_avail & lreq_free;
+  assign li_take   = lu_busy_q & ~lu_load_q & tag_avail & lreq_free;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       lu_busy_q        <= 1'b0;
+      lu_load_q        <= 1'b0;
       lu_thr_q         <= '0;
       lu_idx_q         <= '0;
       lu_left_q        <= '0;
@@ -830,9 +954,13 @@ module rc_core #(
     end else begin
       if (lp_take) begin
         lu_busy_q <= 1'b1;
+        lu_load_q <= 1'b1;
         lu_thr_q  <= lp_thr;
-        lu_idx_q  <= loff_m[lp_thr];
-        lu_left_q <= lcnt_m[lp_thr];
+      end
+      if (lu_load_q) begin
+        lu_load_q <= 1'b0;
+        lu_idx_q  <= loff_m[lu_thr_q];
+        lu_left_q <= lcnt_m[lu_thr_q];
       end
       if (list_req_valid_q && list_req_ready_i) list_req_valid_q <= 1'b0;
       if (li_take) begin
@@ -851,9 +979,9 @@ module rc_core #(
   assign list_req_index_o = list_req_index_q;
 
   // List response: the entry's triangle request, or a bad address.
-  logic            tbuf_free, lr_take, lr_bad;
-  logic [LtW-1:0]  lr_tag;
-  logic [ThrW-1:0] lr_thr;
+  logic            tbuf_free, lr_take, lr_bad, lb_v_q;
+  logic [LtW-1:0]  lr_tag, lb_tag_q;
+  logic [ThrW-1:0] lr_thr, lb_thr_q;
   logic            tri_req_valid_q;
   logic [LtW-1:0]  tri_req_tag_q;
   logic [31:0]     tri_req_index_q;
@@ -862,8 +990,25 @@ module rc_core #(
   assign list_rsp_ready_o = tbuf_free;
   assign lr_take          = list_rsp_valid_i & tbuf_free;
   assign lr_tag           = list_rsp_tag_i[LtW-1:0];
-  assign lr_thr           = tp_thr_m[lr_tag];
   assign lr_bad           = list_rsp_error_i | (list_rsp_data_i >= tri_count_i);
+  // A failed entry is registered (lb_*_q, with its tag's thread) and retired in the next cycle
+  // (its thread's pending count, its tag): the check's carry chain and the tag pool's read end
+  // at flip-flops, not at pend_m.
+  assign lr_thr           = lb_thr_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      lb_v_q   <= 1'b0;
+      lb_tag_q <= '0;
+      lb_thr_q <= '0;
+    end else begin
+      lb_v_q <= lr_take & lr_bad;
+      if (lr_take) begin
+        lb_tag_q <= lr_tag;
+        lb_thr_q <= tp_thr_m[lr_tag];
+      end
+    end
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -1288,7 +1433,7 @@ module rc_core #(
   logic [2:0]      ev_err;                    // error bits raised this cycle (any thread)
   logic [Threads-1:0] pend_zero;
 
-  assign lr_dec = lr_take & lr_bad;
+  assign lr_dec = lb_v_q;
   assign te_dec = ti_err_take;
   assign io_dec = wb_v_q & wb_last_q;
 
@@ -1327,10 +1472,10 @@ module rc_core #(
   logic       nr_st_we, nr_bad_addr, nr_malf, tr_mask_we;
   logic [3:0] tr_next_mask;
   assign su_st       = (|su_mask_new) ? StFetch : StPop;
-  assign nr_bad_addr = node_rsp_error_i | (nr_leaf & nr_leaf_bad);
-  assign nr_malf     = ~node_rsp_error_i & ~nr_leaf & nr_malformed;
-  assign nr_st_we    = node_rsp_error_i | nr_leaf | nr_malformed;
-  assign nr_st       = (node_rsp_error_i || !nr_leaf || nr_leaf_bad || nr_upper == 32'd0) ?
+  assign nr_bad_addr = nr_err | (nr_leaf & nr_leaf_bad);
+  assign nr_malf     = ~nr_err & ~nr_leaf & nr_malformed;
+  assign nr_st_we    = nr_err | nr_leaf | nr_malformed;
+  assign nr_st       = (nr_err || !nr_leaf || nr_leaf_bad || nr_empty) ?
                        StPop : StLeaf;
   assign tr_st       = tr_overflow ? StPop : StFetch;
   assign tr_mask_we  = ~tr_overflow;
@@ -1503,13 +1648,13 @@ module rc_core #(
       tmin_m[cur_thr] <= cur_tmin;
       tmax_m[cur_thr] <= cur_tmax;
     end
-    if (nr_take && !node_rsp_error_i && nr_leaf) begin
+    if (nr_take && !nr_err && nr_leaf) begin
       loff_m[nr_thr] <= {{(32 - NodeW){1'b0}}, nr_idx};
       lcnt_m[nr_thr] <= nr_upper;
       pend_m[nr_thr] <= nr_upper;
     end
     if (tr_push_ok) begin
-      stack_m[32'(tr_thr)*StackDepth + 32'(tr_sp[SpIdxW-1:0])] <=
+      stack_m[{tr_thr, tr_sp[SpIdxW-1:0] + SpIdxW'(1)}] <=
           {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
     end
     if (wb_better) begin
@@ -1530,7 +1675,7 @@ module rc_core #(
   always_comb begin
     for (int unsigned i = 0; i < ListTags; i++) begin
       tf_d[i] = (tf_q[i] & ~(li_take & tag_first[i])) |
-                (lr_dec & (lr_tag == LtW'(i))) |
+                (lr_dec & (lb_tag_q == LtW'(i))) |
                 (tri_rsp_valid_i & tri_rsp_ready_o & (ti_tag == LtW'(i)));
     end
   end
@@ -1552,7 +1697,7 @@ module rc_core #(
 
   assign idle     = (&free_vec) & ~feed_busy_q;
   assign progress = acc_take | fb_take |
-                    (node_req_valid_q & node_req_ready_i) | nr_take |
+                    (node_req_valid_q & node_req_ready_i) | n0_take | nr_take |
                     (list_req_valid_q & list_req_ready_i) | lr_take |
                     (tri_req_valid_q & tri_req_ready_i) | (tri_rsp_valid_i & tri_rsp_ready_o) |
                     (shd_req_valid_q & shd_req_ready_i) | sr_take |
@@ -1593,9 +1738,9 @@ module rc_core #(
     perf_inc[3*rc_pkg::CorePerfNodesFetched +: 3]     = 3'(fe_take && !fe_bad);
     perf_inc[3*rc_pkg::CorePerfInnerVisits +: 3]      = 3'(nr_take && nr_inner_ok);
     perf_inc[3*rc_pkg::CorePerfTraversalSteps +: 3]   = (nr_take && nr_inner_ok) ? popcount4(nr_mask) : 3'd0;
-    perf_inc[3*rc_pkg::CorePerfLeafVisits +: 3]       = 3'(nr_take && !node_rsp_error_i && nr_leaf);
-    perf_inc[3*rc_pkg::CorePerfEmptyLeaves +: 3]      = 3'(nr_take && !node_rsp_error_i && nr_leaf &&
-                                                    nr_upper == 32'd0);
+    perf_inc[3*rc_pkg::CorePerfLeafVisits +: 3]       = 3'(nr_take && !nr_err && nr_leaf);
+    perf_inc[3*rc_pkg::CorePerfEmptyLeaves +: 3]      = 3'(nr_take && !nr_err && nr_leaf &&
+                                                    nr_empty);
     perf_inc[3*rc_pkg::CorePerfListEntries +: 3]      = 3'(lr_take);
     perf_inc[3*rc_pkg::CorePerfTriangleTests +: 3]    = 3'(is_take);
     perf_inc[3*rc_pkg::CorePerfStackPushes +: 3]      = 3'(tr_push_ok);
@@ -1692,6 +1837,9 @@ module rc_core #(
   // A node response answers the node request of a thread that waits for it.
   NodeRspOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    nr_take |-> st_q[nr_thr*4 +: 4] == StNode);
+  // ... also when it arrives: its checks read the thread's node_m then (stable while StNode).
+  NodeRspEarly_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                   n0_take |-> st_q[n0_thr*4 +: 4] == StNode);
   // The payload carried through the traversal sub-units is still the thread's state.
   logic [4*W-1:0] tr_lo_now, tr_hi_now;
   logic [3:0]     tr_mask_now;
@@ -1726,9 +1874,15 @@ module rc_core #(
   SetupOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  su_v |-> st_q[su_thr*4 +: 4] == StSetup);
   // List and triangle responses carry an outstanding tag of a thread in its leaf.
+  logic [ThrW-1:0] lr_owner;
+  assign lr_owner = tp_thr_m[lr_tag];
   ListRspTag_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  list_rsp_valid_i |-> !tf_q[lr_tag] &&
-                                 st_q[lr_thr*4 +: 4] == StLeafRun);
+                                 st_q[lr_owner*4 +: 4] == StLeafRun);
+  // A failed entry is retired a cycle later, its tag and thread still held.
+  ListBadRetire_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                    lb_v_q |-> !tf_q[lb_tag_q] &&
+                                    st_q[lr_thr*4 +: 4] == StLeafRun);
   TriRspTag_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 tri_rsp_valid_i |-> !tf_q[ti_tag] &&
                                 st_q[ti_thr*4 +: 4] == StLeafRun);
