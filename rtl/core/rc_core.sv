@@ -159,6 +159,7 @@ module rc_core #(
   localparam int unsigned NodeW   = rc_pkg::KdNodeIndexBits;
   localparam int unsigned SpW     = $clog2(StackDepth + 1);      // holds 0 .. StackDepth
   localparam int unsigned SpIdxW  = (StackDepth > 1) ? $clog2(StackDepth) : 1;
+  localparam int unsigned StkAW   = $clog2(Threads * StackDepth);  // stack RAM address
   localparam int unsigned EntryW  = NodeW + 4 + 8 * W;           // stack entry
   localparam int unsigned LtW     = (ListTags > 1) ? $clog2(ListTags) : 1;
   localparam int unsigned NPerf   = rc_pkg::CorePerfCount;
@@ -849,7 +850,7 @@ module rc_core #(
   // Stack entry: {node, mask, tmin[4], tmax[4]}.
   always_ff @(posedge clk_i) begin
     if (pp_v_q && !pp_end) begin
-      pop1_entry_q <= stack_m[{pp_thr_q, pp_sp[SpIdxW-1:0]}];
+      pop1_entry_q <= stack_m[StkAW'({pp_thr_q, pp_sp[SpIdxW-1:0]})];
       // The best hits are read with the entry: a popping thread's best hits do not change
       // (only a thread in its leaf gets intersection results; PopBest_A).
       pop1_best_t  <= gate_t(bt_m[pp_thr_q], get4(bhit_q, pp_thr_q));
@@ -1654,7 +1655,7 @@ module rc_core #(
       pend_m[nr_thr] <= nr_upper;
     end
     if (tr_push_ok) begin
-      stack_m[{tr_thr, tr_sp[SpIdxW-1:0] + SpIdxW'(1)}] <=
+      stack_m[StkAW'({tr_thr, tr_sp[SpIdxW-1:0] + SpIdxW'(1)})] <=
           {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
     end
     if (wb_better) begin
