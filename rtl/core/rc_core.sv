@@ -233,6 +233,9 @@ module rc_core #(
 
   // The state vectors of the schedulers.
   logic [Threads-1:0] free_vec, fetch_vec, leaf_vec, pop_vec, done_vec;
+  // The schedulers' choices act on the thread states a cycle after they are made, from their
+  // registered one-hot grants (below, "Thread state").
+  logic [Threads-1:0] h_acc, h_fe, h_lp, h_pe, h_sx;
   always_comb begin
     for (int unsigned t = 0; t < Threads; t++) begin
       free_vec[t]  = st_q[t*4 +: 4] == StFree;
@@ -338,7 +341,7 @@ module rc_core #(
 
   logic            acc_any, acc_take, acc_v_q;
   logic [ThrW-1:0] acc_thr;
-  logic [Threads-1:0] g_acc;
+  logic [Threads-1:0] g_acc, gacc_q;
   logic            feed_busy_q;
   logic [ThrW-1:0] feed_thr_q;
   logic [1:0]      feed_r_q;
@@ -398,11 +401,13 @@ module rc_core #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       acc_v_q     <= 1'b0;
+      gacc_q      <= '0;
       feed_busy_q <= 1'b0;
       feed_thr_q  <= '0;
       feed_r_q    <= '0;
     end else begin
       acc_v_q <= acc_take;
+      gacc_q  <= g_acc;
       if (acc_take) begin
         feed_busy_q <= 1'b1;
         feed_thr_q  <= acc_thr;
@@ -505,8 +510,9 @@ module rc_core #(
   logic             fe_any, fe_take, fe_bad;
   logic [ThrW-1:0]  fe_thr;
   logic [Threads-1:0] g_fe;
-  logic             nreq_free, fq_free, fq_v_q;
+  logic             nreq_free, fq_free, fq_v_q, fe_took_q;
   logic [ThrW-1:0]  fq_thr_q;
+  logic [Threads-1:0] gfe_q;
   logic             node_req_valid_q;
   logic [ThrW-1:0]  node_req_thr_q;
   logic [NodeW-1:0] node_req_node_q;
@@ -517,7 +523,7 @@ module rc_core #(
   ) u_pick_fetch (
     .clk_i,
     .rst_ni,
-    .req_i  (fetch_vec),
+    .req_i  (fetch_vec & ~h_fe),
     .take_i (fe_take),
     .valid_o(fe_any),
     .idx_o  (fe_thr),
@@ -548,10 +554,14 @@ module rc_core #(
     if (!rst_ni) begin
       fq_v_q           <= 1'b0;
       fq_thr_q         <= '0;
+      fe_took_q        <= 1'b0;
+      gfe_q            <= '0;
       node_req_valid_q <= 1'b0;
       node_req_thr_q   <= '0;
       node_req_node_q  <= '0;
     end else begin
+      fe_took_q <= fe_take;
+      gfe_q     <= g_fe;
       if (fq_v_q && nreq_free) fq_v_q <= 1'b0;
       if (fe_take && !fe_bad) begin
         fq_v_q   <= 1'b1;
@@ -806,7 +816,7 @@ module rc_core #(
 
   logic             pp_any, pp_v_q, pp_end;
   logic [ThrW-1:0]  pp_thr, pp_thr_q;
-  logic [Threads-1:0] g_pp;
+  logic [Threads-1:0] g_pp, gpp_q;
   logic [SpW-1:0]   pp_sp;
   logic             pop1_v_q;
   logic [ThrW-1:0]  pop1_thr_q, pop2_thr_q;
@@ -820,26 +830,28 @@ module rc_core #(
   ) u_pick_pop (
     .clk_i,
     .rst_ni,
-    .req_i  (pop_vec),
+    .req_i  (pop_vec & ~h_pe),
     .take_i (pp_any),
     .valid_o(pp_any),
     .idx_o  (pp_thr),
     .grant_o(g_pp)
   );
 
-  // The pop in four cycles: the choice (the thread goes to StPopping) is registered (pp_v_q,
-  // pp_thr_q); in the next cycle the thread's stack pointer and error bits decide: an empty
-  // stack or an error ends the packet's walk (StDone), otherwise the top entry is read and the
+  // The pop in four cycles: the choice is registered (pp_v_q, pp_thr_q, gpp_q); in the next
+  // cycle the thread's stack pointer and error bits decide: an empty stack or an error ends the
+  // packet's walk (StDone), otherwise the thread goes to StPopping, the top entry is read and the
   // pointer decremented; then the entry is culled against the best hits, and then it becomes
   // the current entry. The choice thus never meets the stack pointer's read in one cycle.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       pp_v_q   <= 1'b0;
       pp_thr_q <= '0;
+      gpp_q    <= '0;
       pop1_v_q <= 1'b0;
     end else begin
       pp_v_q   <= pp_any;
       pp_thr_q <= pp_thr;
+      gpp_q    <= g_pp;
       pop1_v_q <= pp_v_q & ~pp_end;
     end
   end
@@ -913,7 +925,7 @@ module rc_core #(
 
   logic            lp_any, lp_take;
   logic [ThrW-1:0] lp_thr;
-  logic [Threads-1:0] g_lp;
+  logic [Threads-1:0] g_lp, glp_q;
   logic            lu_busy_q, lu_load_q;
   logic [ThrW-1:0] lu_thr_q;
   logic [31:0]     lu_idx_q, lu_left_q;
@@ -946,6 +958,7 @@ module rc_core #(
     if (!rst_ni) begin
       lu_busy_q        <= 1'b0;
       lu_load_q        <= 1'b0;
+      glp_q            <= '0;
       lu_thr_q         <= '0;
       lu_idx_q         <= '0;
       lu_left_q        <= '0;
@@ -956,6 +969,7 @@ module rc_core #(
       if (lp_take) begin
         lu_busy_q <= 1'b1;
         lu_load_q <= 1'b1;
+        glp_q     <= g_lp;
         lu_thr_q  <= lp_thr;
       end
       if (lu_load_q) begin
@@ -1218,7 +1232,7 @@ module rc_core #(
 
   logic            shp_any, shp_take, shp_none, shp_v_q;
   logic [ThrW-1:0] shp_thr, shp_thr_q;
-  logic [Threads-1:0] g_shp;
+  logic [Threads-1:0] g_shp, gshp_q;
   logic            sh_busy_q;
   logic [ThrW-1:0] sh_thr_q;
   logic [1:0]      sh_r_q;
@@ -1242,9 +1256,9 @@ module rc_core #(
     .grant_o(g_shp)
   );
 
-  // A traced packet is chosen (it goes to StShade) and the choice registered (shp_v_q,
-  // shp_thr_q); in the next cycle its rays start to pass shading one by one (sh_busy_q), or a
-  // packet without rays is freed. So the choice never meets the thread's ray mask and the
+  // A traced packet is chosen and the choice registered (shp_v_q, shp_thr_q, gshp_q); in the
+  // next cycle it goes to StShade and its rays start to pass shading one by one (sh_busy_q), or
+  // a packet without rays is freed. So the choice never meets the thread's ray mask and the
   // shading sequencer in one cycle.
   assign shp_take = shp_any & ~sh_busy_q & ~shp_v_q;
   assign shp_none = get4(vmask_q, shp_thr_q) == 4'd0;
@@ -1261,6 +1275,7 @@ module rc_core #(
     if (!rst_ni) begin
       shp_v_q         <= 1'b0;
       shp_thr_q       <= '0;
+      gshp_q          <= '0;
       sh_busy_q       <= 1'b0;
       sh_thr_q        <= '0;
       sh_r_q          <= '0;
@@ -1272,6 +1287,7 @@ module rc_core #(
     end else begin
       shp_v_q   <= shp_take;
       shp_thr_q <= shp_thr;
+      gshp_q    <= g_shp;
       if (shp_v_q && !shp_none) begin
         sh_busy_q <= 1'b1;
         sh_thr_q  <= shp_thr_q;
@@ -1448,24 +1464,28 @@ module rc_core #(
     for (int unsigned t = 0; t < Threads; t++) hot[t] = en && (i == ThrW'(t));
   endfunction
 
-  logic [Threads-1:0] h_acc, h_su, h_fe, h_nr, h_tr, h_lp, h_lr, h_te, h_pp, h_pe, h_p2, h_wb;
-  logic [Threads-1:0] h_shp, h_sx, h_fb;
-  // The schedulers' choices come one-hot from rc_rr_pick (grant_o): no index decode on the path
-  // from a choice to the thread states.
-  assign h_acc = {Threads{acc_take}} & g_acc;
+  logic [Threads-1:0] h_su, h_nr, h_tr, h_lr, h_te, h_p2, h_wb, h_fb;
+  // The schedulers' choices come one-hot from rc_rr_pick (grant_o) and are registered; the state
+  // update acts on the registered grant in the next cycle, so a choice and the state it changes
+  // are never in one cycle (and there is no index decode between them). Each choice already
+  // had that cycle: the packet's arrays are written from the feeder registers (acc_v_q), the
+  // node index and the leaf's list are read from the registered choice (fq, lu_load_q), the
+  // pop and shading choices decide in the next cycle (pp_v_q, shp_v_q). A chosen thread still
+  // shows its old state for that cycle: the fetch and pop choices, which can choose again at
+  // once, mask it out of their requests; the others cannot choose in that cycle (the feeder,
+  // the list unit and the shading choice are busy).
+  assign h_acc = {Threads{acc_v_q}} & gacc_q;
   assign h_su  = hot(su_v, su_thr);
-  assign h_fe  = {Threads{fe_take}} & g_fe;
+  assign h_fe  = {Threads{fe_took_q}} & gfe_q;
   assign h_nr  = hot(nr_take, nr_thr);
   assign h_tr  = hot(tr_v, tr_thr);
-  assign h_lp  = {Threads{lp_take}} & g_lp;
+  assign h_lp  = {Threads{lu_load_q}} & glp_q;
   assign h_lr  = hot(lr_dec, lr_thr);
   assign h_te  = hot(te_dec, ti_thr_q);
-  assign h_pp  = {Threads{pp_any}} & g_pp;
-  assign h_pe  = hot(pp_v_q, pp_thr_q);
+  assign h_pe  = {Threads{pp_v_q}} & gpp_q;
   assign h_p2  = hot(pop2_v, pop2_thr_q);
   assign h_wb  = hot(wb_better, wb_thr_q);
-  assign h_shp = {Threads{shp_take}} & g_shp;
-  assign h_sx  = hot(shp_v_q, shp_thr_q);
+  assign h_sx  = {Threads{shp_v_q}} & gshp_q;
   assign h_fb  = hot(fb_take, fb_thr);
 
   // The thread-independent parts of each event's new values.
@@ -1493,7 +1513,8 @@ module rc_core #(
       logic        fb_last;
       fb_last = fbw_q[t*3 +: 3] == 3'd1;
       we = {h_acc[t], h_su[t] & su_last, h_fe[t], h_nr[t] & nr_st_we, h_tr[t], h_lp[t],
-            pend_zero[t], h_pp[t], h_pe[t] & pp_end, h_p2[t], h_shp[t], h_sx[t] & shp_none,
+            pend_zero[t], h_pe[t] & ~pp_end, h_pe[t] & pp_end, h_p2[t], h_sx[t] & ~shp_none,
+            h_sx[t] & shp_none,
             h_fb[t] & fb_last};
       st_or = ({4{we[12]}} & StSetup) | ({4{we[11]}} & su_st) |
               ({4{we[10]}} & (node_empty_q ? StPop : StNode)) | ({4{we[9]}} & nr_st) |
@@ -1508,7 +1529,7 @@ module rc_core #(
       mask_d[t*4 +: 4] = h_acc[t] ? 4'd0 :
                          (h_su[t] | (h_tr[t] & tr_mask_we) | (h_p2[t] & (|pop2_mask))) ?
                          mask_or : mask_q[t*4 +: 4];
-      vmask_d[t*4 +: 4] = h_acc[t] ? pkt_mask_i : vmask_q[t*4 +: 4];
+      vmask_d[t*4 +: 4] = h_acc[t] ? feed_vmask_q : vmask_q[t*4 +: 4];
       bhit_d[t*4 +: 4] = h_acc[t] ? 4'd0 :
                          bhit_q[t*4 +: 4] | ({4{h_wb[t]}} & (4'd1 << wb_r_q));
       sp_d[t*SpW +: SpW] = h_acc[t] ? '0 :
@@ -1817,18 +1838,17 @@ module rc_core #(
     assign st_t = st_q[t*4 +: 4];
     EventsExclusive_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                         $onehot0({h_acc[t], h_su[t], h_fe[t], h_nr[t], h_tr[t],
-                                                  h_lp[t], pend_zero[t], h_pp[t], h_pe[t],
-                                                  h_p2[t], h_shp[t], h_sx[t], h_fb[t]}));
+                                                  h_lp[t], pend_zero[t], h_pe[t], h_p2[t],
+                                                  h_sx[t], h_fb[t]}));
     EventState_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    (!h_acc[t] || st_t == StFree) &&
                                    (!h_fe[t] || st_t == StFetch) &&
                                    (!h_lp[t] || st_t == StLeaf) &&
                                    (!(pend_zero[t] || h_lr[t] || h_te[t] || h_wb[t]) ||
                                     st_t == StLeafRun) &&
-                                   (!h_pp[t] || st_t == StPop) &&
-                                   (!(h_pe[t] || h_p2[t]) || st_t == StPopping) &&
-                                   (!h_shp[t] || st_t == StDone) &&
-                                   (!h_sx[t] || st_t == StShade) &&
+                                   (!h_pe[t] || st_t == StPop) &&
+                                   (!h_p2[t] || st_t == StPopping) &&
+                                   (!h_sx[t] || st_t == StDone) &&
                                    (!h_fb[t] || st_t == StShade));
   end
   // The four traversal sub-units take the same operations, so they stay in lock step.
