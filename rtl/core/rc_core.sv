@@ -532,7 +532,8 @@ module rc_core #(
 
   // The choice is registered (fq_*_q) and the node index read from node_m in the next cycle,
   // so the scheduler's choice addresses no distributed RAM in its own cycle (one cycle of
-  // latency per fetch). The thread is StNode from its choice, so its node_m holds meanwhile.
+  // latency per fetch). The thread stays StFetch, then StNode, from its choice on: nothing
+  // writes its node_m meanwhile.
   assign nreq_free = ~node_req_valid_q | node_req_ready_i;
   assign fq_free   = ~fq_v_q | nreq_free;
   assign fe_take   = fe_any & fq_free;
@@ -949,7 +950,8 @@ module rc_core #(
 
   // The choice is registered (lu_thr_q) and the leaf's list offset and count read in the next
   // cycle (lu_load_q), so the scheduler's choice addresses no distributed RAM in its own cycle
-  // (one cycle of latency per leaf). The thread is StLeafRun from its choice.
+  // (one cycle of latency per leaf). The thread stays StLeaf, then StLeafRun, from its choice
+  // on: nothing writes its loff_m and lcnt_m meanwhile.
   assign lp_take   = lp_any & ~lu_busy_q;
   assign lreq_free = ~list_req_valid_q | list_req_ready_i;
   assign li_take   = lu_busy_q & ~lu_load_q & tag_avail & lreq_free;
