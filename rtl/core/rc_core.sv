@@ -1715,7 +1715,7 @@ module rc_core #(
   // Status                             //
   ////////////////////////////////////////
 
-  logic            idle, progress, wd_fire;
+  logic            idle, progress, wd_fire, wd_clr_q;
   logic [31:0]     wd_q;
   logic [StatusW-1:0] error_q;
 
@@ -1726,14 +1726,21 @@ module rc_core #(
                     (tri_req_valid_q & tri_req_ready_i) | (tri_rsp_valid_i & tri_rsp_ready_o) |
                     (shd_req_valid_q & shd_req_ready_i) | sr_take |
                     (mat_req_valid_q & mat_req_ready_i) | sh_in_take;
-  assign wd_fire  = wd_q == 32'(WatchdogCycles);
+  // Whether the core was idle or completed a handshake is registered (wd_clr_q) before it
+  // clears the count: the handshakes come from every port across the chip. The count then
+  // lags a cycle, so it fires at WatchdogCycles - 1, and never in the cycle the registered
+  // clear arrives: the same cycle as counting without the register (WatchdogCycles cycles
+  // without a handshake).
+  assign wd_fire  = (wd_q == 32'(WatchdogCycles - 1)) & ~wd_clr_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      wd_q    <= '0;
-      error_q <= '0;
+      wd_q     <= '0;
+      wd_clr_q <= 1'b1;
+      error_q  <= '0;
     end else begin
-      if (idle || progress) begin
+      wd_clr_q <= idle | progress;
+      if (wd_clr_q) begin
         wd_q <= '0;
       end else if (!wd_fire) begin
         wd_q <= wd_q + 32'd1;
