@@ -604,7 +604,7 @@ module rc_core #(
   logic             n0_take, n0_leaf, n0_split_wide, n0_split_special, n0_malformed;
   logic             n0_leaf_bad;
   logic [ThrW-1:0]  n0_thr;
-  logic [1:0]       n0_kind;
+  logic [1:0]       n0_kind, n0_axis;
   logic [NodeW-1:0] n0_idx;
   logic [31:0]      n0_upper;
   logic             nq_v_q;
@@ -616,6 +616,7 @@ module rc_core #(
   assign n0_idx   = node_rsp_data_i[rc_pkg::KdNodeIndexLsb +: NodeW];
   assign n0_upper = node_rsp_data_i[rc_pkg::KdNodeValueLsb +: 32];
   assign n0_leaf  = n0_kind == 2'(rc_pkg::KdNodeKindLeaf);
+  assign n0_axis  = n0_leaf ? 2'd0 : n0_kind;  // the split axis (0 for a leaf: unused)
 
   // The golden model's checks (trace_packet): a split wider than the format, NaN or infinite;
   // children not after the parent, or the right child outside the node section; a leaf's list
@@ -634,7 +635,7 @@ module rc_core #(
 
   logic             nq_err_q, nq_leaf_q, nq_malformed_q, nq_leaf_bad_q, nq_empty_q;
   logic [ThrW-1:0]  nq_thr_q;
-  logic [1:0]       nq_kind_q;
+  logic [1:0]       nq_axis_q;
   logic [NodeW-1:0] nq_idx_q;
   logic [31:0]      nq_upper_q;
 
@@ -653,7 +654,7 @@ module rc_core #(
       nq_leaf_bad_q  <= n0_leaf_bad;
       nq_empty_q     <= n0_upper == 32'd0;
       nq_thr_q       <= n0_thr;
-      nq_kind_q      <= n0_kind;
+      nq_axis_q      <= n0_axis;
       nq_idx_q       <= n0_idx;
       nq_upper_q     <= n0_upper;
     end
@@ -668,16 +669,14 @@ module rc_core #(
   assign nr_empty     = nq_empty_q;
   assign nr_malformed = nq_malformed_q;
   assign nr_leaf_bad  = nq_leaf_bad_q;
-  assign nr_axis      = nr_leaf ? 2'd0 : nq_kind_q;
+  assign nr_axis      = nq_axis_q;
   assign nr_mask      = get4(mask_q, nr_thr);
   assign nr_inner_ok  = nq_v_q & ~nr_err & ~nr_leaf & ~nr_malformed;
 
   // The rays' origins and inverse directions on the split axis are read as the response
   // arrives and registered with it (the thread's org_m and inv_m do not change while StNode),
   // so the sub-units' first stage starts from flip-flops.
-  logic [1:0]     n0_axis;
   logic [4*W-1:0] n0_org, n0_inv, nq_org_q, nq_inv_q;
-  assign n0_axis    = n0_leaf ? 2'd0 : n0_kind;
   assign n0_org_all = org_m[n0_thr];
   assign n0_inv_all = inv_m[n0_thr];
   always_comb begin
