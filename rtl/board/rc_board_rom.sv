@@ -8,13 +8,17 @@
 //   significant digit first); in simulation (SYNTHESIS undefined) the plusarg +<Name>=<file>
 //   overrides it, so one verilated model serves any scene.
 // - Handshake: the protocol of docs/architecture.md ("Memory ports"). req_valid_i/req_ready_o,
-//   then rsp_valid_o/rsp_ready_i. req_ready_o = !(both stages full) || rsp_ready_i (ready may
-//   depend on ready; rsp_valid_o comes from a register and never depends on rsp_ready_i). The
-//   response holds until taken.
+//   then rsp_valid_o/rsp_ready_i. req_ready_o comes from a register (a one-entry skid buffer
+//   in front of the read: ready while it is empty), so no combinational path runs from
+//   rsp_ready_i or req_valid_i to req_ready_o and the core's request logic does not chain
+//   through the ROM into its own response ready. rsp_valid_o comes from a register and never
+//   depends on rsp_ready_i. The response holds until taken.
 // - Latency: 2 cycles: the block RAM's registered read, then an output register in the fabric,
 //   so that the block RAM's slow clock-to-out (5.6 ns on the LFE5U-85F, speed grade 6) ends at a
-//   flip-flop instead of feeding the core's response checks. Throughput one request per cycle
-//   while rsp_ready_i is 1 (the two stages stall together). Responses are in request order.
+//   flip-flop instead of feeding the core's response checks. A request that finds the read
+//   stage stalled waits in the skid buffer and is read one cycle later. Throughput one request
+//   per cycle while rsp_ready_i is 1 (the two stages stall together; the skid buffer then stays
+//   empty). Responses are in request order.
 // - Parameters: Width record bits, Depth records (>= 1), IdxW index bits, TagW tag bits.
 // - Illegal input: none (every index is answered; out-of-range ones with an error).
 // - Reset: rst_ni (active low, asynchronous) clears rsp_valid_o; contents are not reset.
@@ -60,26 +64,40 @@ module rc_board_rom #(
 `endif
   end
 
-  // Stage 1 is the block RAM's read register (s1), stage 2 the output register (s2). Stage 2
-  // takes stage 1 whenever it is empty or being taken; stage 1 takes a request whenever it is
-  // empty or moving on.
-  logic             take, in_range, adv;
+  // The skid buffer (k) holds a request accepted while the read stage could not take it;
+  // req_ready_o is its emptiness, a register. Stage 1 is the block RAM's read register (s1),
+  // stage 2 the output register (s2). Stage 2 takes stage 1 whenever it is empty or being
+  // taken; stage 1 takes the skid buffer's request, or else the port's, whenever it is empty or
+  // moving on.
+  logic             acc, take, in_range, adv, s1_free, rd_valid;
+  logic [IdxW-1:0]  rd_index;
+  logic [TagW-1:0]  rd_tag;
   logic [AddrW-1:0] addr;
-  logic             s1_valid_q, s1_error_q, s2_valid_q, s2_error_q;
-  logic [TagW-1:0]  s1_tag_q, s2_tag_q;
+  logic             k_valid_q, s1_valid_q, s1_error_q, s2_valid_q, s2_error_q;
+  logic [IdxW-1:0]  k_index_q;
+  logic [TagW-1:0]  k_tag_q, s1_tag_q, s2_tag_q;
   logic [Width-1:0] s1_data_q, s2_data_q;
 
   assign adv         = s1_valid_q & (~s2_valid_q | rsp_ready_i);
-  assign req_ready_o = ~s1_valid_q | adv;
-  assign take        = req_valid_i & req_ready_o;
-  assign in_range    = {32'd0, req_index_i} < 64'(Depth);
-  assign addr        = in_range ? AddrW'(req_index_i) : '0;
+  assign s1_free     = ~s1_valid_q | adv;
+  assign req_ready_o = ~k_valid_q;
+  assign acc         = req_valid_i & ~k_valid_q;
+  assign rd_valid    = k_valid_q | req_valid_i;
+  assign rd_index    = k_valid_q ? k_index_q : req_index_i;
+  assign rd_tag      = k_valid_q ? k_tag_q : req_tag_i;
+  assign take        = rd_valid & s1_free;
+  assign in_range    = 64'(rd_index) < 64'(Depth);
+  assign addr        = in_range ? AddrW'(rd_index) : '0;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      k_valid_q  <= 1'b0;
       s1_valid_q <= 1'b0;
       s2_valid_q <= 1'b0;
     end else begin
+      // Full only from an accepted request the read stage could not take; a full buffer is
+      // emptied by the read stage before anything else (req_ready_o is 0 meanwhile).
+      k_valid_q <= k_valid_q ? ~s1_free : (acc & ~s1_free);
       if (take) begin
         s1_valid_q <= 1'b1;
       end else if (adv) begin
@@ -94,8 +112,12 @@ module rc_board_rom #(
   end
 
   always_ff @(posedge clk_i) begin
+    if (acc) begin
+      k_index_q <= req_index_i;
+      k_tag_q   <= req_tag_i;
+    end
     if (take) begin
-      s1_tag_q   <= req_tag_i;
+      s1_tag_q   <= rd_tag;
       s1_error_q <= ~in_range;
     end
     if (adv) begin
@@ -127,6 +149,9 @@ module rc_board_rom #(
   RspHold_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     rsp_valid_o && !rsp_ready_i |=> rsp_valid_o && $stable(rsp_tag_o) &&
     $stable(rsp_data_o) && $stable(rsp_error_o));
+  // A request waits in the skid buffer only behind a read stage that cannot move on.
+  SkidBehindRead_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    k_valid_q |-> s1_valid_q);
 `endif
 
 endmodule
