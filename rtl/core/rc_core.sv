@@ -1119,6 +1119,39 @@ module rc_core #(
   assign ti_bt      = gate_t(bt_m[ti_thr_q], get4(bhit_q, ti_thr_q));
   assign ti_btri    = gate_tri(btri_m[ti_thr_q], get4(bhit_q, ti_thr_q));
 
+  // The unit's inputs are registered (ia_*_q, a register slice that takes a test whenever it
+  // is empty or the unit takes its test), so the reads of the thread's rays and best hits above
+  // end at flip-flops and the unit's input muxes start at them: the two are far apart on the
+  // chip. The best hit a test is filtered against is then read a cycle earlier, which changes
+  // no result: the write-back compares again with the ray's best at its own time.
+  logic              ia_v_q, iu_ready;
+  logic [ThrW+2:0]   ia_tag_q;
+  logic [31:0]       ia_tri_q, ia_btri_q;
+  logic [12*W-1:0]   ia_m_q;
+  logic [3*W-1:0]    ia_org_q, ia_dir_q;
+  logic [W-1:0]      ia_bt_q;
+
+  assign is_ready = ~ia_v_q | iu_ready;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ia_v_q <= 1'b0;
+    end else if (is_ready) begin
+      ia_v_q <= is_valid;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (is_take) begin
+      ia_tag_q  <= {ti_last, ti_r, ti_thr_q};
+      ia_tri_q  <= ti_tri_q;
+      ia_m_q    <= ti_m_q;
+      ia_org_q  <= lane_3w(ti_org_all, ti_r);
+      ia_dir_q  <= lane_3w(ti_dir_all, ti_r);
+      ia_bt_q   <= lane_w(ti_bt, ti_r);
+      ia_btri_q <= lane_32(ti_btri, ti_r);
+    end
+  end
+
   logic              iu_v, iu_hit;
   logic [ThrW+2:0]   iu_tag;
   logic [31:0]       iu_tri;
@@ -1132,15 +1165,15 @@ module rc_core #(
   ) u_isect (
     .clk_i,
     .rst_ni,
-    .valid_i   (is_valid),
-    .ready_o   (is_ready),
-    .tag_i     ({ti_last, ti_r, ti_thr_q}),
-    .tri_i     (ti_tri_q),
-    .m_i       (ti_m_q),
-    .org_i     (lane_3w(ti_org_all, ti_r)),
-    .dir_i     (lane_3w(ti_dir_all, ti_r)),
-    .best_t_i  (lane_w(ti_bt, ti_r)),
-    .best_tri_i(lane_32(ti_btri, ti_r)),
+    .valid_i   (ia_v_q),
+    .ready_o   (iu_ready),
+    .tag_i     (ia_tag_q),
+    .tri_i     (ia_tri_q),
+    .m_i       (ia_m_q),
+    .org_i     (ia_org_q),
+    .dir_i     (ia_dir_q),
+    .best_t_i  (ia_bt_q),
+    .best_tri_i(ia_btri_q),
     .valid_o   (iu_v),
     .ready_i   (1'b1),
     .tag_o     (iu_tag),
