@@ -24,7 +24,8 @@
 //   CoreTagBits wide; the core never has two requests with the same tag outstanding on a port.
 // - Status: idle_o = no packet in flight and no write pending. error_o (sticky until reset):
 //   CoreStatus* bits: malformed node, bad address (also any error response), stack overflow,
-//   watchdog (work held and no handshake completed for WatchdogCycles cycles).
+//   watchdog (work held and no handshake completed for WatchdogCycles cycles; error_o shows it
+//   from the edge WatchdogCycles + 1 after the last handshake's).
 // - Performance counters: perf_o = counter number perf_sel_i (CoreStatus/CorePerf* of rc_pkg),
 //   combinational from registers; numbers >= CorePerfCount read 0. The counters count an event
 //   one cycle after it (registered increments): read them from the cycle after idle_o rises on.
