@@ -5,8 +5,8 @@ Usage: logic_depth.py NETLIST.json [--top N] [--paths K] [--markdown]
 
 NETLIST.json is a flattened `synth_ecp5` netlist (Yosys `write_json`; `make synth-core` writes
 BUILD/synth/rc_core.json). The script walks the combinational cells (LUT4, PFUMX, L6MUX21, CCU2C,
-the asynchronous read of TRELLIS_DPR16X4, MULT18X18D) from every start point (flip-flop outputs
-and the module's inputs) to every end point (flip-flop D/M/CE/LSR, distributed-RAM write data,
+the asynchronous read of TRELLIS_DPR16X4, MULT18X18D) from every start point (flip-flop outputs,
+block RAM read data and the module's inputs) to every end point (flip-flop D/M/CE/LSR, distributed-RAM write data,
 address and enable) with a fixed delay per cell arc and per routed net (below), and prints the
 slowest end points, one line per register or RAM (the worst bit), with the start point and the
 named signals the worst path passes through.
@@ -24,6 +24,11 @@ import sys
 
 NET_NS = 0.55  # one general routed net
 FF_CLK_TO_Q_NS = 0.3
+# A block RAM's registered read data (DP16KD DO*): nextpnr's clock-to-out for the LFE5U-85F, speed
+# grade 6 (5.83 ns in run 13's routed critical path, docs/fpga.md), far above a flip-flop's. Yosys
+# merges a register behind an asynchronously read memory into the block RAM's read port, so a
+# register the RTL places after a memory can start its paths 5.8 ns late.
+BRAM_CLK_TO_Q_NS = 5.8
 FF_SETUP_NS = 0.1
 # Per cell type: (input port pattern, output port pattern, delay in ns). A pattern matches the
 # port name with an optional bit number (DPR16X4 and MULT18X18D have one port per bit).
@@ -92,8 +97,8 @@ def analyse(mod):
     queue = collections.deque()
     for b in set(edges) | set(driver):
         if indeg[b] == 0:
-            d = driver.get(b)
-            arrival[b] = FF_CLK_TO_Q_NS if d and cells[d]["type"] == "TRELLIS_FF" else 0.0
+            t = cells[driver[b]]["type"] if b in driver else None
+            arrival[b] = {"TRELLIS_FF": FF_CLK_TO_Q_NS, "DP16KD": BRAM_CLK_TO_Q_NS}.get(t, 0.0)
             queue.append(b)
     while queue:
         b = queue.popleft()

@@ -819,9 +819,9 @@ module rc_core #(
   logic [ThrW-1:0]  pp_thr, pp_thr_q;
   logic [Threads-1:0] g_pp, gpp_q;
   logic [SpW-1:0]   pp_sp;
-  logic             pop1_v_q;
-  logic [ThrW-1:0]  pop1_thr_q, pop2_thr_q;
-  logic [EntryW-1:0] pop1_entry_q, pop2_entry_q;
+  logic             pop0_v_q, pop1_v_q;
+  logic [ThrW-1:0]  pop0_thr_q, pop1_thr_q, pop2_thr_q;
+  logic [EntryW-1:0] pop0_entry_q, pop1_entry_q, pop2_entry_q;
   logic [3:0]       pop_le, pop2_mask;
   logic [4*W-1:0]   pop1_best_t;
 
@@ -838,22 +838,27 @@ module rc_core #(
     .grant_o(g_pp)
   );
 
-  // The pop in four cycles: the choice is registered (pp_v_q, pp_thr_q, gpp_q); in the next
+  // The pop in five cycles: the choice is registered (pp_v_q, pp_thr_q, gpp_q); in the next
   // cycle the thread's stack pointer and error bits decide: an empty stack or an error ends the
   // packet's walk (StDone), otherwise the thread goes to StPopping, the top entry is read and the
-  // pointer decremented; then the entry is culled against the best hits, and then it becomes
-  // the current entry. The choice thus never meets the stack pointer's read in one cycle.
+  // pointer decremented; the entry read (pop0_entry_q, the block RAM's read register) is copied
+  // into a fabric register (pop1_entry_q) with the thread's best hits, since the block RAM's
+  // clock-to-out (5.8 ns on the LFE5U-85F) leaves no time for the compare behind it; then the
+  // entry is culled against the best hits, and then it becomes the current entry. The choice
+  // thus never meets the stack pointer's read in one cycle.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       pp_v_q   <= 1'b0;
       pp_thr_q <= '0;
       gpp_q    <= '0;
+      pop0_v_q <= 1'b0;
       pop1_v_q <= 1'b0;
     end else begin
       pp_v_q   <= pp_any;
       pp_thr_q <= pp_thr;
       gpp_q    <= g_pp;
-      pop1_v_q <= pp_v_q & ~pp_end;
+      pop0_v_q <= pp_v_q & ~pp_end;
+      pop1_v_q <= pop0_v_q;
     end
   end
 
@@ -863,12 +868,16 @@ module rc_core #(
   // Stack entry: {node, mask, tmin[4], tmax[4]}.
   always_ff @(posedge clk_i) begin
     if (pp_v_q && !pp_end) begin
-      pop1_entry_q <= stack_m[StkAW'({pp_thr_q, pp_sp[SpIdxW-1:0]})];
+      pop0_entry_q <= stack_m[StkAW'({pp_thr_q, pp_sp[SpIdxW-1:0]})];
+    end
+    if (pop0_v_q) begin
+      pop1_entry_q <= pop0_entry_q;
       // The best hits are read with the entry: a popping thread's best hits do not change
       // (only a thread in its leaf gets intersection results; PopBest_A).
-      pop1_best_t  <= gate_t(bt_m[pp_thr_q], get4(bhit_q, pp_thr_q));
+      pop1_best_t  <= gate_t(bt_m[pop0_thr_q], get4(bhit_q, pop0_thr_q));
     end
-    pop1_thr_q   <= pp_thr_q;
+    pop0_thr_q   <= pp_thr_q;
+    pop1_thr_q   <= pop0_thr_q;
     pop2_thr_q   <= pop1_thr_q;
     pop2_entry_q <= pop1_entry_q;
   end
