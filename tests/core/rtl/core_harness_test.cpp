@@ -12,6 +12,7 @@
 #include "Vrc_fake_core.h"
 #include "Vrc_fake_core_hang.h"
 #include "core_sim_impl.hpp"
+#include "cornell_input.hpp"
 #include "job.hpp"
 
 namespace rc::test {
@@ -21,12 +22,6 @@ using harness::CoreSim;
 using harness::CoreSimError;
 using harness::CoreSimOptions;
 using harness::CoreSimResult;
-
-const RenderInput& cornell() {
-  static const RenderInput in =
-      load_render_input("builtin:cornell", scene::LoadOptions{}, scene::NumberFormat::fp24());
-  return in;
-}
 
 // What the fake core writes for pixel p (see rc_fake_core.sv).
 HitRecord expected_hit(const scene::SceneImage& img, uint32_t p, std::array<uint8_t, 3>& rgb) {

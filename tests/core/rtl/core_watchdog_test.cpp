@@ -16,6 +16,7 @@
 #include "Vrc_core_wd___024root.h"
 #include "compare.hpp"
 #include "core_sim_impl.hpp"
+#include "cornell_input.hpp"
 #include "geometry.hpp"
 #include "job.hpp"
 
@@ -36,12 +37,6 @@ using harness::CoreSimOptions;
 using harness::CoreSimResult;
 
 constexpr uint64_t kWatchdog = 300;  // -GWatchdogCycles of Vrc_core_wd
-
-const RenderInput& cornell() {
-  static const RenderInput in =
-      load_render_input("builtin:cornell", scene::LoadOptions{}, scene::NumberFormat::fp24());
-  return in;
-}
 
 RenderOptions small_frame() {
   RenderOptions ro = input_options(cornell());
