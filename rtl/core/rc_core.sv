@@ -914,9 +914,12 @@ module rc_core #(
 
   // Tags of outstanding list entries: a list request takes a tag; the same tag then names the
   // entry's triangle request; the tag is free again when the triangle response is taken (or the
-  // entry fails). tp_thr_m / tp_tri_m hold each tag's thread and triangle index.
+  // entry fails). tp_thr_m / tp_tri_m hold each tag's thread and triangle index, tp_mask_m the
+  // thread's active rays (which do not change while the thread has list entries outstanding:
+  // it stays StLeaf, StLeafRun until its pending count is zero).
   logic [ListTags-1:0] tf_q, tf_d;             // free tags
   logic [ThrW-1:0]     tp_thr_m [0:ListTags-1];
+  logic [3:0]          tp_mask_m [0:ListTags-1];
   logic [31:0]         tp_tri_m [0:ListTags-1];
   logic                tag_avail;
   logic [LtW-1:0]      tag_new;
@@ -938,6 +941,7 @@ module rc_core #(
   logic [Threads-1:0] g_lp, glp_q;
   logic            lu_busy_q, lu_load_q;
   logic [ThrW-1:0] lu_thr_q;
+  logic [3:0]      lu_mask_q;
   logic [31:0]     lu_idx_q, lu_left_q;
   logic            lreq_free, li_take;
   logic            list_req_valid_q;
@@ -959,8 +963,9 @@ module rc_core #(
 
   // The choice is registered (lu_thr_q) and the leaf's list offset and count read in the next
   // cycle (lu_load_q), so the scheduler's choice addresses no distributed RAM in its own cycle
-  // (one cycle of latency per leaf). The thread stays StLeaf, then StLeafRun, from its choice
-  // on: nothing writes its loff_m and lcnt_m meanwhile.
+  // (one cycle of latency per leaf). The thread's active rays are registered in the same cycle
+  // (lu_mask_q) and go into the tag pool with each entry's tag. The thread stays StLeaf, then
+  // StLeafRun, from its choice on: nothing writes its loff_m, lcnt_m and mask meanwhile.
   assign lp_take   = lp_any & ~lu_busy_q;
   assign lreq_free = ~list_req_valid_q | list_req_ready_i;
   assign li_take   = lu_busy_q & ~lu_load_q & tag_avail & lreq_free;
@@ -971,6 +976,7 @@ module rc_core #(
       lu_load_q        <= 1'b0;
       glp_q            <= '0;
       lu_thr_q         <= '0;
+      lu_mask_q        <= '0;
       lu_idx_q         <= '0;
       lu_left_q        <= '0;
       list_req_valid_q <= 1'b0;
@@ -987,6 +993,7 @@ module rc_core #(
         lu_load_q <= 1'b0;
         lu_idx_q  <= loff_m[lu_thr_q];
         lu_left_q <= lcnt_m[lu_thr_q];
+        lu_mask_q <= get4(mask_q, lu_thr_q);
       end
       if (list_req_valid_q && list_req_ready_i) list_req_valid_q <= 1'b0;
       if (li_take) begin
@@ -1056,7 +1063,10 @@ module rc_core #(
   assign tri_req_index_o = tri_req_index_q;
 
   always_ff @(posedge clk_i) begin
-    if (li_take) tp_thr_m[tag_new] <= lu_thr_q;
+    if (li_take) begin
+      tp_thr_m[tag_new]  <= lu_thr_q;
+      tp_mask_m[tag_new] <= lu_mask_q;
+    end
     if (lr_take && !lr_bad) tp_tri_m[lr_tag] <= list_rsp_data_i;
   end
 
@@ -1066,10 +1076,11 @@ module rc_core #(
   ////////////////////////////////////////
 
   // The triangle response is taken into an issue register (ti_*_q) with its tag's thread and
-  // triangle index, read from the tag pool here; from the register, the triangle goes to the
-  // intersection unit once per active ray of its thread (lowest ray first). So the tag pool's
-  // read and the reads of the thread's rays and best hits (wide distributed RAMs addressed by
-  // the thread) are in different cycles. A failed triangle read passes the register too and
+  // triangle index and the thread's active rays, read from the tag pool here; from the
+  // register, the triangle goes to the intersection unit once per active ray (lowest ray
+  // first). So the tag pool's read and the reads of the thread's rays and best hits (wide
+  // distributed RAMs addressed by the thread) are in different cycles, and the register's
+  // ready (ti_free, the triangle port's response ready) decodes no thread. A failed triangle read passes the register too and
   // leaves it in one cycle. The register takes the next response in the cycle its last ray
   // goes (ready depends on the intersection unit's ready, never the reverse).
   logic            is_ready, is_valid, is_take, ti_err_take, ti_last, ti_free, ti_load;
@@ -1078,7 +1089,7 @@ module rc_core #(
   logic [ThrW-1:0] ti_thr, ti_thr_q;
   logic [31:0]     ti_tri_q;
   logic [12*W-1:0] ti_m_q;
-  logic [3:0]      ti_mask, ti_rem, ifd_done_q;
+  logic [3:0]      ti_mask_q, ti_rem, ifd_done_q;
   logic [1:0]      ti_r;
   logic [12*W-1:0] ti_org_all, ti_dir_all;
   logic [4*W-1:0]  ti_bt;
@@ -1101,14 +1112,14 @@ module rc_core #(
   end
   always_ff @(posedge clk_i) begin
     if (ti_load) begin
-      ti_thr_q <= ti_thr;
-      ti_tri_q <= tp_tri_m[ti_tag];
-      ti_m_q   <= tri_rsp_data_i;
+      ti_thr_q  <= ti_thr;
+      ti_mask_q <= tp_mask_m[ti_tag];
+      ti_tri_q  <= tp_tri_m[ti_tag];
+      ti_m_q    <= tri_rsp_data_i;
     end
   end
 
-  assign ti_mask = get4(mask_q, ti_thr_q);
-  assign ti_rem  = ti_mask & ~ifd_done_q;
+  assign ti_rem  = ti_mask_q & ~ifd_done_q;
   assign ti_r    = lowest4(ti_rem);
   assign ti_last = (ti_rem & ~(4'd1 << ti_r)) == 4'd0;
 
@@ -1958,6 +1969,9 @@ module rc_core #(
   TriRspTag_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 tri_rsp_valid_i |-> !tf_q[ti_tag] &&
                                 st_q[ti_thr*4 +: 4] == StLeafRun);
+  // The rays a triangle is tested against (from the tag pool) are its thread's active rays now.
+  TriMask_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              ti_v_q |-> ti_mask_q == get4(mask_q, ti_thr_q));
   // A leaf's packet has at least one active ray, so every triangle is tested at least once.
   TriHasRay_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 is_valid |-> ti_rem != 4'd0);
