@@ -6,6 +6,10 @@
 //  - a response held back holds, unchanged, until taken;
 //  - req_ready_o comes from a register: within a cycle it does not move when rsp_ready_i,
 //    req_valid_i, the index or the tag change;
+//  - the read stage does not follow the consumer: within a cycle, its enable (`take`) and its
+//    move into the output side (`adv`), read through the model's public signals, do not move
+//    when rsp_ready_i changes;
+//  - up to four requests are accepted while the consumer stalls (both skid buffers fill);
 //  - one response per cycle when the consumer never stalls, and no request is lost or hangs.
 #include <gtest/gtest.h>
 
@@ -19,6 +23,7 @@
 #include <vector>
 
 #include "Vrc_board_rom.h"
+#include "Vrc_board_rom___024root.h"
 #include "verilated.h"
 
 namespace {
@@ -97,6 +102,23 @@ class Bench {
 
   uint64_t cycles() const { return cycles_; }
 
+  // Offers a request on every cycle for `cycles` cycles while the consumer stalls; returns how
+  // many were accepted.
+  uint64_t fill(uint64_t cycles) {
+    uint64_t accepted = 0;
+    for (uint64_t c = 0; c < cycles; ++c) {
+      if (!req_valid_) {
+        req_valid_ = true;
+        req_index_ = static_cast<uint32_t>(rng_() % kDepth);
+        req_tag_ = static_cast<uint32_t>(rng_() & kTagMask);
+      }
+      const size_t before = expect_.size();
+      cycle(false);
+      accepted += expect_.size() - before;
+    }
+    return accepted;
+  }
+
  private:
   // One clock cycle. Drives the inputs, checks the outputs before the edge, then clocks.
   uint64_t cycle(bool rsp_ready) {
@@ -106,6 +128,13 @@ class Bench {
     drive(!req_valid_, ~req_index_ & kIdxMask, ~req_tag_ & kTagMask, !rsp_ready);
     EXPECT_EQ(bool(m_->req_ready_o), req_ready)
         << "req_ready_o changed with this cycle's inputs at cycle " << cycles_;
+    drive(req_valid_, req_index_, req_tag_, rsp_ready);
+    const bool take = root().rc_board_rom__DOT__take, adv = root().rc_board_rom__DOT__adv;
+    drive(req_valid_, req_index_, req_tag_, !rsp_ready);
+    EXPECT_EQ(bool(root().rc_board_rom__DOT__take), take)
+        << "the read enable changed with rsp_ready_i at cycle " << cycles_;
+    EXPECT_EQ(bool(root().rc_board_rom__DOT__adv), adv)
+        << "the read stage's advance changed with rsp_ready_i at cycle " << cycles_;
     drive(req_valid_, req_index_, req_tag_, rsp_ready);
 
     const bool rsp_valid = m_->rsp_valid_o;
@@ -153,6 +182,8 @@ class Bench {
     m_->eval();
   }
 
+  Vrc_board_rom___024root& root() { return *m_->rootp; }
+
   void edge() {
     m_->clk_i = 1;
     m_->eval();
@@ -191,6 +222,14 @@ TEST(BoardRom, RandomGapsAndStalls) {
 
 // With requests on every cycle and a consumer that never stalls, the ROM answers once per
 // cycle after its two cycles of latency (plus the cycle in which the first request is made).
+// A stalled consumer: the request skid buffer, the read stage, the response skid buffer and the
+// output register hold four requests; then req_ready_o stays 0, and all four come out in order.
+TEST(BoardRom, FourHeldWhileStalled) {
+  Bench b(11);
+  EXPECT_EQ(b.fill(50), 4u);
+  b.drain();
+}
+
 TEST(BoardRom, FullThroughput) {
   Bench b(7);
   const uint64_t taken = b.run(10000, 1.0, 1.0);
