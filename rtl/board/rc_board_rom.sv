@@ -11,18 +11,20 @@
 //   then rsp_valid_o/rsp_ready_i. req_ready_o comes from a register (a one-entry skid buffer
 //   in front of the read: ready while it is empty), so no combinational path runs from
 //   rsp_ready_i or req_valid_i to req_ready_o and the core's request logic does not chain
-//   through the ROM into its own response ready. rsp_valid_o comes from a register and never
-//   depends on rsp_ready_i. The response holds until taken. rsp_ready_i moves only the output
-//   register and a second one-entry skid buffer behind the read: the read stage (the block
-//   RAM's read enable and its registers) moves on whenever that buffer is empty, a register,
-//   so no path runs from the consumer's ready across the chip into the block RAM.
-// - Latency: 2 cycles: the block RAM's registered read, then an output register in the fabric,
-//   so that the block RAM's slow clock-to-out (5.8 ns on the LFE5U-85F, speed grade 6) ends at a
+//   through the ROM into its own response ready. rsp_valid_o comes from a register (the
+//   output FIFO's count is not zero) and never depends on rsp_ready_i. The response holds
+//   until taken. The output side is a two-entry FIFO of registers: rsp_ready_i moves only its
+//   read pointer and count, never a clock enable of its entries or of the read stage, which
+//   follow registers only (the count as it was at the start of the cycle), so no path runs
+//   from the consumer's ready across the chip into the block RAM or the wide data registers.
+// - Latency: 2 cycles: the block RAM's registered read, then the output FIFO's entry in the
+//   fabric (rsp_data_o is the entry at the read pointer: one mux level after a register), so
+//   that the block RAM's slow clock-to-out (5.8 ns on the LFE5U-85F, speed grade 6) ends at a
 //   flip-flop instead of feeding the core's response checks. A request that finds the read
-//   stage stalled waits in the request skid buffer and is read one cycle later; a read result
-//   that finds the output register held waits in the response skid buffer. Throughput one
-//   request per cycle while rsp_ready_i is 1 (both skid buffers then stay empty); up to four
-//   requests are held while rsp_ready_i is 0. Responses are in request order.
+//   stage stalled waits in the skid buffer and is read one cycle later. Throughput one request
+//   per cycle while rsp_ready_i is 1 (the FIFO then holds at most one entry and the skid
+//   buffer stays empty); up to four requests are held while rsp_ready_i is 0 (the skid buffer,
+//   the read stage, two FIFO entries). Responses are in request order.
 // - Parameters: Width record bits, Depth records (>= 1), IdxW index bits, TagW tag bits.
 // - Illegal input: none (every index is answered; out-of-range ones with an error).
 // - Reset: rst_ni (active low, asynchronous) clears rsp_valid_o; contents are not reset.
@@ -68,26 +70,27 @@ module rc_board_rom #(
 `endif
   end
 
-  // The request skid buffer (k) holds a request accepted while the read stage could not take
-  // it; req_ready_o is its emptiness, a register. Stage 1 is the block RAM's read register
-  // (s1), stage 2 the output register (s2), with the response skid buffer (r) beside it.
-  // Stage 1 moves on (adv) whenever r is empty: into s2 if s2 is empty or being taken, else
-  // into r. s2 takes r's entry first. Stage 1 takes the request skid buffer's request, or else
-  // the port's, whenever it is empty or moving on. So adv, and with it the read enable, comes
-  // from registers and req_valid_i only.
-  logic             acc, take, in_range, adv, s1_free, s2_free, rd_valid;
+  // The skid buffer (k) holds a request accepted while the read stage could not take it;
+  // req_ready_o is its emptiness, a register. Stage 1 is the block RAM's read register (s1);
+  // it moves on (adv) into the output FIFO's entry at the write pointer whenever the FIFO is
+  // not full (o_cnt_q < 2 as the cycle began: a response taken in that cycle makes room only
+  // from the next one). Stage 1 takes the skid buffer's request, or else the port's,
+  // whenever it is empty or moving on. So adv, and with it the read enable and every entry's
+  // clock enable, comes from registers and req_valid_i only.
+  logic             acc, take, in_range, adv, s1_free, rd_valid, pop;
   logic [IdxW-1:0]  rd_index;
   logic [TagW-1:0]  rd_tag;
   logic [AddrW-1:0] addr;
-  logic             k_valid_q, s1_valid_q, s1_error_q, r_valid_q, r_error_q, s2_valid_q;
-  logic             s2_error_q;
+  logic             k_valid_q, s1_valid_q, s1_error_q, o_wp_q, o_rp_q;
+  logic [1:0]       o_cnt_q;
+  logic             o0_error_q, o1_error_q;
   logic [IdxW-1:0]  k_index_q;
-  logic [TagW-1:0]  k_tag_q, s1_tag_q, r_tag_q, s2_tag_q;
-  logic [Width-1:0] s1_data_q, r_data_q, s2_data_q;
+  logic [TagW-1:0]  k_tag_q, s1_tag_q, o0_tag_q, o1_tag_q;
+  logic [Width-1:0] s1_data_q, o0_data_q, o1_data_q;
 
-  assign adv         = s1_valid_q & ~r_valid_q;
+  assign adv         = s1_valid_q & ~o_cnt_q[1];
   assign s1_free     = ~s1_valid_q | adv;
-  assign s2_free     = ~s2_valid_q | rsp_ready_i;
+  assign pop         = (o_cnt_q != 2'd0) & rsp_ready_i;
   assign req_ready_o = ~k_valid_q;
   assign acc         = req_valid_i & ~k_valid_q;
   assign rd_valid    = k_valid_q | req_valid_i;
@@ -101,8 +104,9 @@ module rc_board_rom #(
     if (!rst_ni) begin
       k_valid_q  <= 1'b0;
       s1_valid_q <= 1'b0;
-      r_valid_q  <= 1'b0;
-      s2_valid_q <= 1'b0;
+      o_wp_q     <= 1'b0;
+      o_rp_q     <= 1'b0;
+      o_cnt_q    <= 2'd0;
     end else begin
       // Full only from an accepted request the read stage could not take; a full buffer is
       // emptied by the read stage before anything else (req_ready_o is 0 meanwhile).
@@ -112,10 +116,9 @@ module rc_board_rom #(
       end else if (adv) begin
         s1_valid_q <= 1'b0;
       end
-      // Full only from a read result the output register could not take; emptied into the
-      // output register before anything else (adv is 0 meanwhile).
-      r_valid_q <= r_valid_q ? ~s2_free : (adv & ~s2_free);
-      if (s2_free) s2_valid_q <= r_valid_q | adv;
+      if (adv) o_wp_q <= ~o_wp_q;
+      if (pop) o_rp_q <= ~o_rp_q;
+      o_cnt_q <= o_cnt_q + 2'(adv) - 2'(pop);
     end
   end
 
@@ -128,15 +131,16 @@ module rc_board_rom #(
       s1_tag_q   <= rd_tag;
       s1_error_q <= ~in_range;
     end
-    if (adv && !s2_free) begin
-      r_tag_q   <= s1_tag_q;
-      r_error_q <= s1_error_q;
-      r_data_q  <= s1_data_q;
+    // The two entries are plain registers (not an array), so no tool makes them a RAM.
+    if (adv && !o_wp_q) begin
+      o0_tag_q   <= s1_tag_q;
+      o0_error_q <= s1_error_q;
+      o0_data_q  <= s1_data_q;
     end
-    if (s2_free) begin
-      s2_tag_q   <= r_valid_q ? r_tag_q : s1_tag_q;
-      s2_error_q <= r_valid_q ? r_error_q : s1_error_q;
-      s2_data_q  <= r_valid_q ? r_data_q : s1_data_q;
+    if (adv && o_wp_q) begin
+      o1_tag_q   <= s1_tag_q;
+      o1_error_q <= s1_error_q;
+      o1_data_q  <= s1_data_q;
     end
   end
 
@@ -145,10 +149,10 @@ module rc_board_rom #(
     if (take) s1_data_q <= mem[addr];
   end
 
-  assign rsp_valid_o = s2_valid_q;
-  assign rsp_tag_o   = s2_tag_q;
-  assign rsp_data_o  = s2_data_q;
-  assign rsp_error_o = s2_error_q;
+  assign rsp_valid_o = o_cnt_q != 2'd0;
+  assign rsp_tag_o   = o_rp_q ? o1_tag_q : o0_tag_q;
+  assign rsp_data_o  = o_rp_q ? o1_data_q : o0_data_q;
+  assign rsp_error_o = o_rp_q ? o1_error_q : o0_error_q;
 
 `ifndef SYNTHESIS
   logic checks_on;
@@ -165,9 +169,9 @@ module rc_board_rom #(
   // A request waits in the skid buffer only behind a read stage that cannot move on.
   SkidBehindRead_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     k_valid_q |-> s1_valid_q);
-  // A read result waits in the response skid buffer only behind a held output register.
-  SkidBehindOutput_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-    r_valid_q |-> s2_valid_q);
+  // The output FIFO holds two entries at most (adv waits while it is full).
+  OutCount_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    o_cnt_q <= 2'd2);
 `endif
 
 endmodule

@@ -1080,9 +1080,10 @@ module rc_core #(
   // register, the triangle goes to the intersection unit once per active ray (lowest ray
   // first). So the tag pool's read and the reads of the thread's rays and best hits (wide
   // distributed RAMs addressed by the thread) are in different cycles, and the register's
-  // ready (ti_free, the triangle port's response ready) decodes no thread. A failed triangle read passes the register too and
-  // leaves it in one cycle. The register takes the next response in the cycle its last ray
-  // goes (ready depends on the intersection unit's ready, never the reverse).
+  // ready (ti_free, the triangle port's response ready) decodes no thread. A failed triangle
+  // read passes the register too and leaves it in one cycle. The register takes the next
+  // response in the cycle its last ray goes (ready depends on the intersection unit's ready,
+  // never the reverse).
   logic            is_ready, is_valid, is_take, ti_err_take, ti_last, ti_free, ti_load;
   logic            ti_v_q, ti_err_q;
   logic [LtW-1:0]  ti_tag;
