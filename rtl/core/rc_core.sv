@@ -1067,7 +1067,10 @@ module rc_core #(
       tp_thr_m[tag_new]  <= lu_thr_q;
       tp_mask_m[tag_new] <= lu_mask_q;
     end
-    if (lr_take && !lr_bad) tp_tri_m[lr_tag] <= list_rsp_data_i;
+    // Written on every list response, failed ones too, so the range check's carry chain does
+    // not reach the pool's write enable: a failed entry's tag sends no triangle request and is
+    // retired, and the tag's next list response writes the entry again before it is read.
+    if (lr_take) tp_tri_m[lr_tag] <= list_rsp_data_i;
   end
 
   ////////////////////////////////////////
