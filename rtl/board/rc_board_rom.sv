@@ -11,20 +11,20 @@
 //   then rsp_valid_o/rsp_ready_i. req_ready_o comes from a register (a one-entry skid buffer
 //   in front of the read: ready while it is empty), so no combinational path runs from
 //   rsp_ready_i or req_valid_i to req_ready_o and the core's request logic does not chain
-//   through the ROM into its own response ready. rsp_valid_o comes from a register (the
-//   output FIFO's count is not zero) and never depends on rsp_ready_i. The response holds
-//   until taken. The output side is a two-entry FIFO of registers: rsp_ready_i moves only its
-//   read pointer and count, never a clock enable of its entries or of the read stage, which
+//   through the ROM into its own response ready. rsp_valid_o and the response come straight
+//   from the output register and never depend on rsp_ready_i. The response holds until taken.
+//   rsp_ready_i moves only the output register and the pointers and count of a two-entry
+//   FIFO beside it, never a clock enable of the FIFO's entries or of the read stage, which
 //   follow registers only (the count as it was at the start of the cycle), so no path runs
 //   from the consumer's ready across the chip into the block RAM or the wide data registers.
-// - Latency: 2 cycles: the block RAM's registered read, then the output FIFO's entry in the
-//   fabric (rsp_data_o is the entry at the read pointer: one mux level after a register), so
-//   that the block RAM's slow clock-to-out (5.8 ns on the LFE5U-85F, speed grade 6) ends at a
-//   flip-flop instead of feeding the core's response checks. A request that finds the read
-//   stage stalled waits in the skid buffer and is read one cycle later. Throughput one request
-//   per cycle while rsp_ready_i is 1 (the FIFO then holds at most one entry and the skid
-//   buffer stays empty); up to four requests are held while rsp_ready_i is 0 (the skid buffer,
-//   the read stage, two FIFO entries). Responses are in request order.
+// - Latency: 2 cycles: the block RAM's registered read, then the output register in the
+//   fabric, so that the block RAM's slow clock-to-out (5.8 ns on the LFE5U-85F, speed grade 6)
+//   ends at a flip-flop instead of feeding the core's response checks. A request that finds
+//   the read stage stalled waits in the skid buffer and is read one cycle later; a read result
+//   that finds the output register held waits in the FIFO. Throughput one request per cycle
+//   while rsp_ready_i is 1 (the FIFO and the skid buffer then stay empty); up to five
+//   requests are held while rsp_ready_i is 0 (the skid buffer, the read stage, two FIFO
+//   entries, the output register). Responses are in request order.
 // - Parameters: Width record bits, Depth records (>= 1), IdxW index bits, TagW tag bits.
 // - Illegal input: none (every index is answered; out-of-range ones with an error).
 // - Reset: rst_ni (active low, asynchronous) clears rsp_valid_o; contents are not reset.
@@ -72,25 +72,32 @@ module rc_board_rom #(
 
   // The skid buffer (k) holds a request accepted while the read stage could not take it;
   // req_ready_o is its emptiness, a register. Stage 1 is the block RAM's read register (s1);
-  // it moves on (adv) into the output FIFO's entry at the write pointer whenever the FIFO is
-  // not full (o_cnt_q < 2 as the cycle began: a response taken in that cycle makes room only
-  // from the next one). Stage 1 takes the skid buffer's request, or else the port's,
-  // whenever it is empty or moving on. So adv, and with it the read enable and every entry's
-  // clock enable, comes from registers and req_valid_i only.
-  logic             acc, take, in_range, adv, s1_free, rd_valid, pop;
+  // it moves on (adv) whenever the FIFO is not full (o_cnt_q < 2 as the cycle began: a
+  // response taken in that cycle makes room only from the next one), and its result is then
+  // always written into the FIFO's entry at the write pointer. The output register (s2) takes
+  // the FIFO's oldest entry when there is one, else stage 1's result directly (then the entry
+  // just written is not counted: the write pointer stays), whenever it is empty or being taken.
+  // Stage 1 takes the skid buffer's request, or else the port's, whenever it is empty or
+  // moving on. So adv, and with it the read enable and every entry's clock enable, comes from
+  // registers and req_valid_i only; rsp_ready_i reaches s2, the pointers and the count.
+  logic             acc, take, in_range, adv, s1_free, rd_valid, s2_free, o_any, push, pop;
   logic [IdxW-1:0]  rd_index;
   logic [TagW-1:0]  rd_tag;
   logic [AddrW-1:0] addr;
   logic             k_valid_q, s1_valid_q, s1_error_q, o_wp_q, o_rp_q;
   logic [1:0]       o_cnt_q;
-  logic             o0_error_q, o1_error_q;
+  logic             o0_error_q, o1_error_q, s2_valid_q, s2_error_q;
   logic [IdxW-1:0]  k_index_q;
-  logic [TagW-1:0]  k_tag_q, s1_tag_q, o0_tag_q, o1_tag_q;
-  logic [Width-1:0] s1_data_q, o0_data_q, o1_data_q;
+  logic [TagW-1:0]  k_tag_q, s1_tag_q, o0_tag_q, o1_tag_q, s2_tag_q;
+  logic [Width-1:0] s1_data_q, o0_data_q, o1_data_q, s2_data_q;
 
   assign adv         = s1_valid_q & ~o_cnt_q[1];
   assign s1_free     = ~s1_valid_q | adv;
-  assign pop         = (o_cnt_q != 2'd0) & rsp_ready_i;
+  assign s2_free     = ~s2_valid_q | rsp_ready_i;
+  assign o_any       = o_cnt_q != 2'd0;
+  // The entry written this cycle counts unless it goes straight on to s2 (FIFO empty, s2 free).
+  assign push        = adv & (o_any | ~s2_free);
+  assign pop         = o_any & s2_free;
   assign req_ready_o = ~k_valid_q;
   assign acc         = req_valid_i & ~k_valid_q;
   assign rd_valid    = k_valid_q | req_valid_i;
@@ -107,6 +114,7 @@ module rc_board_rom #(
       o_wp_q     <= 1'b0;
       o_rp_q     <= 1'b0;
       o_cnt_q    <= 2'd0;
+      s2_valid_q <= 1'b0;
     end else begin
       // Full only from an accepted request the read stage could not take; a full buffer is
       // emptied by the read stage before anything else (req_ready_o is 0 meanwhile).
@@ -116,9 +124,10 @@ module rc_board_rom #(
       end else if (adv) begin
         s1_valid_q <= 1'b0;
       end
-      if (adv) o_wp_q <= ~o_wp_q;
+      if (push) o_wp_q <= ~o_wp_q;
       if (pop) o_rp_q <= ~o_rp_q;
-      o_cnt_q <= o_cnt_q + 2'(adv) - 2'(pop);
+      o_cnt_q <= o_cnt_q + 2'(push) - 2'(pop);
+      if (s2_free) s2_valid_q <= o_any | adv;
     end
   end
 
@@ -142,6 +151,11 @@ module rc_board_rom #(
       o1_error_q <= s1_error_q;
       o1_data_q  <= s1_data_q;
     end
+    if (s2_free) begin
+      s2_tag_q   <= !o_any ? s1_tag_q : o_rp_q ? o1_tag_q : o0_tag_q;
+      s2_error_q <= !o_any ? s1_error_q : o_rp_q ? o1_error_q : o0_error_q;
+      s2_data_q  <= !o_any ? s1_data_q : o_rp_q ? o1_data_q : o0_data_q;
+    end
   end
 
   // The block RAM read port: registered, enabled by the request handshake.
@@ -149,10 +163,10 @@ module rc_board_rom #(
     if (take) s1_data_q <= mem[addr];
   end
 
-  assign rsp_valid_o = o_cnt_q != 2'd0;
-  assign rsp_tag_o   = o_rp_q ? o1_tag_q : o0_tag_q;
-  assign rsp_data_o  = o_rp_q ? o1_data_q : o0_data_q;
-  assign rsp_error_o = o_rp_q ? o1_error_q : o0_error_q;
+  assign rsp_valid_o = s2_valid_q;
+  assign rsp_tag_o   = s2_tag_q;
+  assign rsp_data_o  = s2_data_q;
+  assign rsp_error_o = s2_error_q;
 
 `ifndef SYNTHESIS
   logic checks_on;
@@ -169,9 +183,12 @@ module rc_board_rom #(
   // A request waits in the skid buffer only behind a read stage that cannot move on.
   SkidBehindRead_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     k_valid_q |-> s1_valid_q);
-  // The output FIFO holds two entries at most (adv waits while it is full).
+  // The FIFO holds two entries at most (adv waits while it is full).
   OutCount_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     o_cnt_q <= 2'd2);
+  // Results wait in the FIFO only behind a held output register.
+  FifoBehindOutput_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    o_any |-> s2_valid_q);
 `endif
 
 endmodule

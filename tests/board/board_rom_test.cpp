@@ -7,10 +7,10 @@
 //  - req_ready_o comes from a register: within a cycle it does not move when rsp_ready_i,
 //    req_valid_i, the index or the tag change;
 //  - the read stage does not follow the consumer: within a cycle, its enable (`take`) and its
-//    move into the output FIFO (`adv`, also the FIFO entries' clock enable), read through the
+//    move on (`adv`, also the clock enable of the FIFO entry it writes), read through the
 //    model's public signals, do not move when rsp_ready_i changes;
-//  - four requests are accepted while the consumer stalls (the skid buffer, the read stage and
-//    the output FIFO's two entries), and no more;
+//  - five requests are accepted while the consumer stalls (the skid buffer, the read stage,
+//    the FIFO's two entries and the output register), and no more;
 //  - one response per cycle when the consumer never stalls, and no request is lost or hangs.
 #include <gtest/gtest.h>
 
@@ -223,11 +223,11 @@ TEST(BoardRom, RandomGapsAndStalls) {
 
 // With requests on every cycle and a consumer that never stalls, the ROM answers once per
 // cycle after its two cycles of latency (plus the cycle in which the first request is made).
-// A stalled consumer: the skid buffer, the read stage and the output FIFO's two entries hold four
-// requests; then req_ready_o stays 0, and all four come out in order.
-TEST(BoardRom, FourHeldWhileStalled) {
+// A stalled consumer: the skid buffer, the read stage, the FIFO's two entries and the output
+// register hold five requests; then req_ready_o stays 0, and all five come out in order.
+TEST(BoardRom, FiveHeldWhileStalled) {
   Bench b(11);
-  EXPECT_EQ(b.fill(50), 4u);
+  EXPECT_EQ(b.fill(50), 5u);
   b.drain();
 }
 
