@@ -221,8 +221,6 @@ TEST(BoardRom, RandomGapsAndStalls) {
   }
 }
 
-// With requests on every cycle and a consumer that never stalls, the ROM answers once per
-// cycle after its two cycles of latency (plus the cycle in which the first request is made).
 // A stalled consumer: the skid buffer, the read stage, the FIFO's two entries and the output
 // register hold five requests; then req_ready_o stays 0, and all five come out in order.
 TEST(BoardRom, FiveHeldWhileStalled) {
@@ -231,6 +229,8 @@ TEST(BoardRom, FiveHeldWhileStalled) {
   b.drain();
 }
 
+// With requests on every cycle and a consumer that never stalls, the ROM answers once per
+// cycle after its two cycles of latency (plus the cycle in which the first request is made).
 TEST(BoardRom, FullThroughput) {
   Bench b(7);
   const uint64_t taken = b.run(10000, 1.0, 1.0);
