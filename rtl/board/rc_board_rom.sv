@@ -81,10 +81,11 @@ module rc_board_rom #(
   // moving on. So adv, and with it the read enable and every entry's clock enable, comes from
   // registers and req_valid_i only; rsp_ready_i reaches s2, the pointers and the count.
   logic             acc, take, in_range, adv, s1_free, rd_valid, s2_free, o_any, push, pop;
+  logic             o_wp;
   logic [IdxW-1:0]  rd_index;
   logic [TagW-1:0]  rd_tag;
   logic [AddrW-1:0] addr;
-  logic             k_valid_q, s1_valid_q, s1_error_q, o_wp_q, o_rp_q;
+  logic             k_valid_q, s1_valid_q, s1_error_q, o_rp_q;
   logic [1:0]       o_cnt_q;
   logic             o0_error_q, o1_error_q, s2_valid_q, s2_error_q;
   logic [IdxW-1:0]  k_index_q;
@@ -98,6 +99,8 @@ module rc_board_rom #(
   // The entry written this cycle counts unless it goes straight on to s2 (FIFO empty, s2 free).
   assign push        = adv & (o_any | ~s2_free);
   assign pop         = o_any & s2_free;
+  // The write pointer is the read pointer plus the count (mod 2), not a register of its own.
+  assign o_wp        = o_rp_q ^ o_cnt_q[0];
   assign req_ready_o = ~k_valid_q;
   assign acc         = req_valid_i & ~k_valid_q;
   assign rd_valid    = k_valid_q | req_valid_i;
@@ -111,7 +114,6 @@ module rc_board_rom #(
     if (!rst_ni) begin
       k_valid_q  <= 1'b0;
       s1_valid_q <= 1'b0;
-      o_wp_q     <= 1'b0;
       o_rp_q     <= 1'b0;
       o_cnt_q    <= 2'd0;
       s2_valid_q <= 1'b0;
@@ -124,7 +126,6 @@ module rc_board_rom #(
       end else if (adv) begin
         s1_valid_q <= 1'b0;
       end
-      if (push) o_wp_q <= ~o_wp_q;
       if (pop) o_rp_q <= ~o_rp_q;
       o_cnt_q <= o_cnt_q + 2'(push) - 2'(pop);
       if (s2_free) s2_valid_q <= o_any | adv;
@@ -141,12 +142,12 @@ module rc_board_rom #(
       s1_error_q <= ~in_range;
     end
     // The two entries are plain registers (not an array), so no tool makes them a RAM.
-    if (adv && !o_wp_q) begin
+    if (adv && !o_wp) begin
       o0_tag_q   <= s1_tag_q;
       o0_error_q <= s1_error_q;
       o0_data_q  <= s1_data_q;
     end
-    if (adv && o_wp_q) begin
+    if (adv && o_wp) begin
       o1_tag_q   <= s1_tag_q;
       o1_error_q <= s1_error_q;
       o1_data_q  <= s1_data_q;
