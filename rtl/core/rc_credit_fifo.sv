@@ -6,7 +6,9 @@
 //   uses credit_o as its ready_o. The pipeline's output (wr_valid_i, wr_data_i) is written into
 //   the FIFO; the FIFO drives the downstream handshake (valid_o, ready_i, data_o).
 // - Credits: cnt_q counts operations in flight in the pipeline plus entries held in the FIFO.
-//   credit_o = cnt_q < Depth, from a register only (it never depends on ready_i or valid_i). Since
+//   credit_o = cnt_q < Depth, itself a register (credit_q, loaded with cnt_d != Depth: the count
+//   never exceeds Depth), so the owner's ready fans out from a flip-flop and no compare sits
+//   before it; credit_o never depends on ready_i or valid_i in the same cycle. Since
 //   every operation in flight has a FIFO slot reserved, a write always finds room and nothing is
 //   dropped, whatever ready_i does.
 // - Handshake (downstream): valid_o/ready_i; an entry is popped when valid_o & ready_i. valid_o
@@ -61,13 +63,13 @@ module rc_credit_fifo #(
   // Counters //
   //////////////
 
-  logic            pop;
+  logic            pop, credit_q;
   logic [CntW-1:0] cnt_d, cnt_q;  // credits in use: in flight + stored
   logic [CntW-1:0] occ_d, occ_q;  // entries stored
   logic [PtrW-1:0] wr_ptr_d, wr_ptr_q, rd_ptr_d, rd_ptr_q;
 
   assign pop      = valid_o & ready_i;
-  assign credit_o = cnt_q < DepthCnt;
+  assign credit_o = credit_q;
   assign valid_o  = occ_q != '0;
 
   always_comb begin
@@ -86,11 +88,13 @@ module rc_credit_fifo #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       cnt_q    <= '0;
+      credit_q <= 1'b1;
       occ_q    <= '0;
       wr_ptr_q <= '0;
       rd_ptr_q <= '0;
     end else begin
       cnt_q    <= cnt_d;
+      credit_q <= cnt_d != DepthCnt;
       occ_q    <= occ_d;
       wr_ptr_q <= wr_ptr_d;
       rd_ptr_q <= rd_ptr_d;
@@ -151,6 +155,9 @@ module rc_credit_fifo #(
   // Every write was reserved by a credit, so the FIFO is never full when a write arrives.
   WriteHasRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    wr_valid_i |-> occ_q < DepthCnt);
+  // The credit register always equals the count's compare (both are loaded from cnt_d).
+  CreditIsCount_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                    credit_o == (cnt_q < DepthCnt));
   // Stored entries are a subset of the credits in use (the rest are in flight).
   OccWithinCredits_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                        occ_q <= cnt_q && cnt_q <= DepthCnt);
