@@ -817,7 +817,7 @@ module rc_core #(
 
   logic             pp_any, pp_v_q, pp_end;
   logic [ThrW-1:0]  pp_thr, pp_thr_q;
-  logic [Threads-1:0] g_pp, gpp_q;
+  logic [Threads-1:0] g_pp, gpp_q, pop_end_t;
   logic [SpW-1:0]   pp_sp;
   logic             pop0_v_q, pop1_v_q;
   logic [ThrW-1:0]  pop0_thr_q, pop1_thr_q, pop2_thr_q;
@@ -845,7 +845,10 @@ module rc_core #(
   // into a fabric register (pop1_entry_q) with the thread's best hits, since the block RAM's
   // clock-to-out (5.8 ns on the LFE5U-85F) leaves no time for the compare behind it; then the
   // entry is culled against the best hits, and then it becomes the current entry. The choice
-  // thus never meets the stack pointer's read in one cycle.
+  // thus never meets the stack pointer's read in one cycle. Whether the walk ends is decided
+  // per thread (pop_end_t, from the thread's own registers) and picked with the one-hot grant,
+  // so no thread-indexed read sits before it; the block RAM reads the slot whenever a choice is
+  // registered (its enable is pp_v_q), and an ended walk just leaves its read unused.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       pp_v_q   <= 1'b0;
@@ -862,12 +865,15 @@ module rc_core #(
     end
   end
 
+  for (genvar t = 0; t < Threads; t++) begin : g_pop_end
+    assign pop_end_t[t] = (|err_q[t*3 +: 3]) | (sp_q[t*SpW +: SpW] == '0);
+  end
   assign pp_sp  = getsp(sp_q, pp_thr_q);
-  assign pp_end = (|get3(err_q, pp_thr_q)) | (pp_sp == '0);
+  assign pp_end = |(gpp_q & pop_end_t);
 
   // Stack entry: {node, mask, tmin[4], tmax[4]}.
   always_ff @(posedge clk_i) begin
-    if (pp_v_q && !pp_end) begin
+    if (pp_v_q) begin
       pop0_entry_q <= stack_m[StkAW'({pp_thr_q, pp_sp[SpIdxW-1:0]})];
     end
     if (pop0_v_q) begin
@@ -1572,7 +1578,8 @@ module rc_core #(
       logic        fb_last;
       fb_last = fbw_q[t*3 +: 3] == 3'd1;
       we = {h_acc[t], h_su[t] & su_last, h_fe[t], h_nr[t] & nr_st_we, h_tr[t], h_lp[t],
-            pend_zero[t], h_pe[t] & ~pp_end, h_pe[t] & pp_end, h_p2[t], h_sx[t] & ~shp_none,
+            pend_zero[t], h_pe[t] & ~pop_end_t[t], h_pe[t] & pop_end_t[t], h_p2[t],
+            h_sx[t] & ~shp_none,
             h_sx[t] & shp_none,
             h_fb[t] & fb_last};
       st_or = ({4{we[12]}} & StSetup) | ({4{we[11]}} & su_st) |
@@ -1593,7 +1600,8 @@ module rc_core #(
                          bhit_q[t*4 +: 4] | ({4{h_wb[t]}} & (4'd1 << wb_r_q));
       sp_d[t*SpW +: SpW] = h_acc[t] ? '0 :
                            (h_tr[t] & tr_push_ok) ? tr_sp + SpW'(1) :
-                           (h_pe[t] & ~pp_end) ? pp_sp - SpW'(1) : sp_q[t*SpW +: SpW];
+                           (h_pe[t] & ~pop_end_t[t]) ? sp_q[t*SpW +: SpW] - SpW'(1) :
+                           sp_q[t*SpW +: SpW];
 
       // Error bits (sticky for the packet): the events' bits ORed in.
       err_or = '0;
@@ -1987,6 +1995,11 @@ module rc_core #(
   assign pop1_best_now = gate_t(bt_m[pop1_thr_q], get4(bhit_q, pop1_thr_q));
   PopBest_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               pop1_v_q |-> pop1_best_t == pop1_best_now);
+  // The end bit picked by the pop's one-hot grant is the chosen thread's own (error or empty
+  // stack), so the grant and the index agree.
+  PopEnd_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             pp_v_q |-> gpp_q == hot(1'b1, pp_thr_q) &&
+                                        pp_end == ((|get3(err_q, pp_thr_q)) || pp_sp == '0));
   // A pop result belongs to a thread that is popping.
   PopOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                pop2_v |-> st_q[pop2_thr_q*4 +: 4] == StPopping);
