@@ -1414,25 +1414,49 @@ module rc_core #(
   assign mat_req_tag_o   = TagW'(mat_req_rid_q);
   assign mat_req_index_o = mat_req_index_q;
 
-  // Material -> shading unit.
-  logic            sh_ready, sh_in_take, mr_bad, sho_v, fbb_free;
-  logic [RidW-1:0] mr_rid, sho_rid;
+  // Material -> shading unit. The material response and the ray's values read by its tag
+  // (|n|, the hit's dz and the ray's inverse length, distributed RAMs addressed by the tag) go
+  // into a register slice (ma_*_q) that takes a response whenever it is empty or the shading
+  // unit takes its entry: the reads end at flip-flops and the shading unit's first multipliers
+  // start at them. The slice adds a cycle of latency and no bubble.
+  logic            sh_ready, sh_in_take, mr_bad, sho_v, fbb_free, ma_free, ma_load, ma_v_q;
+  logic [RidW-1:0] mr_rid, sho_rid, ma_rid_q;
   logic [ThrW-1:0] mr_thr;
   logic [1:0]      mr_r;
-  logic [3*W-1:0]  mr_kd;
+  logic [3*W-1:0]  mr_kd, ma_kd_q;
   logic [4*W-1:0]  mr_dz_all, mr_ilen_all;
+  logic [W-1:0]    ma_dz_q, ma_nlen_q, ma_ilen_q;
   logic [23:0]     sho_rgb;
 
   assign mr_rid          = mat_rsp_tag_i[RidW-1:0];
   assign mr_thr          = mr_rid[RidW-1:2];
   assign mr_r            = mr_rid[1:0];
   assign mr_bad          = mat_rsp_error_i | serr_q[32'(mr_rid)];
-  assign mat_rsp_ready_o = sh_ready;
-  assign sh_in_take      = mat_rsp_valid_i & sh_ready;
+  assign ma_free         = ~ma_v_q | sh_ready;
+  assign mat_rsp_ready_o = ma_free;
+  assign ma_load         = mat_rsp_valid_i & ma_free;
+  assign sh_in_take      = ma_v_q & sh_ready;
   assign mr_dz_all       = bdz_m[mr_thr];
   assign mr_ilen_all     = ilen_m[mr_thr];
   assign mr_kd = mr_bad ? '0 : {mat_rsp_data_i[64 +: W], mat_rsp_data_i[32 +: W],
                                 mat_rsp_data_i[0 +: W]};
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ma_v_q <= 1'b0;
+    end else if (ma_free) begin
+      ma_v_q <= mat_rsp_valid_i;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (ma_load) begin
+      ma_rid_q  <= mr_rid;
+      ma_dz_q   <= lane_w(mr_dz_all, mr_r);
+      ma_nlen_q <= nlen_m[32'(mr_rid)];
+      ma_ilen_q <= lane_w(mr_ilen_all, mr_r);
+      ma_kd_q   <= mr_kd;
+    end
+  end
 
   rc_shade_unit #(
     .ExpW (ExpW),
@@ -1441,13 +1465,13 @@ module rc_core #(
   ) u_shade (
     .clk_i,
     .rst_ni,
-    .valid_i  (mat_rsp_valid_i),
+    .valid_i  (ma_v_q),
     .ready_o  (sh_ready),
-    .tag_i    (mr_rid),
-    .dz_i     (lane_w(mr_dz_all, mr_r)),
-    .nlen_i   (nlen_m[32'(mr_rid)]),
-    .inv_len_i(lane_w(mr_ilen_all, mr_r)),
-    .kd_i     (mr_kd),
+    .tag_i    (ma_rid_q),
+    .dz_i     (ma_dz_q),
+    .nlen_i   (ma_nlen_q),
+    .inv_len_i(ma_ilen_q),
+    .kd_i     (ma_kd_q),
     .ambient_i(ambient_i),
     .diffuse_i(diffuse_i),
     .valid_o  (sho_v),
@@ -1627,7 +1651,7 @@ module rc_core #(
       end
       if (shd_rsp_error_i) ev_err[ErrBadAddr] = 1'b1;
     end
-    if (sh_in_take && mat_rsp_error_i) ev_err[ErrBadAddr] = 1'b1;
+    if (ma_load && mat_rsp_error_i) ev_err[ErrBadAddr] = 1'b1;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -1790,7 +1814,7 @@ module rc_core #(
                     (list_req_valid_q & list_req_ready_i) | lr_take |
                     (tri_req_valid_q & tri_req_ready_i) | (tri_rsp_valid_i & tri_rsp_ready_o) |
                     (shd_req_valid_q & shd_req_ready_i) | sr_take |
-                    (mat_req_valid_q & mat_req_ready_i) | sh_in_take;
+                    (mat_req_valid_q & mat_req_ready_i) | ma_load | sh_in_take;
   // Whether the core was idle or completed a handshake is registered (wd_clr_q) before it
   // clears the count: the handshakes come from every port across the chip. The count then
   // lags a cycle, so it fires at WatchdogCycles - 1, and never in the cycle the registered
@@ -2008,6 +2032,8 @@ module rc_core #(
                                   shd_rsp_valid_i |-> st_q[sr_rid[RidW-1:2]*4 +: 4] == StShade);
   MatRspOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   mat_rsp_valid_i |-> st_q[mr_thr*4 +: 4] == StShade);
+  MatSliceOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                    ma_v_q |-> st_q[ma_rid_q[RidW-1:2]*4 +: 4] == StShade);
   FbOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               fb_valid_q |-> st_q[fb_thr*4 +: 4] == StShade &&
                               fbw_q[fb_thr*3 +: 3] != 3'd0);
