@@ -15,7 +15,11 @@
 //   initialised from RegsHex (plusarg +regs=); writes to it are ignored while busy_o. Writing bit
 //   0 of BoardRegControl (or a start_i pulse) starts a frame when busy_o is 0: two cycles later
 //   the frame size is checked (width * height <= FbPixels, else status bit size_error and no
-//   frame) and the ray generation unit starts.
+//   frame) and the ray generation unit starts. BoardRegPerfLo/Hi show the core's counter
+//   BoardRegPerfSel through a register (perf_rd_q, loaded every cycle): a read shows the
+//   counter selected two cycles before its address is given, so after writing PerfSel wait one
+//   cycle before reading PerfLo/Hi. The counters' 64-bit multiplexer thus ends at a flip-flop
+//   and does not reach the read data's register in one cycle.
 // - Frame: the core renders every pixel into the framebuffer (pixel id y * width + x, 24-bit
 //   RGB). done_o rises when the last packet has been generated and the core is idle; it stays
 //   until the next start. BoardRegCycles holds the frame's cycle count.
@@ -291,7 +295,7 @@ module rc_board #(
   logic              fb_hit;
   logic [W-1:0]      fb_t, fb_u, fb_v;
   logic [7:0]        perf_sel_q;
-  logic [63:0]       perf;
+  logic [63:0]       perf, perf_rd_q;
   logic [StatusW-1:0] core_error;
 
   rc_core #(
@@ -413,8 +417,8 @@ module rc_board #(
         rc_pkg::BoardRegStatus:  rdata_d = status;
         rc_pkg::BoardRegCycles:  rdata_d = cycles_q;
         rc_pkg::BoardRegPerfSel: rdata_d = 32'(perf_sel_q);
-        rc_pkg::BoardRegPerfLo:  rdata_d = perf[31:0];
-        rc_pkg::BoardRegPerfHi:  rdata_d = perf[63:32];
+        rc_pkg::BoardRegPerfLo:  rdata_d = perf_rd_q[31:0];
+        rc_pkg::BoardRegPerfHi:  rdata_d = perf_rd_q[63:32];
         default:                 rdata_d = '0;
       endcase
     end
@@ -429,7 +433,8 @@ module rc_board #(
   end
 
   always_ff @(posedge clk_i) begin
-    rdata_q <= rdata_d;
+    perf_rd_q <= perf;
+    rdata_q   <= rdata_d;
   end
 
   assign reg_rdata_o  = rdata_q;

@@ -278,6 +278,7 @@ BoardSimResult render_board(const scene::SceneImage& image, const RenderOptions&
   res.cycles = read_reg(spec::kBoardRegCycles);
   for (int k = 0; k < kCorePerfCount; ++k) {
     write_reg(spec::kBoardRegPerfSel, static_cast<uint32_t>(k));
+    tick();  // the counter reaches perf_lo/perf_hi through a register (rc_board's contract)
     const uint64_t lo = read_reg(spec::kBoardRegPerfLo);
     const uint64_t hi = read_reg(spec::kBoardRegPerfHi);
     res.perf[static_cast<size_t>(k)] = lo | hi << 32;
