@@ -1719,10 +1719,16 @@ module rc_core #(
     wb_btri_new = put_lane_32(wb_btri_new, wb_r_q, wb_tri_q);
   end
 
-  logic             cur_we;
-  logic [ThrW-1:0]  cur_thr;
-  logic [NodeW-1:0] cur_node;
-  logic [4*W-1:0]   cur_tmin, cur_tmax;
+  // The current entry's write is registered (cur_*_q) and done in the next cycle, so the
+  // choice among pop, traversal and set-up (the cull's and the traversal's masks) ends at
+  // flip-flops instead of at the write enables of node_m, tmin_m and tmax_m. No read misses
+  // it: the thread's next fetch reads node_m two cycles after the event at the earliest (the
+  // state changes, then the registered fetch choice reads), and the interval is read when the
+  // node's response arrives (CurWriteFirst_A).
+  logic             cur_we, cur_we_q;
+  logic [ThrW-1:0]  cur_thr, cur_thr_q;
+  logic [NodeW-1:0] cur_node, cur_node_q;
+  logic [4*W-1:0]   cur_tmin, cur_tmax, cur_tmin_q, cur_tmax_q;
   always_comb begin
     cur_we   = 1'b0;
     cur_thr  = su_thr;
@@ -1745,6 +1751,13 @@ module rc_core #(
       cur_we   = 1'b1;
     end
   end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      cur_we_q <= 1'b0;
+    end else begin
+      cur_we_q <= cur_we;
+    end
+  end
 
   always_ff @(posedge clk_i) begin
     if (acc_v_q) begin
@@ -1755,11 +1768,16 @@ module rc_core #(
       pix_m[feed_thr_q]  <= feed_pix_q;
     end
     if (su_last) inv_m[su_thr] <= su_inv_new;
-    // The current entry: one write port (at most one of pop, traversal, set-up per cycle).
-    if (cur_we) begin
-      node_m[cur_thr] <= cur_node;
-      tmin_m[cur_thr] <= cur_tmin;
-      tmax_m[cur_thr] <= cur_tmax;
+    // The current entry: one write port (at most one of pop, traversal, set-up per cycle),
+    // a cycle after the event.
+    cur_thr_q  <= cur_thr;
+    cur_node_q <= cur_node;
+    cur_tmin_q <= cur_tmin;
+    cur_tmax_q <= cur_tmax;
+    if (cur_we_q) begin
+      node_m[cur_thr_q] <= cur_node_q;
+      tmin_m[cur_thr_q] <= cur_tmin_q;
+      tmax_m[cur_thr_q] <= cur_tmax_q;
     end
     if (nr_take && !nr_err && nr_leaf) begin
       loff_m[nr_thr] <= {{(32 - NodeW){1'b0}}, nr_idx};
@@ -1978,6 +1996,11 @@ module rc_core #(
   CurNodeInRange_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                      cur_we && !su_last |->
                                      {{(32 - NodeW){1'b0}}, cur_node} < node_count_i);
+  // No read of a thread's current entry comes while its registered write is still due.
+  CurWriteFirst_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                    cur_we_q |-> !(fq_v_q && nreq_free && fq_thr_q == cur_thr_q) &&
+                                                 !(n0_take && n0_thr == cur_thr_q) &&
+                                                 !(nr_take && nr_thr == cur_thr_q));
   // The node count does not change under a fetch (quasi-static configuration).
   NodeEmptyStable_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                       fe_take |-> node_empty_q == (node_count_i == 32'd0));
