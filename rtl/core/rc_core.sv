@@ -1055,9 +1055,12 @@ module rc_core #(
       tri_req_tag_q   <= '0;
       tri_req_index_q <= '0;
     end else begin
+      // The request's payload is loaded on every taken response (the buffer is free then), so
+      // only its valid bit waits for the range check: one flip-flop behind the carry chain
+      // instead of the payload's clock enables.
       if (tri_req_valid_q && tri_req_ready_i) tri_req_valid_q <= 1'b0;
-      if (lr_take && !lr_bad) begin
-        tri_req_valid_q <= 1'b1;
+      if (lr_take) begin
+        tri_req_valid_q <= ~lr_bad;
         tri_req_tag_q   <= lr_tag;
         tri_req_index_q <= list_rsp_data_i;
       end
