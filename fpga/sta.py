@@ -2,7 +2,7 @@
 """Static timing analysis of a routed design from nextpnr's SDF: every failing endpoint, not one path.
 
 Usage: sta.py DESIGN.sdf [--period NS] [--netlist JSON] [--top N] [--groups N] [--paths N]
-              [--json OUT]
+              [--to REGEX ...] [--json OUT]
 
 nextpnr reports one critical path per clock; closing timing on a large design needs all of them.
 nextpnr writes the routed design's delays with `--sdf FILE` (`fpga_ecp5.py` always does): every
@@ -25,6 +25,7 @@ It prints:
 --netlist JSON (the Yosys netlist nextpnr read) adds each group's RTL source line (the cells'
 `src` attributes, e.g. `rc_core.sv:1012`): Yosys names many cells after a net they happen to
 touch, so the source line is the reliable way back to the RTL.
+--to REGEX adds the worst path to the endpoints (instance/PIN) that match REGEX.
 --json OUT writes the groups and paths for other scripts.
 """
 
@@ -157,6 +158,8 @@ def main():
     ap.add_argument("--groups", type=int, default=25, help="start/end pairs to list (25)")
     ap.add_argument("--paths", type=int, default=5, help="worst paths in full (5)")
     ap.add_argument("--netlist", help="the Yosys JSON netlist, for RTL source lines")
+    ap.add_argument("--to", action="append", default=[], metavar="REGEX",
+                    help="also print the worst path to the endpoints matching REGEX (repeatable)")
     ap.add_argument("--json", help="write groups and paths as JSON")
     args = ap.parse_args()
 
@@ -295,8 +298,16 @@ def main():
 
     paths = []
     shown = set()
+    for rx in args.to:
+        hits = [x for x in ends if re.search(rx, x[1])]
+        if not hits:
+            print(f"\nno timed endpoint matches --to {rx}")
+            continue
+        slack, e, arr, su = hits[0]
+        shown.add(group_of(split_pin(e)[0]))
+        paths.append((slack, e, su, path_of(e)))
     for slack, e, arr, su in ends:
-        if len(paths) >= args.paths:
+        if len(paths) >= args.paths + len(args.to):
             break
         eg = group_of(split_pin(e)[0])
         if eg in shown:

@@ -12,17 +12,17 @@
 //   every operation in flight has a FIFO slot reserved, a write always finds room and nothing is
 //   dropped, whatever ready_i does.
 // - Handshake (downstream): valid_o/ready_i; an entry is popped when valid_o & ready_i. valid_o
-//   and data_o come from registers and stay stable until popped (valid_o never depends on
-//   ready_i).
-// - Latency: a write appears on valid_o/data_o the cycle after wr_valid_i (no bypass).
+//   and data_o are flip-flops (an output register at the head, loaded from the storage or
+//   straight from a write) and stay stable until popped (valid_o never depends on ready_i).
+// - Latency: a write appears on valid_o/data_o the cycle after wr_valid_i.
 // - Throughput: with a pipeline of latency L (take_i to wr_valid_i), an operation is counted in
 //   cnt_q for L + 1 cycles when ready_i is 1, and credit_o needs cnt_q < Depth, so Depth >= L + 2
 //   sustains one operation per cycle.
-// - Parameters: Width data bits (>= 1); Depth entries (>= 1); MemArray: 0 = storage in a flat
-//   register vector with a read multiplexer (flip-flops), 1 = storage as a memory array written
-//   at wr_ptr and read asynchronously at rd_ptr, mapped to distributed RAM (ram_style; e.g.
-//   ECP5 DPR16X4, never block RAM): the better choice for deep or wide FIFOs. Same behaviour
-//   either way.
+// - Parameters: Width data bits (>= 1); Depth entries (>= 1: the head register and Depth - 1
+//   behind it); MemArray: 0 = the entries behind the head in a flat register vector with a read
+//   multiplexer (flip-flops), 1 = in a memory array written at wr_ptr and read asynchronously at
+//   rd_ptr, mapped to distributed RAM (ram_style; e.g. ECP5 DPR16X4, never block RAM): the
+//   better choice for deep or wide FIFOs. Same behaviour either way.
 // - Illegal input: take_i while credit_o is 0; wr_valid_i for an operation that did not take a
 //   credit (more writes than takes). Both are caught by assertions.
 // - Reset: rst_ni (active low, asynchronous) clears the pointers and counters; the storage has no
@@ -54,35 +54,50 @@ module rc_credit_fifo #(
     $error("rc_credit_fifo: need Width >= 1 and Depth >= 1");
   end
 
-  localparam int unsigned CntW = $clog2(Depth + 1);            // holds 0 .. Depth
-  localparam int unsigned PtrW = (Depth > 1) ? $clog2(Depth) : 1;
-  localparam logic [CntW-1:0] DepthCnt = CntW'(Depth);
-  localparam logic [PtrW-1:0] LastPtr  = PtrW'(Depth - 1);
-
   //////////////
   // Counters //
   //////////////
 
-  logic            pop, credit_q;
-  logic [CntW-1:0] cnt_d, cnt_q;  // credits in use: in flight + stored
-  logic [CntW-1:0] occ_d, occ_q;  // entries stored
-  logic [PtrW-1:0] wr_ptr_d, wr_ptr_q, rd_ptr_d, rd_ptr_q;
+  // The head of the FIFO is an output register (out_q, out_v_q); the storage behind it holds
+  // the entries after the head (RamDepth = Depth - 1 suffice: it is non-empty only while the
+  // head is full). A write goes straight into the output register when the storage is empty and
+  // the register is free or being popped (the latency stays one cycle), else into the storage;
+  // the register reloads from the storage when it is free or popped. So valid_o and data_o are
+  // flip-flops, and the storage's read (a distributed-RAM read) ends at the output register
+  // instead of running into the consumer's logic.
+  localparam int unsigned RamDepth = (Depth > 1) ? Depth - 1 : 1;
+  localparam int unsigned CntW     = $clog2(Depth + 1);              // holds 0 .. Depth
+  localparam int unsigned PtrW     = (RamDepth > 1) ? $clog2(RamDepth) : 1;
+  localparam logic [CntW-1:0] DepthCnt = CntW'(Depth);
+  localparam logic [PtrW-1:0] LastPtr  = PtrW'(RamDepth - 1);
 
-  assign pop      = valid_o & ready_i;
+  logic             pop, credit_q, out_v_q, out_free, ram_any, ram_rd, ram_wr, bypass;
+  logic [CntW-1:0]  cnt_d, cnt_q;  // credits in use: in flight + stored (storage + head)
+  logic [CntW-1:0]  occ_d, occ_q;  // entries in the storage behind the head
+  logic [PtrW-1:0]  wr_ptr_d, wr_ptr_q, rd_ptr_d, rd_ptr_q;
+  logic [Width-1:0] ram_data, out_q;
+
+  assign pop      = out_v_q & ready_i;
+  assign out_free = ~out_v_q | ready_i;
+  assign ram_any  = occ_q != '0;
+  assign ram_rd   = out_free & ram_any;
+  assign bypass   = out_free & ~ram_any & wr_valid_i;
+  assign ram_wr   = wr_valid_i & ~bypass;
   assign credit_o = credit_q;
-  assign valid_o  = occ_q != '0;
+  assign valid_o  = out_v_q;
+  assign data_o   = out_q;
 
   always_comb begin
     cnt_d = cnt_q;
     if (take_i) cnt_d = cnt_d + CntW'(1);
     if (pop)    cnt_d = cnt_d - CntW'(1);
     occ_d = occ_q;
-    if (wr_valid_i) occ_d = occ_d + CntW'(1);
-    if (pop)        occ_d = occ_d - CntW'(1);
+    if (ram_wr) occ_d = occ_d + CntW'(1);
+    if (ram_rd) occ_d = occ_d - CntW'(1);
     wr_ptr_d = wr_ptr_q;
-    if (wr_valid_i) wr_ptr_d = (wr_ptr_q == LastPtr) ? '0 : wr_ptr_q + PtrW'(1);
+    if (ram_wr) wr_ptr_d = (wr_ptr_q == LastPtr) ? '0 : wr_ptr_q + PtrW'(1);
     rd_ptr_d = rd_ptr_q;
-    if (pop)        rd_ptr_d = (rd_ptr_q == LastPtr) ? '0 : rd_ptr_q + PtrW'(1);
+    if (ram_rd) rd_ptr_d = (rd_ptr_q == LastPtr) ? '0 : rd_ptr_q + PtrW'(1);
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -92,12 +107,22 @@ module rc_credit_fifo #(
       occ_q    <= '0;
       wr_ptr_q <= '0;
       rd_ptr_q <= '0;
+      out_v_q  <= 1'b0;
     end else begin
       cnt_q    <= cnt_d;
       credit_q <= cnt_d != DepthCnt;
       occ_q    <= occ_d;
       wr_ptr_q <= wr_ptr_d;
       rd_ptr_q <= rd_ptr_d;
+      if (out_free) out_v_q <= ram_any | wr_valid_i;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (ram_rd) begin
+      out_q <= ram_data;
+    end else if (bypass) begin
+      out_q <= wr_data_i;
     end
   end
 
@@ -107,31 +132,30 @@ module rc_credit_fifo #(
 
   if (MemArray) begin : g_mem_array
     // Write port at wr_ptr_q, asynchronous read at rd_ptr_q (distributed RAM). ram_style keeps
-    // synthesis from moving a register behind the FIFO (its owner's) into a block RAM's read
-    // port: a block RAM's clock-to-out (5.8 ns on the LFE5U-85F) would then start the paths
-    // behind that register.
-    (* ram_style = "distributed" *) logic [Width-1:0] mem_q [0:Depth-1];
+    // synthesis from making the output register the read port of a block RAM, whose
+    // clock-to-out (5.8 ns on the LFE5U-85F) would then start the consumer's paths.
+    (* ram_style = "distributed" *) logic [Width-1:0] mem_q [0:RamDepth-1];
 
     always_ff @(posedge clk_i) begin
-      if (wr_valid_i) mem_q[wr_ptr_q] <= wr_data_i;
+      if (ram_wr) mem_q[wr_ptr_q] <= wr_data_i;
     end
 
-    assign data_o = mem_q[rd_ptr_q];
+    assign ram_data = mem_q[rd_ptr_q];
   end else begin : g_mem_flat
     // Entry i at mem_q[i*Width +: Width] (flat vectors: Yosys 0.23 reads no multi-dimensional
     // packed arrays).
-    logic [Depth*Width-1:0] mem_q;
+    logic [RamDepth*Width-1:0] mem_q;
 
     always_ff @(posedge clk_i) begin
-      for (int unsigned i = 0; i < Depth; i++) begin
-        if (wr_valid_i && wr_ptr_q == PtrW'(i)) mem_q[i*Width +: Width] <= wr_data_i;
+      for (int unsigned i = 0; i < RamDepth; i++) begin
+        if (ram_wr && wr_ptr_q == PtrW'(i)) mem_q[i*Width +: Width] <= wr_data_i;
       end
     end
 
     always_comb begin
-      data_o = '0;
-      for (int unsigned i = 0; i < Depth; i++) begin
-        if (rd_ptr_q == PtrW'(i)) data_o = mem_q[i*Width +: Width];
+      ram_data = '0;
+      for (int unsigned i = 0; i < RamDepth; i++) begin
+        if (rd_ptr_q == PtrW'(i)) ram_data = mem_q[i*Width +: Width];
       end
     end
   end
@@ -152,15 +176,20 @@ module rc_credit_fifo #(
   // An operation may only enter the pipeline with a credit, or its result could find no slot.
   TakeHasCredit_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     take_i |-> credit_o);
-  // Every write was reserved by a credit, so the FIFO is never full when a write arrives.
+  // Every write was reserved by a credit, so the storage is never full when a write goes there
+  // (it holds at most Depth - 1 entries: it is non-empty only while the head is full).
   WriteHasRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                   wr_valid_i |-> occ_q < DepthCnt);
+                                   ram_wr |-> occ_q < CntW'(RamDepth));
+  // Entries wait behind a full head only.
+  HeadFirst_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                ram_any |-> out_v_q);
   // The credit register always equals the count's compare (both are loaded from cnt_d).
   CreditIsCount_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     credit_o == (cnt_q < DepthCnt));
-  // Stored entries are a subset of the credits in use (the rest are in flight).
+  // Stored entries (storage and head) are a subset of the credits in use (the rest are in
+  // flight).
   OccWithinCredits_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                       occ_q <= cnt_q && cnt_q <= DepthCnt);
+                                       occ_q + CntW'(out_v_q) <= cnt_q && cnt_q <= DepthCnt);
   // Handshake outputs must be known once out of reset.
   HandshakeKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                      !$isunknown({valid_o, credit_o}));
