@@ -6,10 +6,11 @@
 //     if v is NaN: byte_o = 0
 //     else: v = min(v, 1.0) * 255.0       (format min and multiply; v is then in [+0, 255])
 //           byte_o = v rounded to the nearest integer, ties to even
-// - Handshake: valid only, no backpressure. valid_o is valid_i delayed by exactly 5 cycles;
-//   byte_o belongs to the input presented 5 cycles earlier and is meaningful only while valid_o
-//   is 1. A new value may be presented every cycle.
-// - Latency: 5 cycles (max 1 · min 1 · multiply 2 · round 1).
+// - Handshake: valid only, no backpressure. valid_o is valid_i delayed by exactly its latency;
+//   byte_o belongs to the input presented that many cycles earlier and is meaningful only while
+//   valid_o is 1. A new value may be presented every cycle.
+// - Latency: 2 * FpStagesCmp + FpStagesMul + 1 cycles (max · min · multiply · round; 5 at the
+//   defaults of docs/spec.toml [fp_stages]).
 // - Parameters: ExpW, FracW: the number format (default fp24). FracW >= 7 is required (255.0
 //   needs 8 significant bits) and ExpW >= 4 (255.0 must be a normal number); any other
 //   parameterisation is illegal and stops elaboration.

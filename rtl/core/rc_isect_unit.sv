@@ -27,9 +27,9 @@
 //   unit's first pass; a register, so ready_o still depends only on registered state).
 // - Latency: PipeLat = IssueLat + (MulStages + 3 * AddStages) + DivStages + MulStages +
 //   2 * AddStages + CmpStages cycles, IssueLat = 2 with SharedXform (input register, second
-//   pass) and 0 without (2 + 20 + 11 + 2 + 12 + 1 = 48 at the defaults mul 2, add 6, div 11,
+//   pass) and 0 without (2 + 21 + 11 + 3 + 12 + 1 = 50 at the defaults mul 3, add 6, div 11,
 //   cmp 1: the rc_fp_* default latencies), plus the FIFO's output register: valid_o rises
-//   PipeLat + 1 = 49 cycles (47 with SharedXform = 0) after an accepted input when ready_i is
+//   PipeLat + 1 = 51 cycles (49 with SharedXform = 0) after an accepted input when ready_i is
 //   high and the FIFO is empty.
 // - Throughput: SharedXform = 1: one ray-triangle pair every two cycles (with ready_i held high,
 //   ready_o is 1 every other cycle); SharedXform = 0: one pair per cycle (ready_o stays 1).

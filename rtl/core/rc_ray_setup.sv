@@ -29,14 +29,14 @@
 //   rc_credit_fifo and the input register's slot counter) and never depends on valid_i or
 //   ready_i; valid_o never depends on ready_i. Results leave in order; nothing is dropped or
 //   duplicated. tag_i travels with the operation to tag_o.
-// - Latency: 20 cycles at the defaults from the taking edge to valid_o (input register 1 · z
-//   enters the slice 2 x 1 after x · divide 11, with the subtracts in parallel · multiply 2 ·
+// - Latency: 21 cycles at the defaults from the taking edge to valid_o (input register 1 · z
+//   enters the slice 2 x 1 after x · divide 11, with the subtracts in parallel · multiply 3 ·
 //   min/max of t0, t1: 1 · the chain step of z: 1 (those of x and y overlap the later axes) ·
 //   le: 1 · output FIFO 1), when the FIFO is empty and ready_i is 1.
 // - Throughput: one ray per 3 x CmpStages cycles (3 at the defaults) while ready_i is 1: ready_o
 //   rises again in the ray's last cycle in the input register (at the defaults the cycle its z
 //   enters the slice), so the next ray is taken then and its x follows at once. The FIFO holds
-//   Latency / (3 x CmpStages) + 1 entries (7 at the defaults), enough credits for every
+//   Latency / (3 x CmpStages) + 1 entries (8 at the defaults), enough credits for every
 //   operation in flight at that rate.
 // - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1).
 // - Illegal input: none; every bit pattern of the data inputs is legal.

@@ -14,8 +14,9 @@
 //   when valid_i & ready_o. ready_o comes from a register (credits, see rc_credit_fifo) and never
 //   depends on valid_i or ready_i; valid_o never depends on ready_i. Results leave in order;
 //   nothing is dropped or duplicated. tag_i travels with the operation to tag_o.
-// - Latency: 21 cycles from the taking edge to valid_o (multiply 2 · multiply 2 · min 1 ·
-//   multiply 2 · add 6 · multiply 2 · to_u8 5 · output FIFO 1), when the FIFO is empty and
+// - Latency: 4 * mul + cmp + add + to_u8 (2 * cmp + mul + 1) + 1 cycles from the taking edge to
+//   valid_o, 26 at the defaults of docs/spec.toml [fp_stages] (multiply 3 · multiply 3 · min 1 ·
+//   multiply 3 · add 6 · multiply 3 · to_u8 6 · output FIFO 1), when the FIFO is empty and
 //   ready_i is 1.
 // - Throughput: one hit per cycle while ready_i is 1 (the FIFO holds Latency + 1 entries, enough
 //   credits for every operation in flight).
@@ -65,7 +66,7 @@ module rc_shade_unit #(
   localparam int unsigned MulStages = rc_pkg::FpStagesMul;
   localparam int unsigned AddStages = rc_pkg::FpStagesAdd;
   localparam int unsigned CmpStages = rc_pkg::FpStagesCmp;
-  localparam int unsigned U8Stages  = 5;  // rc_fp_to_u8's fixed latency
+  localparam int unsigned U8Stages  = 2 * CmpStages + MulStages + 1;  // rc_fp_to_u8's latency
   // take -> FIFO write: three multiplies to c, min, multiply, add, kd multiply, to_u8.
   localparam int unsigned PipeLat   = 4 * MulStages + CmpStages + AddStages + U8Stages;
   localparam int unsigned FifoDepth = PipeLat + 2;  // full throughput

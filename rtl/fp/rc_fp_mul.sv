@@ -22,9 +22,9 @@
 //   of two signals (one MULT18X18D on ECP5 at fp24).
 //
 // Pipeline (segments, and the cuts between them in the order Stages enables them):
-//   segment 0: unpack, classify, exponent sum            | cut A (Stages >= 3)
+//   segment 0: unpack, classify, exponent sum            | cut A (Stages >= 4)
 //   segment 1: significand product                       | cut B (Stages >= 2)
-//   segment 2: normalise (one-bit shift), round/sticky   | cut C (Stages >= 4)
+//   segment 2: normalise (one-bit shift), round/sticky   | cut C (Stages >= 3)
 //   segment 3: round increment, flush/overflow, pack     | output register(s)
 //   The output has Stages minus the enabled internal cuts registers (at least one).
 module rc_fp_mul #(
@@ -58,9 +58,9 @@ module rc_fp_mul #(
   localparam int unsigned ExW   = ExpW + 2;           // unbounded exponent, two's complement
   localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
 
-  localparam bit          CutA    = Stages >= 3;
+  localparam bit          CutA    = Stages >= 4;
   localparam bit          CutB    = Stages >= 2;
-  localparam bit          CutC    = Stages >= 4;
+  localparam bit          CutC    = Stages >= 3;
   localparam int unsigned OutRegs = Stages - 32'(CutA) - 32'(CutB) - 32'(CutC);
 
   // Per-operation flags carried down the pipeline: {spec_nan, spec_inf, spec_zero, sign}.

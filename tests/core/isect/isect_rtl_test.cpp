@@ -558,8 +558,13 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
 }
 
 TEST(IsectRtl, Fp24VsGoldenIntersect) {
+  // The contract's latency: issue 2 (input register, second pass), the transform (multiply and
+  // three adds), divide, multiply, two adds, compare, the output FIFO.
+  constexpr int64_t add = spec::kFpStagesAdd, mul = spec::kFpStagesMul;
+  constexpr int64_t lat = 2 + (mul + 3 * add) + spec::kFpStagesDiv + mul + 2 * add +
+                          spec::kFpStagesCmp + 1;
   run_isect<Visect_e7f16>("rtl isect unit (one transform unit) vs golden intersect", 1'000'000, 7,
-                          49);
+                          static_cast<uint64_t>(lat));
 }
 
 TEST(IsectRtl, Fp24OneStagePipelines) {
@@ -713,7 +718,8 @@ TEST(XformRtl, Fp24VsExpression) {
   it.translate = true;
   const uint64_t lat = s.measure_latency(it, xform_golden(it));
   std::printf("  latency %llu cycles\n", static_cast<unsigned long long>(lat));
-  EXPECT_EQ(lat, 21u);
+  // The contract's latency: multiply, three adds, the output FIFO.
+  EXPECT_EQ(lat, static_cast<uint64_t>(spec::kFpStagesMul + 3 * spec::kFpStagesAdd + 1));
 }
 
 }  // namespace

@@ -32,6 +32,13 @@ namespace rc::test {
 namespace {
 
 using T = fp24;
+
+// The fp units' latencies (docs/spec.toml [fp_stages]); the units' latencies below are the sums
+// their contracts state.
+constexpr int64_t kAdd = spec::kFpStagesAdd, kMul = spec::kFpStagesMul, kCmp = spec::kFpStagesCmp,
+                  kDiv = spec::kFpStagesDiv;
+// rc_fp_to_u8: max, min, multiply, round.
+constexpr int64_t kToU8Latency = 2 * kCmp + kMul + 1;
 constexpr int kW = T::kWidth;  // 24
 constexpr uint32_t kTagMask = 0xffff;
 
@@ -610,7 +617,10 @@ TEST(CoreUnits, TravStepRandom) {
 }
 
 TEST(CoreUnits, TravStepTiming) {
-  run_timing<Vrc_trav_step, TravUnit>("rc_trav_step", 10, 11, trav_case);
+  // Subtract, multiply, compare, the output FIFO; the FIFO holds latency + 1 entries.
+  constexpr int64_t lat = kAdd + kMul + kCmp + 1;
+  run_timing<Vrc_trav_step, TravUnit>("rc_trav_step", lat, static_cast<uint64_t>(lat + 1),
+                                     trav_case);
 }
 
 TEST(CoreUnits, RaySetupRandom) {
@@ -639,7 +649,11 @@ TEST(CoreUnits, RaySetupRandom) {
 
 // rc_ray_setup runs the three axes of a ray through one arithmetic slice: one ray per 3 cycles.
 TEST(CoreUnits, RaySetupTiming) {
-  run_timing<Vrc_ray_setup, SetupUnit>("rc_ray_setup", 20, 7, setup_case, 3);
+  // Input register, z two compare gaps after x, divide, multiply, min/max, z's chain step, le,
+  // the output FIFO; the FIFO holds latency / (3 x cmp) + 1 entries.
+  constexpr int64_t lat = 1 + 2 * kCmp + kDiv + kMul + kCmp + 2 * kCmp + 1;
+  run_timing<Vrc_ray_setup, SetupUnit>("rc_ray_setup", lat,
+                                       static_cast<uint64_t>(lat / (3 * kCmp) + 1), setup_case, 3);
 }
 
 TEST(CoreUnits, ShadeRandom) {
@@ -656,10 +670,13 @@ TEST(CoreUnits, ShadeRandom) {
 }
 
 TEST(CoreUnits, ShadeTiming) {
-  run_timing<Vrc_shade_unit, ShadeUnit>("rc_shade_unit", 21, 22, shade_case);
+  // Four multiplies, min, add, to_u8, the output FIFO; the FIFO holds latency + 1 entries.
+  constexpr int64_t lat = 4 * kMul + kCmp + kAdd + kToU8Latency + 1;
+  run_timing<Vrc_shade_unit, ShadeUnit>("rc_shade_unit", lat, static_cast<uint64_t>(lat + 1),
+                                       shade_case);
 }
 
-// rc_fp_to_u8 (valid-only, latency 5) against to_u8<fp24>() for every fp24 encoding.
+// rc_fp_to_u8 (valid-only, latency kToU8Latency) against to_u8<fp24>() for every fp24 encoding.
 TEST(CoreUnits, ToU8Exhaustive) {
   auto ctx = std::make_unique<VerilatedContext>();
   ctx->assertOn(true);
@@ -697,7 +714,10 @@ TEST(CoreUnits, ToU8Exhaustive) {
       } else {
         const Expect e = q.front();
         q.pop_front();
-        if (e.due != cycle) fail("latency: result of " + fb(e.x).hex() + " not 5 cycles late");
+        if (e.due != cycle) {
+          fail("latency: result of " + fb(e.x).hex() + " not " + std::to_string(kToU8Latency) +
+               " cycles late");
+        }
         if (dut->byte_o != e.want)
           fail("to_u8(" + fb(e.x).hex() + "): rtl " + std::to_string(dut->byte_o) + ", golden " +
                std::to_string(e.want));
@@ -709,7 +729,7 @@ TEST(CoreUnits, ToU8Exhaustive) {
     dut->valid_i = !idle;
     dut->x_i = x;
     if (!idle) {
-      q.push_back({x, to_u8<T>(fb(x)), cycle + 5});
+      q.push_back({x, to_u8<T>(fb(x)), cycle + kToU8Latency});
       ++cases;
       ++x;
     }
