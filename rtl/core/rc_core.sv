@@ -218,7 +218,6 @@ module rc_core #(
   logic [11:0]       dsign_m [0:Threads-1];    // sign bits of dir_m (ray r axis a at 3r + a)
   logic [31:0]       loff_m [0:Threads-1];     // leaf list offset and count
   logic [31:0]       lcnt_m [0:Threads-1];
-  logic [31:0]       pend_m [0:Threads-1];     // leaf triangles not yet finished
   logic [4*W-1:0]    bt_m   [0:Threads-1];     // best hits
   logic [4*W-1:0]    bu_m   [0:Threads-1];
   logic [4*W-1:0]    bv_m   [0:Threads-1];
@@ -363,8 +362,28 @@ module rc_core #(
     .grant_o(g_acc)
   );
 
-  // Ready from registers only: a free thread and an idle set-up feeder.
-  assign pkt_ready_o = acc_any & ~feed_busy_q;
+  // The free-thread choice is registered (acc_any_q, acc_thr_q, gacc_c_q), so ready is a gate of
+  // two flip-flops: the choice over the thread states no longer reaches the packet source (the
+  // board's ray generator) and the feeder's wide clock enables in its own cycle. A registered
+  // choice is still free when it is used: only a take makes a free thread busy, the choice is
+  // withdrawn in the cycle after a take, and the feeder stays busy for the packet's four rays
+  // (over 11 cycles) while the thread's state catches up. A thread that becomes free is offered
+  // a cycle later than the choice sees it.
+  logic            acc_any_q;
+  logic [ThrW-1:0] acc_thr_q;
+  logic [Threads-1:0] gacc_c_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      acc_any_q <= 1'b0;
+      acc_thr_q <= '0;
+      gacc_c_q  <= '0;
+    end else begin
+      acc_any_q <= acc_any & ~acc_take;
+      acc_thr_q <= acc_thr;
+      gacc_c_q  <= g_acc;
+    end
+  end
+  assign pkt_ready_o = acc_any_q & ~feed_busy_q;
   assign acc_take    = pkt_valid_i & pkt_ready_o;
 
   /////////////////////////////////////////
@@ -408,10 +427,10 @@ module rc_core #(
       feed_r_q    <= '0;
     end else begin
       acc_v_q <= acc_take;
-      gacc_q  <= g_acc;
+      gacc_q  <= gacc_c_q;
       if (acc_take) begin
         feed_busy_q <= 1'b1;
-        feed_thr_q  <= acc_thr;
+        feed_thr_q  <= acc_thr_q;
         feed_r_q    <= '0;
       end else if (su_take) begin
         feed_r_q <= feed_r_q + 2'd1;
@@ -595,7 +614,6 @@ module rc_core #(
   logic             trav_ready, nr_take, nr_leaf, nr_err, nr_malformed, nr_leaf_bad, nr_inner_ok;
   logic             nr_empty;
   logic [ThrW-1:0]  nr_thr;
-  logic [1:0]       nr_axis;
   logic [NodeW-1:0] nr_idx;
   logic [31:0]      nr_upper;
   logic [3:0]       nr_mask;
@@ -636,7 +654,6 @@ module rc_core #(
 
   logic             nq_err_q, nq_leaf_q, nq_malformed_q, nq_leaf_bad_q, nq_empty_q;
   logic [ThrW-1:0]  nq_thr_q;
-  logic [1:0]       nq_axis_q;
   logic [NodeW-1:0] nq_idx_q;
   logic [31:0]      nq_upper_q;
 
@@ -655,7 +672,6 @@ module rc_core #(
       nq_leaf_bad_q  <= n0_leaf_bad;
       nq_empty_q     <= n0_upper == 32'd0;
       nq_thr_q       <= n0_thr;
-      nq_axis_q      <= n0_axis;
       nq_idx_q       <= n0_idx;
       nq_upper_q     <= n0_upper;
     end
@@ -670,8 +686,6 @@ module rc_core #(
   assign nr_empty     = nq_empty_q;
   assign nr_malformed = nq_malformed_q;
   assign nr_leaf_bad  = nq_leaf_bad_q;
-  assign nr_axis      = nq_axis_q;
-  assign nr_mask      = get4(mask_q, nr_thr);
   assign nr_inner_ok  = nq_v_q & ~nr_err & ~nr_leaf & ~nr_malformed;
 
   // The rays' origins and inverse directions on the split axis are read as the response
@@ -686,14 +700,38 @@ module rc_core #(
       n0_inv[r*W +: W] = axis_w(n0_inv_all, r, n0_axis);
     end
   end
-  always_ff @(posedge clk_i) begin
-    if (n0_take) begin
-      nq_org_q <= n0_org;
-      nq_inv_q <= n0_inv;
+  // So are the rest of what the traversal needs of the thread: its active rays, stack pointer,
+  // intervals and its rays' direction signs on the split axis (none of them changes while the
+  // thread waits for its node: TravPayload_A checks them at the result; CurWriteFirst_A that no
+  // current-entry write is still due). The sub-units' inputs and the operation's payload then
+  // start from flip-flops, not from reads addressed by the registered thread.
+  logic [3:0]     n0_sign, nq_mask_q, nq_sign_q;
+  logic [11:0]    n0_dsign;
+  logic [SpW-1:0] nq_sp_q;
+  logic [4*W-1:0] nq_tmin_q, nq_tmax_q;
+  assign n0_dsign = dsign_m[n0_thr];
+  always_comb begin
+    for (int unsigned r = 0; r < 4; r++) begin
+      n0_sign[r] = 1'b0;
+      for (int unsigned a = 0; a < 3; a++) begin
+        if (n0_axis == 2'(a)) n0_sign[r] = n0_dsign[3*r+a];
+      end
     end
   end
-  assign nr_org = nq_org_q;
-  assign nr_inv = nq_inv_q;
+  always_ff @(posedge clk_i) begin
+    if (n0_take) begin
+      nq_org_q  <= n0_org;
+      nq_inv_q  <= n0_inv;
+      nq_mask_q <= get4(mask_q, n0_thr);
+      nq_sp_q   <= getsp(sp_q, n0_thr);
+      nq_tmin_q <= tmin_m[n0_thr];
+      nq_tmax_q <= tmax_m[n0_thr];
+      nq_sign_q <= n0_sign;
+    end
+  end
+  assign nr_org  = nq_org_q;
+  assign nr_inv  = nq_inv_q;
+  assign nr_mask = nq_mask_q;
 
   ////////////////////////////////////////
   // Traversal: four sub-units          //
@@ -715,26 +753,17 @@ module rc_core #(
   logic [4*W-1:0]    trav_t;
   logic [7:0]        trav_case;
   logic [4*W-1:0]    nr_tmin, nr_tmax;
-  logic [11:0]       nr_dsign;
   logic [3:0]        nr_sign, nr_same;
   logic [1:0]        nr_lead;
   logic              nr_lsign;
   logic [SpW-1:0]    nr_sp;
   logic [TrComW-1:0] nr_com;
 
-  assign nr_tmin  = tmin_m[nr_thr];
-  assign nr_tmax  = tmax_m[nr_thr];
-  assign nr_dsign = dsign_m[nr_thr];
-  assign nr_sp    = getsp(sp_q, nr_thr);
+  assign nr_tmin  = nq_tmin_q;
+  assign nr_tmax  = nq_tmax_q;
+  assign nr_sp    = nq_sp_q;
   assign nr_lead  = lowest4(nr_mask);
-  always_comb begin
-    for (int unsigned r = 0; r < 4; r++) begin
-      nr_sign[r] = 1'b0;
-      for (int unsigned a = 0; a < 3; a++) begin
-        if (nr_axis == 2'(a)) nr_sign[r] = nr_dsign[3*r+a];
-      end
-    end
-  end
+  assign nr_sign  = nq_sign_q;
   assign nr_lsign = nr_sign[nr_lead];
   assign nr_same  = nr_sign ^ {4{~nr_lsign}};
   assign nr_com   = {nr_sp == SpW'(StackDepth), nr_sp, nr_idx, nr_lsign, nr_same, nr_mask,
@@ -823,7 +852,7 @@ module rc_core #(
   logic [ThrW-1:0]  pop0_thr_q, pop1_thr_q, pop2_thr_q;
   logic [EntryW-1:0] pop0_entry_q, pop1_entry_q, pop2_entry_q;
   logic [3:0]       pop_le, pop2_mask;
-  logic [4*W-1:0]   pop1_best_t;
+  logic [4*W-1:0]   pop0_best_t, pop1_best_t;
 
   rc_rr_pick #(
     .N   (Threads),
@@ -876,11 +905,13 @@ module rc_core #(
     if (pp_v_q) begin
       pop0_entry_q <= stack_m[StkAW'({pp_thr_q, pp_sp[SpIdxW-1:0]})];
     end
+    // The best hits are read with the stack entry, from the registered choice: a popping
+    // thread's best hits do not change (only a thread in its leaf gets intersection results,
+    // and its leaf's last commit comes before its pop is chosen; PopBest_A).
+    if (pp_v_q) pop0_best_t <= gate_t(bt_m[pp_thr_q], get4(bhit_q, pp_thr_q));
     if (pop0_v_q) begin
       pop1_entry_q <= pop0_entry_q;
-      // The best hits are read with the entry: a popping thread's best hits do not change
-      // (only a thread in its leaf gets intersection results; PopBest_A).
-      pop1_best_t  <= gate_t(bt_m[pop0_thr_q], get4(bhit_q, pop0_thr_q));
+      pop1_best_t  <= pop0_best_t;
     end
     pop0_thr_q   <= pp_thr_q;
     pop1_thr_q   <= pop0_thr_q;
@@ -1032,7 +1063,7 @@ module rc_core #(
   assign lr_bad           = list_rsp_error_i | (list_rsp_data_i >= tri_count_i);
   // A failed entry is registered (lb_*_q, with its tag's thread) and retired in the next cycle
   // (its thread's pending count, its tag): the check's carry chain and the tag pool's read end
-  // at flip-flops, not at pend_m.
+  // at flip-flops, not at the thread's leaf count.
   assign lr_thr           = lb_thr_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -1102,7 +1133,8 @@ module rc_core #(
   logic [ThrW-1:0] ti_thr, ti_thr_q;
   logic [31:0]     ti_tri_q;
   logic [12*W-1:0] ti_m_q;
-  logic [3:0]      ti_mask_q, ti_rem, ifd_done_q;
+  logic [3:0]      ti_mask_q, ti_mask_new, ti_rem_q, ti_rem_next;
+  logic            ti_last_q;
   logic [1:0]      ti_r;
   logic [12*W-1:0] ti_org_all, ti_dir_all;
   logic [4*W-1:0]  ti_bt;
@@ -1110,7 +1142,7 @@ module rc_core #(
 
   assign ti_tag          = tri_rsp_tag_i[LtW-1:0];
   assign ti_thr          = tp_thr_m[ti_tag];
-  assign ti_free         = ~ti_v_q | ti_err_q | (is_ready & ti_last);
+  assign ti_free         = ~ti_v_q | ti_err_q | (is_ready & ti_last_q);
   assign ti_load         = tri_rsp_valid_i & ti_free;
   assign tri_rsp_ready_o = ti_free;
 
@@ -1126,15 +1158,20 @@ module rc_core #(
   always_ff @(posedge clk_i) begin
     if (ti_load) begin
       ti_thr_q  <= ti_thr;
-      ti_mask_q <= tp_mask_m[ti_tag];
+      ti_mask_q <= ti_mask_new;
       ti_tri_q  <= tp_tri_m[ti_tag];
       ti_m_q    <= tri_rsp_data_i;
     end
   end
 
-  assign ti_rem  = ti_mask_q & ~ifd_done_q;
-  assign ti_r    = lowest4(ti_rem);
-  assign ti_last = (ti_rem & ~(4'd1 << ti_r)) == 4'd0;
+  // The rays still to test (ti_rem_q, lowest first) and whether the current one is the last
+  // (ti_last_q) are registers, loaded with the triangle and updated at each test, so the
+  // register's ready (ti_free, the triangle port's response ready, which crosses the chip to the
+  // triangle memory) is two gates of flip-flops.
+  assign ti_mask_new = tp_mask_m[ti_tag];
+  assign ti_rem_next = ti_rem_q & (ti_rem_q - 4'd1);  // the lowest ray done
+  assign ti_r        = lowest4(ti_rem_q);
+  assign ti_last     = ti_last_q;
 
   assign is_valid    = ti_v_q & ~ti_err_q;
   assign is_take     = is_valid & is_ready;
@@ -1142,16 +1179,34 @@ module rc_core #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      ifd_done_q <= '0;
+      ti_rem_q  <= '0;
+      ti_last_q <= 1'b0;
+    end else if (ti_load) begin
+      ti_rem_q  <= ti_mask_new;
+      ti_last_q <= (ti_mask_new & (ti_mask_new - 4'd1)) == 4'd0;
     end else if (is_take) begin
-      ifd_done_q <= ti_last ? 4'd0 : (ifd_done_q | (4'd1 << ti_r));
+      ti_rem_q  <= ti_rem_next;
+      ti_last_q <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
     end
   end
 
+  // The best hits are gated with the thread's hit bits as they were a cycle before (ti_hit_q;
+  // none in the cycle after a load), so no thread-indexed read of bhit_q sits between ti_thr_q
+  // and the slice: the filter then sees +inf where a hit is a cycle new, which only lets a test
+  // through that the write-back rejects (a hit bit, once set, stays set for the packet, and the
+  // word it gates is then the ray's current best).
+  logic [3:0] ti_hit_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ti_hit_q <= '0;
+    end else begin
+      ti_hit_q <= ti_load ? 4'd0 : get4(bhit_q, ti_thr_q);
+    end
+  end
   assign ti_org_all = org_m[ti_thr_q];
   assign ti_dir_all = dir_m[ti_thr_q];
-  assign ti_bt      = gate_t(bt_m[ti_thr_q], get4(bhit_q, ti_thr_q));
-  assign ti_btri    = gate_tri(btri_m[ti_thr_q], get4(bhit_q, ti_thr_q));
+  assign ti_bt      = gate_t(bt_m[ti_thr_q], ti_hit_q);
+  assign ti_btri    = gate_tri(btri_m[ti_thr_q], ti_hit_q);
 
   // The unit's inputs are registered (ia_*_q, a register slice that takes a test whenever it
   // is empty or the unit takes its test), so the reads of the thread's rays and best hits above
@@ -1247,30 +1302,58 @@ module rc_core #(
 
   // Write-back: the hit replaces the ray's best if (t, tri) is smaller, compared again here
   // because other tests of the same ray may have finished since this one read its best. Accepted
-  // t are positive and finite, so their encodings order like their values. Two cycles: the
-  // registered result reads its ray's best hit into wb_*_q (the best being written in the same
-  // cycle is forwarded when it is the same ray's); then the compare and the write. So the best
-  // hit's read and the write enables it decides are in different cycles. The leaf's triangle
-  // count goes down with the write, so its pop sees every write.
-  logic            wb_v_q, wb_last_q, wb_hit_q, wb_better, wb_fwd;
+  // t are positive and finite, so their encodings order like their values. Three cycles after the
+  // io register (whose load reads the ray's best hit): the best, forwarded where newer, into
+  // wb_*_q; then the compare (wb_better); then the commit (wc_*_q): the ray's words are read, its
+  // lane replaced and written back, and its hit bit set, all from registers, so the compare's
+  // carry chains end at a flip-flop instead of the write enables of hundreds of distributed-RAM
+  // cells. The read for the io stage misses the bests of the results ahead of it (decided and not
+  // yet committed, or committed after the read): those are forwarded when they are the same
+  // ray's, the newest first (WbForward_A). The leaf's triangle count goes down at the compare;
+  // its pop reads the best hits at least three cycles later, after the commit.
+  logic            wb_v_q, wb_last_q, wb_hit_q, wb_better, wb_fwd, wc_fwd;
   logic [1:0]      wb_r_q, io_r;
   logic [ThrW-1:0] wb_thr_q, io_thr;
   logic [W-1:0]    io_bt, wb_bt_q, wb_t_q, wb_u_q, wb_vb_q, wb_dz_q;
   logic [31:0]     io_btri, wb_btri_q, wb_tri_q;
-  logic [4*W-1:0]  wb_bt_all;
-  logic [127:0]    wb_btri_all;
+  logic            wc_we_q, wd_we_q, wd_fwd;
+  logic [1:0]      wc_r_q, wd_r_q, iu_r;
+  logic [ThrW-1:0] wc_thr_q, wd_thr_q, iu_thr;
+  logic [W-1:0]    wc_t_q, wc_u_q, wc_vb_q, wc_dz_q, wd_t_q;
+  logic [31:0]     wc_tri_q, wd_tri_q;
 
+  // The ray's best hit is read as the result enters the io register (io_bt, io_btri: the unit's
+  // output is a register), so the read addressed by the result's thread ends at flip-flops; the
+  // io stage then only forwards: the best decided this cycle (wb), the one committed at the end
+  // of this cycle (wc) and the one committed at the end of the last (wd), which the read missed.
+  assign iu_thr  = iu_tag[ThrW-1:0];
+  assign iu_r    = iu_tag[ThrW +: 2];
   assign io_r    = io_tag_q[ThrW +: 2];
   assign io_thr  = io_tag_q[ThrW-1:0];
-  assign io_bt   = lane_w(gate_t(bt_m[io_thr], get4(bhit_q, io_thr)), io_r);
-  assign io_btri = lane_32(gate_tri(btri_m[io_thr], get4(bhit_q, io_thr)), io_r);
   assign wb_fwd  = wb_better & (wb_thr_q == io_thr) & (wb_r_q == io_r);
+  assign wc_fwd  = wc_we_q & (wc_thr_q == io_thr) & (wc_r_q == io_r);
+  assign wd_fwd  = wd_we_q & (wd_thr_q == io_thr) & (wd_r_q == io_r);
+
+  always_ff @(posedge clk_i) begin
+    if (iu_v) begin
+      io_bt   <= lane_w(gate_t(bt_m[iu_thr], get4(bhit_q, iu_thr)), iu_r);
+      io_btri <= lane_32(gate_tri(btri_m[iu_thr], get4(bhit_q, iu_thr)), iu_r);
+    end
+    wd_thr_q <= wc_thr_q;
+    wd_r_q   <= wc_r_q;
+    wd_t_q   <= wc_t_q;
+    wd_tri_q <= wc_tri_q;
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      wb_v_q <= 1'b0;
+      wb_v_q  <= 1'b0;
+      wc_we_q <= 1'b0;
+      wd_we_q <= 1'b0;
     end else begin
-      wb_v_q <= io_v_q;
+      wb_v_q  <= io_v_q;
+      wc_we_q <= wb_better;
+      wd_we_q <= wc_we_q;
     end
   end
   always_ff @(posedge clk_i) begin
@@ -1284,13 +1367,20 @@ module rc_core #(
       wb_u_q    <= io_u_q;
       wb_vb_q   <= io_v_bits_q;
       wb_dz_q   <= io_dz_q;
-      wb_bt_q   <= wb_fwd ? wb_t_q : io_bt;
-      wb_btri_q <= wb_fwd ? wb_tri_q : io_btri;
+      wb_bt_q   <= wb_fwd ? wb_t_q : wc_fwd ? wc_t_q : wd_fwd ? wd_t_q : io_bt;
+      wb_btri_q <= wb_fwd ? wb_tri_q : wc_fwd ? wc_tri_q : wd_fwd ? wd_tri_q : io_btri;
+    end
+    if (wb_better) begin
+      wc_r_q   <= wb_r_q;
+      wc_thr_q <= wb_thr_q;
+      wc_t_q   <= wb_t_q;
+      wc_u_q   <= wb_u_q;
+      wc_vb_q  <= wb_vb_q;
+      wc_dz_q  <= wb_dz_q;
+      wc_tri_q <= wb_tri_q;
     end
   end
 
-  assign wb_bt_all   = gate_t(bt_m[wb_thr_q], get4(bhit_q, wb_thr_q));
-  assign wb_btri_all = gate_tri(btri_m[wb_thr_q], get4(bhit_q, wb_thr_q));
   assign wb_better   = wb_v_q & wb_hit_q &
                        ((wb_t_q < wb_bt_q) | ((wb_t_q == wb_bt_q) & (wb_tri_q < wb_btri_q)));
 
@@ -1576,7 +1666,7 @@ module rc_core #(
   assign h_te  = hot(te_dec, ti_thr_q);
   assign h_pe  = {Threads{pp_v_q}} & gpp_q;
   assign h_p2  = hot(pop2_v, pop2_thr_q);
-  assign h_wb  = hot(wb_better, wb_thr_q);
+  assign h_wb  = hot(wc_we_q, wc_thr_q);
   assign h_sx  = {Threads{shp_v_q}} & gshp_q;
   assign h_fb  = hot(fb_take, fb_thr);
 
@@ -1624,7 +1714,7 @@ module rc_core #(
                          mask_or : mask_q[t*4 +: 4];
       vmask_d[t*4 +: 4] = h_acc[t] ? feed_vmask_q : vmask_q[t*4 +: 4];
       bhit_d[t*4 +: 4] = h_acc[t] ? 4'd0 :
-                         bhit_q[t*4 +: 4] | ({4{h_wb[t]}} & (4'd1 << wb_r_q));
+                         bhit_q[t*4 +: 4] | ({4{h_wb[t]}} & (4'd1 << wc_r_q));
       sp_d[t*SpW +: SpW] = h_acc[t] ? '0 :
                            (h_tr[t] & tr_push_ok) ? tr_sp + SpW'(1) :
                            (h_pe[t] & ~pop_end_t[t]) ? sp_q[t*SpW +: SpW] - SpW'(1) :
@@ -1679,14 +1769,40 @@ module rc_core #(
     end
   end
 
-  // Leaf triangles outstanding per thread: up to three finish in one cycle (a failed list
-  // entry, a failed triangle read and an intersection result).
+  // A leaf's triangles outstanding, per thread, as the list entries in flight (issued by the list
+  // unit and not yet finished) while the list unit no longer issues for the thread: a counter of
+  // a few bits instead of the leaf's 32-bit triangle count counted down, so the leaf's end
+  // (pend_zero) is a small compare. An entry in flight holds a tag (at most ListTags) until its
+  // triangle enters the issue register, and after that sits in the issue register, the input
+  // slice, the intersection unit (at most its FIFO depth of tests: the latency of its fp
+  // pipeline, rc_isect_unit's contract, plus 2) or the io and wb registers: LfMax bounds them.
+  // Up to three entries finish in one cycle (a failed list entry, a failed triangle read and an
+  // intersection result); the last one finishes after the list unit has issued it, so the leaf
+  // ends exactly then.
+  localparam int unsigned IsectDepth = 2 + (rc_pkg::FpStagesMul + 3 * rc_pkg::FpStagesAdd) +
+                                       rc_pkg::FpStagesDiv + rc_pkg::FpStagesMul +
+                                       2 * rc_pkg::FpStagesAdd + rc_pkg::FpStagesCmp + 2;
+  localparam int unsigned LfMax = ListTags + 2 + IsectDepth + 2;
+  localparam int unsigned LfW   = $clog2(LfMax + 1);
   logic [2*Threads-1:0] pend_dec;                // thread t at [2t +: 2]
+  logic [Threads*LfW-1:0] lf_q, lf_d;           // entries in flight, thread t at [t*LfW +: LfW]
   always_comb begin
     for (int unsigned t = 0; t < Threads; t++) begin
+      logic issuing;
+      issuing = lu_busy_q && lu_thr_q == ThrW'(t);
       pend_dec[2*t +: 2] = 2'(lr_dec && lr_thr == ThrW'(t)) + 2'(te_dec && ti_thr_q == ThrW'(t)) +
-                    2'(io_dec && wb_thr_q == ThrW'(t));
-      pend_zero[t] = (pend_dec[2*t +: 2] != 2'd0) && (pend_m[t] == 32'(pend_dec[2*t +: 2]));
+                           2'(io_dec && wb_thr_q == ThrW'(t));
+      lf_d[t*LfW +: LfW] = lf_q[t*LfW +: LfW] + LfW'(li_take && lu_thr_q == ThrW'(t)) -
+                           LfW'(pend_dec[2*t +: 2]);
+      pend_zero[t] = (pend_dec[2*t +: 2] != 2'd0) && !issuing &&
+                     (lf_q[t*LfW +: LfW] == LfW'(pend_dec[2*t +: 2]));
+    end
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      lf_q <= '0;
+    end else begin
+      lf_q <= lf_d;
     end
   end
 
@@ -1694,8 +1810,8 @@ module rc_core #(
   // go to the arrays as whole words with the fourth ray. Best-hit words: one ray's slot replaced.
   logic [12*W-1:0] su_inv_q, su_inv_new;
   logic [4*W-1:0]  su_tmin_q, su_tmax_q, su_tmin_new, su_tmax_new;
-  logic [4*W-1:0]  wb_bt_new, wb_bu_new, wb_bv_new, wb_bdz_new;
-  logic [127:0]    wb_btri_new;
+  logic [4*W-1:0]  wc_bt_new, wc_bu_new, wc_bv_new, wc_bdz_new;
+  logic [127:0]    wc_btri_new;
   always_ff @(posedge clk_i) begin
     if (su_v) begin
       su_inv_q  <= su_inv_new;
@@ -1710,16 +1826,13 @@ module rc_core #(
     su_inv_new  = put_lane_3w(su_inv_new, su_r, su_inv);
     su_tmin_new = put_lane_w(su_tmin_new, su_r, su_tmin);
     su_tmax_new = put_lane_w(su_tmax_new, su_r, su_tmax);
-    wb_bt_new   = wb_bt_all;
-    wb_bu_new   = bu_m[wb_thr_q];
-    wb_bv_new   = bv_m[wb_thr_q];
-    wb_bdz_new  = bdz_m[wb_thr_q];
-    wb_btri_new = wb_btri_all;
-    wb_bt_new   = put_lane_w(wb_bt_new, wb_r_q, wb_t_q);
-    wb_bu_new   = put_lane_w(wb_bu_new, wb_r_q, wb_u_q);
-    wb_bv_new   = put_lane_w(wb_bv_new, wb_r_q, wb_vb_q);
-    wb_bdz_new  = put_lane_w(wb_bdz_new, wb_r_q, wb_dz_q);
-    wb_btri_new = put_lane_32(wb_btri_new, wb_r_q, wb_tri_q);
+    // The commit's words: the thread's words with the ray's lane replaced (the other lanes as
+    // they are; a lane without its hit bit is never read ungated).
+    wc_bt_new   = put_lane_w(bt_m[wc_thr_q], wc_r_q, wc_t_q);
+    wc_bu_new   = put_lane_w(bu_m[wc_thr_q], wc_r_q, wc_u_q);
+    wc_bv_new   = put_lane_w(bv_m[wc_thr_q], wc_r_q, wc_vb_q);
+    wc_bdz_new  = put_lane_w(bdz_m[wc_thr_q], wc_r_q, wc_dz_q);
+    wc_btri_new = put_lane_32(btri_m[wc_thr_q], wc_r_q, wc_tri_q);
   end
 
   // The current entry's write is registered (cur_*_q) and done in the next cycle, so the
@@ -1785,21 +1898,17 @@ module rc_core #(
     if (nr_take && !nr_err && nr_leaf) begin
       loff_m[nr_thr] <= {{(32 - NodeW){1'b0}}, nr_idx};
       lcnt_m[nr_thr] <= nr_upper;
-      pend_m[nr_thr] <= nr_upper;
     end
     if (tr_push_ok) begin
       stack_m[StkAW'({tr_thr, tr_sp[SpIdxW-1:0] + SpIdxW'(1)})] <=
           {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
     end
-    if (wb_better) begin
-      bt_m[wb_thr_q]   <= wb_bt_new;
-      bu_m[wb_thr_q]   <= wb_bu_new;
-      bv_m[wb_thr_q]   <= wb_bv_new;
-      bdz_m[wb_thr_q]  <= wb_bdz_new;
-      btri_m[wb_thr_q] <= wb_btri_new;
-    end
-    for (int unsigned t = 0; t < Threads; t++) begin
-      if (pend_dec[2*t +: 2] != 2'd0) pend_m[t] <= pend_m[t] - 32'(pend_dec[2*t +: 2]);
+    if (wc_we_q) begin
+      bt_m[wc_thr_q]   <= wc_bt_new;
+      bu_m[wc_thr_q]   <= wc_bu_new;
+      bv_m[wc_thr_q]   <= wc_bv_new;
+      bdz_m[wc_thr_q]  <= wc_bdz_new;
+      btri_m[wc_thr_q] <= wc_btri_new;
     end
   end
 
@@ -1947,8 +2056,8 @@ module rc_core #(
     .rst_ni,
     .on_o (checks_on)
   );
-  logic [31:0] wb_pend;
-  assign wb_pend = pend_m[wb_thr_q];
+  logic [LfW-1:0] wb_pend;
+  assign wb_pend = lf_q[32'(wb_thr_q)*LfW +: LfW];
 
   // The flat thread state update relies on these: at most one event per thread and cycle among
   // those that write its state, mask or stack pointer, each for a thread in the state it leaves.
@@ -1963,13 +2072,23 @@ module rc_core #(
                                    (!h_acc[t] || st_t == StFree) &&
                                    (!h_fe[t] || st_t == StFetch) &&
                                    (!h_lp[t] || st_t == StLeaf) &&
-                                   (!(pend_zero[t] || h_lr[t] || h_te[t] || h_wb[t]) ||
+                                   (!(pend_zero[t] || h_lr[t] || h_te[t]) ||
                                     st_t == StLeafRun) &&
+                                   // the commit of a leaf's last result comes as its walk pops
+                                   (!h_wb[t] || st_t == StLeafRun || st_t == StPop) &&
                                    (!h_pe[t] || st_t == StPop) &&
                                    (!h_p2[t] || st_t == StPopping) &&
                                    (!h_sx[t] || st_t == StDone) &&
                                    (!h_fb[t] || st_t == StShade));
   end
+  // The registered free-thread choice is a free thread when the packet input offers it.
+  AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                    pkt_ready_o |-> st_q[acc_thr_q*4 +: 4] == StFree &&
+                                                    gacc_c_q == hot(1'b1, acc_thr_q));
+  // The issue register's registered hit bits are a subset of its thread's hit bits now (so the
+  // best hits it gates are the rays' current ones, or +inf).
+  TiHitSubset_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  ti_v_q |-> (ti_hit_q & ~get4(bhit_q, ti_thr_q)) == 4'd0);
   // The four traversal sub-units take the same operations, so they stay in lock step.
   TravLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    (&trav_ready_all || ~|trav_ready_all) &&
@@ -2036,10 +2155,30 @@ module rc_core #(
                               ti_v_q |-> ti_mask_q == get4(mask_q, ti_thr_q));
   // A leaf's packet has at least one active ray, so every triangle is tested at least once.
   TriHasRay_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                is_valid |-> ti_rem != 4'd0);
+                                is_valid |-> ti_rem_q != 4'd0);
+  // The rays left are the triangle's rays not yet sent, and the last-ray bit says one is left.
+  TiRem_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            ti_v_q && !ti_err_q |-> (ti_rem_q & ~ti_mask_q) == 4'd0 &&
+                            ti_last_q == ((ti_rem_q & (ti_rem_q - 4'd1)) == 4'd0));
   // Intersection results belong to threads in their leaf, with triangles still outstanding.
   IsectOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                 wb_v_q |-> st_q[wb_thr_q*4 +: 4] == StLeafRun && wb_pend != 32'd0);
+                                 wb_v_q |-> st_q[wb_thr_q*4 +: 4] == StLeafRun && wb_pend != '0);
+  // The entries in flight stay within their bound (so the counter cannot wrap) and none
+  // finishes that was not issued.
+  for (genvar t = 0; t < Threads; t++) begin : g_lf_checks
+    InFlight_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 32'(lf_q[t*LfW +: LfW]) <= LfMax &&
+                                 32'(pend_dec[2*t +: 2]) <= 32'(lf_q[t*LfW +: LfW]));
+  end
+  // A commit improves the ray's committed best: with a stale best forwarded to the compare, a
+  // worse hit could overwrite a better one.
+  logic [W-1:0]  wc_old_t;
+  logic [31:0]   wc_old_tri;
+  assign wc_old_t   = lane_w(gate_t(bt_m[wc_thr_q], get4(bhit_q, wc_thr_q)), wc_r_q);
+  assign wc_old_tri = lane_32(gate_tri(btri_m[wc_thr_q], get4(bhit_q, wc_thr_q)), wc_r_q);
+  WbForward_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                wc_we_q |-> (wc_t_q < wc_old_t) ||
+                                            (wc_t_q == wc_old_t && wc_tri_q < wc_old_tri));
   // The best hits read with the stack entry are still the thread's (the cull uses them).
   logic [4*W-1:0] pop1_best_now;
   assign pop1_best_now = gate_t(bt_m[pop1_thr_q], get4(bhit_q, pop1_thr_q));
