@@ -127,7 +127,14 @@ module rc_ulx3s #(
     end
   end
 
-  assign rst_n = rst_sync_q[1];
+  // The synchronised reset reaches every flip-flop with an asynchronous reset (tens of thousands
+  // of them): on fabric routing its release missed the clock period by over a nanosecond (run
+  // 19), so it goes through a global buffer (DCCA) onto a global network, as the clock does.
+  DCCA u_rst_buf (
+    .CLKI(rst_sync_q[1]),
+    .CE  (1'b1),
+    .CLKO(rst_n)
+  );
 
   ////////////////////////////////
   // FIRE1: start a frame       //

@@ -107,8 +107,11 @@ module rc_board_rom #(
   assign rd_index    = k_valid_q ? k_index_q : req_index_i;
   assign rd_tag      = k_valid_q ? k_tag_q : req_tag_i;
   assign take        = rd_valid & s1_free;
+  // The block RAM is addressed by the index's low bits whether or not it is in range (an
+  // out-of-range read returns an error response whose data nobody uses), so the range check's
+  // carry chain ends at the error flag's register, not at the block RAM's address pins.
   assign in_range    = 64'(rd_index) < 64'(Depth);
-  assign addr        = in_range ? AddrW'(rd_index) : '0;
+  assign addr        = AddrW'(rd_index);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

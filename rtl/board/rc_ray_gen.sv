@@ -28,7 +28,8 @@
 //   the rate of rc_core's ray set-up (one ray per 3 cycles).
 // - Parameters: ExpW, FracW: the format; CoordW: bits of width_i/height_i (CoordW <= FracW + 1,
 //   so every coordinate converts exactly); RayFifoDepth: rays buffered (>= 4).
-// - Illegal input: start_i while busy_o; camera or size inputs changing while busy_o.
+// - Illegal input: start_i while busy_o; camera or size inputs changing while busy_o or in the
+//   cycle before start_i (the last packet column and row are registered from the size).
 //   Assertions catch the first and a width/height change.
 // - Reset: rst_ni (active low, asynchronous) clears the control state; data registers have no
 //   reset.
@@ -108,11 +109,17 @@ module rc_ray_gen #(
   logic              issuing_q, out_busy_q;
   logic [CoordW-1:0] ipx_q, ipy_q;   // packet being issued
   logic [1:0]        ir_q;           // its ray
-  logic [CoordW-1:0] pw, ph;         // packets per row, packet rows (ceil(size / 2))
+  logic [CoordW-1:0] pw_last_q, ph_last_q;  // packets per row and packet rows (ceil(size / 2)),
+                                            // minus one
   logic              frame_empty;
 
-  assign pw          = CoordW'(({1'b0, width_i} + (CoordW+1)'(1)) >> 1);
-  assign ph          = CoordW'(({1'b0, height_i} + (CoordW+1)'(1)) >> 1);
+  // The frame's last packet column and row come from registers (the size is quasi-static and
+  // stable in the cycle before a start: SizeBeforeStart_A), so the walks' end compares start at
+  // flip-flops instead of behind the size's arithmetic.
+  always_ff @(posedge clk_i) begin
+    pw_last_q <= CoordW'(({1'b0, width_i} + (CoordW+1)'(1)) >> 1) - CoordW'(1);
+    ph_last_q <= CoordW'(({1'b0, height_i} + (CoordW+1)'(1)) >> 1) - CoordW'(1);
+  end
   assign frame_empty = (width_i == '0) || (height_i == '0);
   // A ray takes three consecutive slot cycles (its x, y, z components); a new ray may start
   // only when the previous one's slots are done.
@@ -133,10 +140,10 @@ module rc_ray_gen #(
     end else if (take) begin
       ir_q <= ir_q + 2'd1;
       if (ir_q == 2'd3) begin
-        if (ipx_q == pw - CoordW'(1)) begin
+        if (ipx_q == pw_last_q) begin
           ipx_q <= '0;
           ipy_q <= ipy_q + CoordW'(1);
-          if (ipy_q == ph - CoordW'(1)) issuing_q <= 1'b0;
+          if (ipy_q == ph_last_q) issuing_q <= 1'b0;
         end else begin
           ipx_q <= ipx_q + CoordW'(1);
         end
@@ -353,7 +360,7 @@ module rc_ray_gen #(
 
   assign fifo_pop    = fifo_valid & ~pkt_valid_q;
   assign pkt_take    = pkt_valid_q & pkt_ready_i;
-  assign last_packet = (opx_q == pw - CoordW'(1)) && (opy_q == ph - CoordW'(1));
+  assign last_packet = (opx_q == pw_last_q) && (opy_q == ph_last_q);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -378,7 +385,7 @@ module rc_ray_gen #(
       if (pkt_take) begin
         pkt_valid_q <= 1'b0;
         if (last_packet) out_busy_q <= 1'b0;
-        if (opx_q == pw - CoordW'(1)) begin
+        if (opx_q == pw_last_q) begin
           opx_q      <= '0;
           opy_q      <= opy_q + CoordW'(1);
           row_base_q <= row_base_q + 32'({width_i, 1'b0});
@@ -439,6 +446,10 @@ module rc_ray_gen #(
   // A new frame must wait for the previous one.
   StartWhenIdle_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     start_i |-> !busy_o);
+  // The size is stable in the cycle before a start, so the registered last column and row are
+  // the frame's.
+  SizeBeforeStart_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    start_i |-> $stable(width_i) && $stable(height_i));
   // The frame size must not change under a running frame (the walks would disagree).
   SizeStable_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     busy_o && $past(busy_o) |-> $stable(width_i) && $stable(height_i));
