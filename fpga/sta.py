@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Static timing analysis of a routed design from nextpnr's SDF: every failing endpoint, not one path.
+"""Static timing analysis of a routed design from nextpnr's SDF: every failing endpoint.
 
 Usage: sta.py DESIGN.sdf [--period NS] [--netlist JSON] [--top N] [--groups N] [--paths N]
               [--to REGEX ...] [--json OUT]
@@ -98,7 +98,7 @@ def unescape(s):
 
 
 def split_pin(p):
-    """'inst/PIN' -> (inst, PIN); instance names may hold '/' only escaped, and the last '/' splits."""
+    """'inst/PIN' -> (inst, PIN): the last '/' splits (an instance name holds '/' only escaped)."""
     k = p.rfind("/")
     return p[:k], p[k + 1:]
 
