@@ -13,7 +13,7 @@
 //   rc_pkg's BoardReg* (docs/spec.toml [board_reg]). Registers 0 .. BoardRegs-1 are the register
 //   file (camera, frame size, background, root box, record counts, shading constants),
 //   initialised from RegsHex (plusarg +regs=); writes to it are ignored while busy_o. Writing bit
-//   0 of BoardRegControl (or a start_i pulse) starts a frame when busy_o is 0: two cycles later
+//   0 of BoardRegControl (or a start_i pulse) starts a frame when busy_o is 0: three cycles later
 //   the frame size is checked (width * height <= FbPixels, else status bit size_error and no
 //   frame) and the ray generation unit starts. BoardRegPerfLo/Hi show the core's counter
 //   BoardRegPerfSel through a register (perf_rd_q, loaded every cycle): a read shows the
@@ -147,14 +147,20 @@ module rc_board #(
 
   logic        start_req, gen_start, gen_busy, core_idle, size_ok;
   logic [31:0] pixels_q, cycles_q;
+  logic        size_ok_q;
 
   assign start_req = !busy && (start_i || (reg_we_i && {1'b0, reg_addr_i} ==
                      (AddrW+1)'(rc_pkg::BoardRegControl) && reg_wdata_i[0]));
-  assign size_ok   = pixels_q <= 32'(FbPixels);
+  assign size_ok   = size_ok_q;
   assign gen_start = (pend_q == 2'd1) && size_ok;
 
+  // The frame size, its product and its check are registers in a row (the register file is
+  // locked from the start request on, and a register written in the request's own cycle is in
+  // the check two cycles later), so the check's carry chain ends at a flip-flop and not at the
+  // ray generator's start.
   always_ff @(posedge clk_i) begin
-    pixels_q <= 32'(width) * 32'(height);  // registers are locked from the start request on
+    pixels_q  <= 32'(width) * 32'(height);
+    size_ok_q <= pixels_q <= 32'(FbPixels);
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -166,7 +172,7 @@ module rc_board #(
       cycles_q     <= '0;
     end else begin
       if (start_req) begin
-        pend_q       <= 2'd2;
+        pend_q       <= 2'd3;
         done_q       <= 1'b0;
         size_error_q <= 1'b0;
         cycles_q     <= '0;

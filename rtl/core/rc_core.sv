@@ -255,6 +255,12 @@ module rc_core #(
     get4 = '0;
     for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) get4 = v[t*4 +: 4];
   endfunction
+  // The same through a one-hot thread vector (a registered grant): an AND-OR over the threads.
+  function automatic logic [3:0] sel4(input logic [Threads*4-1:0] v,
+                                      input logic [Threads-1:0] onehot);
+    sel4 = '0;
+    for (int unsigned t = 0; t < Threads; t++) sel4 = sel4 | ({4{onehot[t]}} & v[t*4 +: 4]);
+  endfunction
   function automatic logic [2:0] get3(input logic [Threads*3-1:0] v, input logic [ThrW-1:0] i);
     get3 = '0;
     for (int unsigned t = 0; t < Threads; t++) if (i == ThrW'(t)) get3 = v[t*3 +: 3];
@@ -897,7 +903,13 @@ module rc_core #(
   for (genvar t = 0; t < Threads; t++) begin : g_pop_end
     assign pop_end_t[t] = (|err_q[t*3 +: 3]) | (sp_q[t*SpW +: SpW] == '0);
   end
-  assign pp_sp  = getsp(sp_q, pp_thr_q);
+  // The chosen thread's stack pointer through its one-hot grant (an AND-OR over the threads).
+  always_comb begin
+    pp_sp = '0;
+    for (int unsigned t = 0; t < Threads; t++) begin
+      pp_sp = pp_sp | ({SpW{gpp_q[t]}} & sp_q[t*SpW +: SpW]);
+    end
+  end
   assign pp_end = |(gpp_q & pop_end_t);
 
   // Stack entry: {node, mask, tmin[4], tmax[4]}.
@@ -908,7 +920,7 @@ module rc_core #(
     // The best hits are read with the stack entry, from the registered choice: a popping
     // thread's best hits do not change (only a thread in its leaf gets intersection results,
     // and its leaf's last commit comes before its pop is chosen; PopBest_A).
-    if (pp_v_q) pop0_best_t <= gate_t(bt_m[pp_thr_q], get4(bhit_q, pp_thr_q));
+    if (pp_v_q) pop0_best_t <= gate_t(bt_m[pp_thr_q], sel4(bhit_q, gpp_q));
     if (pop0_v_q) begin
       pop1_entry_q <= pop0_entry_q;
       pop1_best_t  <= pop0_best_t;
@@ -961,17 +973,36 @@ module rc_core #(
   logic                tag_avail;
   logic [LtW-1:0]      tag_new;
 
-  // The lowest free tag: the lowest set bit of tf_q (x & -x, a carry chain), its index as an OR
-  // of the one-hot bits (no chain through the tags).
-  logic [ListTags-1:0] tag_first;
-  assign tag_avail = |tf_q;
-  assign tag_first = tf_q & (~tf_q + ListTags'(1));
+  // The lowest free tag: the lowest set bit of the free set (x & -x, a carry chain), its index
+  // as an OR of the one-hot bits (no chain through the tags). Both are computed from the next
+  // free set (tf_d) and registered with it, so they are the lowest free tag of tf_q (TagFirst_A)
+  // and the list request, the tag pool's write address and the take start at flip-flops.
+  logic [ListTags-1:0] tag_first, tag_first_d;
+  logic [LtW-1:0]      tag_new_d;
+  logic                tag_avail_q;
+  logic [ListTags-1:0] tag_first_q;
+  logic [LtW-1:0]      tag_new_q;
+  assign tag_first_d = tf_d & (~tf_d + ListTags'(1));
   always_comb begin
-    tag_new = '0;
+    tag_new_d = '0;
     for (int unsigned i = 0; i < ListTags; i++) begin
-      if (tag_first[i]) tag_new = tag_new | LtW'(i);
+      if (tag_first_d[i]) tag_new_d = tag_new_d | LtW'(i);
     end
   end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      tag_avail_q <= 1'b1;
+      tag_first_q <= ListTags'(1);
+      tag_new_q   <= '0;
+    end else begin
+      tag_avail_q <= |tf_d;
+      tag_first_q <= tag_first_d;
+      tag_new_q   <= tag_new_d;
+    end
+  end
+  assign tag_avail = tag_avail_q;
+  assign tag_first = tag_first_q;
+  assign tag_new   = tag_new_q;
 
   logic            lp_any, lp_take;
   logic [ThrW-1:0] lp_thr;
@@ -1126,9 +1157,16 @@ module rc_core #(
   // ready (ti_free, the triangle port's response ready) decodes no thread. A failed triangle
   // read passes the register too and leaves it in one cycle. The register takes the next
   // response in the cycle its last ray goes (ready depends on the intersection unit's ready,
-  // never the reverse).
+  // never the reverse). In front of it, a one-entry skid buffer (tk_*_q) takes a response the
+  // register cannot, so the port's ready is the buffer's emptiness, a flip-flop: the ready no
+  // longer crosses the chip from the issue register's state to the triangle memory (run 20's
+  // critical path). The register loads from the buffer when it holds a response, else from the
+  // port; a tag is freed when its response enters the register (the tag pool is read then).
   logic            is_ready, is_valid, is_take, ti_err_take, ti_last, ti_free, ti_load;
   logic            ti_v_q, ti_err_q;
+  logic            tk_v_q, tk_err_q, src_v, src_err, rsp_take;
+  logic [LtW-1:0]  tk_tag_q, src_tag;
+  logic [12*W-1:0] tk_data_q, src_data;
   logic [LtW-1:0]  ti_tag;
   logic [ThrW-1:0] ti_thr, ti_thr_q;
   logic [31:0]     ti_tri_q;
@@ -1140,27 +1178,42 @@ module rc_core #(
   logic [4*W-1:0]  ti_bt;
   logic [127:0]    ti_btri;
 
-  assign ti_tag          = tri_rsp_tag_i[LtW-1:0];
+  assign tri_rsp_ready_o = ~tk_v_q;
+  assign rsp_take        = tri_rsp_valid_i & ~tk_v_q;
+  assign src_v           = tk_v_q | tri_rsp_valid_i;
+  assign src_tag         = tk_v_q ? tk_tag_q : tri_rsp_tag_i[LtW-1:0];
+  assign src_err         = tk_v_q ? tk_err_q : tri_rsp_error_i;
+  assign src_data        = tk_v_q ? tk_data_q : tri_rsp_data_i;
+  assign ti_tag          = src_tag;
   assign ti_thr          = tp_thr_m[ti_tag];
   assign ti_free         = ~ti_v_q | ti_err_q | (is_ready & ti_last_q);
-  assign ti_load         = tri_rsp_valid_i & ti_free;
-  assign tri_rsp_ready_o = ti_free;
+  assign ti_load         = src_v & ti_free;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      tk_v_q   <= 1'b0;
       ti_v_q   <= 1'b0;
       ti_err_q <= 1'b0;
-    end else if (ti_free) begin
-      ti_v_q   <= tri_rsp_valid_i;
-      ti_err_q <= tri_rsp_valid_i & tri_rsp_error_i;
+    end else begin
+      // Full when a taken response cannot enter the register; emptied into the register.
+      tk_v_q <= tk_v_q ? ~ti_free : (rsp_take & ~ti_free);
+      if (ti_free) begin
+        ti_v_q   <= src_v;
+        ti_err_q <= src_v & src_err;
+      end
     end
   end
   always_ff @(posedge clk_i) begin
+    if (rsp_take) begin
+      tk_tag_q  <= tri_rsp_tag_i[LtW-1:0];
+      tk_err_q  <= tri_rsp_error_i;
+      tk_data_q <= tri_rsp_data_i;
+    end
     if (ti_load) begin
       ti_thr_q  <= ti_thr;
       ti_mask_q <= ti_mask_new;
       ti_tri_q  <= tp_tri_m[ti_tag];
-      ti_m_q    <= tri_rsp_data_i;
+      ti_m_q    <= src_data;
     end
   end
 
@@ -1177,16 +1230,35 @@ module rc_core #(
   assign is_take     = is_valid & is_ready;
   assign ti_err_take = ti_v_q & ti_err_q;
 
+  // The current ray's lane, registered with ti_rem_q, in one copy per group of lane
+  // multiplexers (keep: synthesis would merge them), so no select net fans out to all of the
+  // slice's 600 multiplexed bits across the chip.
+  (* keep *) logic [1:0] ti_r_org_q;
+  (* keep *) logic [1:0] ti_r_dir_q;
+  (* keep *) logic [1:0] ti_r_bt_q;
+  (* keep *) logic [1:0] ti_r_btri_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      ti_rem_q  <= '0;
-      ti_last_q <= 1'b0;
+      ti_rem_q    <= '0;
+      ti_last_q   <= 1'b0;
+      ti_r_org_q  <= '0;
+      ti_r_dir_q  <= '0;
+      ti_r_bt_q   <= '0;
+      ti_r_btri_q <= '0;
     end else if (ti_load) begin
-      ti_rem_q  <= ti_mask_new;
-      ti_last_q <= (ti_mask_new & (ti_mask_new - 4'd1)) == 4'd0;
+      ti_rem_q    <= ti_mask_new;
+      ti_last_q   <= (ti_mask_new & (ti_mask_new - 4'd1)) == 4'd0;
+      ti_r_org_q  <= lowest4(ti_mask_new);
+      ti_r_dir_q  <= lowest4(ti_mask_new);
+      ti_r_bt_q   <= lowest4(ti_mask_new);
+      ti_r_btri_q <= lowest4(ti_mask_new);
     end else if (is_take) begin
-      ti_rem_q  <= ti_rem_next;
-      ti_last_q <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
+      ti_rem_q    <= ti_rem_next;
+      ti_last_q   <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
+      ti_r_org_q  <= lowest4(ti_rem_next);
+      ti_r_dir_q  <= lowest4(ti_rem_next);
+      ti_r_bt_q   <= lowest4(ti_rem_next);
+      ti_r_btri_q <= lowest4(ti_rem_next);
     end
   end
 
@@ -1234,10 +1306,10 @@ module rc_core #(
       ia_tag_q  <= {ti_last, ti_r, ti_thr_q};
       ia_tri_q  <= ti_tri_q;
       ia_m_q    <= ti_m_q;
-      ia_org_q  <= lane_3w(ti_org_all, ti_r);
-      ia_dir_q  <= lane_3w(ti_dir_all, ti_r);
-      ia_bt_q   <= lane_w(ti_bt, ti_r);
-      ia_btri_q <= lane_32(ti_btri, ti_r);
+      ia_org_q  <= lane_3w(ti_org_all, ti_r_org_q);
+      ia_dir_q  <= lane_3w(ti_dir_all, ti_r_dir_q);
+      ia_bt_q   <= lane_w(ti_bt, ti_r_bt_q);
+      ia_btri_q <= lane_32(ti_btri, ti_r_btri_q);
     end
   end
 
@@ -1370,15 +1442,15 @@ module rc_core #(
       wb_bt_q   <= wb_fwd ? wb_t_q : wc_fwd ? wc_t_q : wd_fwd ? wd_t_q : io_bt;
       wb_btri_q <= wb_fwd ? wb_tri_q : wc_fwd ? wc_tri_q : wd_fwd ? wd_tri_q : io_btri;
     end
-    if (wb_better) begin
-      wc_r_q   <= wb_r_q;
-      wc_thr_q <= wb_thr_q;
-      wc_t_q   <= wb_t_q;
-      wc_u_q   <= wb_u_q;
-      wc_vb_q  <= wb_vb_q;
-      wc_dz_q  <= wb_dz_q;
-      wc_tri_q <= wb_tri_q;
-    end
+    // Loaded every cycle (only wc_we_q says whether they commit), so the compare reaches one
+    // flip-flop and the forwarding muxes, no clock enables.
+    wc_r_q   <= wb_r_q;
+    wc_thr_q <= wb_thr_q;
+    wc_t_q   <= wb_t_q;
+    wc_u_q   <= wb_u_q;
+    wc_vb_q  <= wb_vb_q;
+    wc_dz_q  <= wb_dz_q;
+    wc_tri_q <= wb_tri_q;
   end
 
   assign wb_better   = wb_v_q & wb_hit_q &
@@ -1421,13 +1493,25 @@ module rc_core #(
   assign shp_take = shp_any & ~sh_busy_q & ~shp_v_q;
   assign shp_none = get4(vmask_q, shp_thr_q) == 4'd0;
 
-  assign sh_valid_r = vmask_q[sh_thr_q*4 + 32'(sh_r_q)];
-  assign sh_hit_r   = bhit_q[sh_thr_q*4 + 32'(sh_r_q)] & ~(|get3(err_q, sh_thr_q));
+  // The packet's rays, their hits (none after an error) and their triangles are taken into
+  // registers as its shading starts (a thread in shading changes none of them: ShadeSnap_A), so
+  // the sequencer's requests come from flip-flops, not from reads by its thread.
+  logic [3:0]   sh_vm_q, sh_hm_q;
+  logic [127:0] sh_btri_q;
+  always_ff @(posedge clk_i) begin
+    if (shp_v_q) begin
+      sh_vm_q   <= get4(vmask_q, shp_thr_q);
+      sh_hm_q   <= get4(bhit_q, shp_thr_q) & {4{~(|get3(err_q, shp_thr_q))}};
+      sh_btri_q <= btri_m[shp_thr_q];
+    end
+  end
+  assign sh_valid_r = sh_vm_q[sh_r_q];
+  assign sh_hit_r   = sh_hm_q[sh_r_q];
   assign sreq_free  = ~shd_req_valid_q | shd_req_ready_i;
   assign sh_to_shd  = sh_busy_q & sh_valid_r & sh_hit_r & sreq_free;
   assign sh_to_miss = sh_busy_q & sh_valid_r & ~sh_hit_r & miss_free;
   assign sh_adv     = sh_busy_q & (~sh_valid_r | sh_to_shd | sh_to_miss);
-  assign sh_btri    = btri_m[sh_thr_q];
+  assign sh_btri    = sh_btri_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -1919,7 +2003,7 @@ module rc_core #(
     for (int unsigned i = 0; i < ListTags; i++) begin
       tf_d[i] = (tf_q[i] & ~(li_take & tag_first[i])) |
                 (lr_dec & (lb_tag_q == LtW'(i))) |
-                (tri_rsp_valid_i & tri_rsp_ready_o & (ti_tag == LtW'(i)));
+                (ti_load & (ti_tag == LtW'(i)));
     end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -2147,15 +2231,31 @@ module rc_core #(
   ListBadRetire_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     lb_v_q |-> !tf_q[lb_tag_q] &&
                                     st_q[lr_thr*4 +: 4] == StLeafRun);
+  logic [LtW-1:0]  tr_port_tag;
+  logic [ThrW-1:0] tr_port_owner;
+  assign tr_port_tag   = tri_rsp_tag_i[LtW-1:0];
+  assign tr_port_owner = tp_thr_m[tr_port_tag];
   TriRspTag_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                tri_rsp_valid_i |-> !tf_q[ti_tag] &&
-                                st_q[ti_thr*4 +: 4] == StLeafRun);
+                                tri_rsp_valid_i |-> !tf_q[tr_port_tag] &&
+                                st_q[tr_port_owner*4 +: 4] == StLeafRun);
+  // ... and so does the response the skid buffer holds (its tag is freed only as it leaves).
+  TriSkidTag_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 tk_v_q |-> !tf_q[tk_tag_q] && st_q[ti_thr*4 +: 4] == StLeafRun);
   // The rays a triangle is tested against (from the tag pool) are its thread's active rays now.
   TriMask_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               ti_v_q |-> ti_mask_q == get4(mask_q, ti_thr_q));
   // A leaf's packet has at least one active ray, so every triangle is tested at least once.
   TriHasRay_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 is_valid |-> ti_rem_q != 4'd0);
+  // The registered lowest free tag is the lowest bit of the free set.
+  TagFirst_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               tag_first_q == (tf_q & (~tf_q + ListTags'(1))) &&
+                               tag_avail_q == (|tf_q) &&
+                               tag_first_q == ListTags'(tf_q != '0) << tag_new_q);
+  // The lane copies are the lowest ray left.
+  TiLane_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             ti_v_q && !ti_err_q |-> ti_r_org_q == ti_r && ti_r_dir_q == ti_r &&
+                                                     ti_r_bt_q == ti_r && ti_r_btri_q == ti_r);
   // The rays left are the triangle's rays not yet sent, and the last-ray bit says one is left.
   TiRem_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             ti_v_q && !ti_err_q |-> (ti_rem_q & ~ti_mask_q) == 4'd0 &&
@@ -2192,6 +2292,15 @@ module rc_core #(
   // A pop result belongs to a thread that is popping.
   PopOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                pop2_v |-> st_q[pop2_thr_q*4 +: 4] == StPopping);
+  // The shading sequencer's copies of its packet's rays, hits and triangles are still the
+  // thread's.
+  logic [127:0] sh_btri_now;
+  assign sh_btri_now = btri_m[sh_thr_q];
+  ShadeSnap_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                sh_busy_q |-> sh_vm_q == get4(vmask_q, sh_thr_q) &&
+                                sh_hm_q == (get4(bhit_q, sh_thr_q) &
+                                            {4{~(|get3(err_q, sh_thr_q))}}) &&
+                                sh_btri_q == sh_btri_now);
   // Shading responses and framebuffer writes belong to threads being shaded.
   ShdRspOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   shd_rsp_valid_i |-> st_q[sr_rid[RidW-1:2]*4 +: 4] == StShade);
