@@ -969,20 +969,24 @@ module rc_core #(
   logic [ListTags-1:0] tf_q, tf_d;             // free tags
   logic [ThrW-1:0]     tp_thr_m [0:ListTags-1];
   logic [3:0]          tp_mask_m [0:ListTags-1];
+  logic [2:0]          tp_first_m [0:ListTags-1];  // {one ray only, lowest ray} of the mask
   logic [31:0]         tp_tri_m [0:ListTags-1];
   logic                tag_avail;
   logic [LtW-1:0]      tag_new;
 
-  // The lowest free tag: the lowest set bit of the free set (x & -x, a carry chain), its index
-  // as an OR of the one-hot bits (no chain through the tags). Both are computed from the next
-  // free set (tf_d) and registered with it, so they are the lowest free tag of tf_q (TagFirst_A)
-  // and the list request, the tag pool's write address and the take start at flip-flops.
-  logic [ListTags-1:0] tag_first, tag_first_d;
+  // The next tag to take: the lowest set bit of the free set (x & -x, a carry chain), its index
+  // as an OR of the one-hot bits (no chain through the tags), computed from the free set as it
+  // will be without this cycle's frees (tf_q less the tag taken now) and registered, so the list
+  // request, the tag pool's write address and the take start at flip-flops, and no response
+  // (a freed tag) reaches the chain: a freed tag is offered a cycle later. The registered tag is
+  // free when it is taken, since only a take makes a free tag busy (TagFirst_A).
+  logic [ListTags-1:0] tag_first, tag_first_d, tf_kept;
   logic [LtW-1:0]      tag_new_d;
   logic                tag_avail_q;
   logic [ListTags-1:0] tag_first_q;
   logic [LtW-1:0]      tag_new_q;
-  assign tag_first_d = tf_d & (~tf_d + ListTags'(1));
+  assign tf_kept     = tf_q & ~({ListTags{li_take}} & tag_first_q);
+  assign tag_first_d = tf_kept & (~tf_kept + ListTags'(1));
   always_comb begin
     tag_new_d = '0;
     for (int unsigned i = 0; i < ListTags; i++) begin
@@ -995,7 +999,7 @@ module rc_core #(
       tag_first_q <= ListTags'(1);
       tag_new_q   <= '0;
     end else begin
-      tag_avail_q <= |tf_d;
+      tag_avail_q <= |tf_kept;
       tag_first_q <= tag_first_d;
       tag_new_q   <= tag_new_d;
     end
@@ -1137,6 +1141,7 @@ module rc_core #(
     if (li_take) begin
       tp_thr_m[tag_new]  <= lu_thr_q;
       tp_mask_m[tag_new] <= lu_mask_q;
+      tp_first_m[tag_new] <= {(lu_mask_q & (lu_mask_q - 4'd1)) == 4'd0, lowest4(lu_mask_q)};
     end
     // Written on every list response, failed ones too, so the range check's carry chain does
     // not reach the pool's write enable: a failed entry's tag sends no triangle request and is
@@ -1172,6 +1177,7 @@ module rc_core #(
   logic [31:0]     ti_tri_q;
   logic [12*W-1:0] ti_m_q;
   logic [3:0]      ti_mask_q, ti_mask_new, ti_rem_q, ti_rem_next;
+  logic [2:0]      ti_first_new;
   logic            ti_last_q;
   logic [1:0]      ti_r;
   logic [12*W-1:0] ti_org_all, ti_dir_all;
@@ -1221,7 +1227,8 @@ module rc_core #(
   // (ti_last_q) are registers, loaded with the triangle and updated at each test, so the
   // register's ready (ti_free, the triangle port's response ready, which crosses the chip to the
   // triangle memory) is two gates of flip-flops.
-  assign ti_mask_new = tp_mask_m[ti_tag];
+  assign ti_mask_new  = tp_mask_m[ti_tag];
+  assign ti_first_new = tp_first_m[ti_tag];
   assign ti_rem_next = ti_rem_q & (ti_rem_q - 4'd1);  // the lowest ray done
   assign ti_r        = lowest4(ti_rem_q);
   assign ti_last     = ti_last_q;
@@ -1246,12 +1253,15 @@ module rc_core #(
       ti_r_bt_q   <= '0;
       ti_r_btri_q <= '0;
     end else if (ti_load) begin
+      // The mask's first ray and whether it is the only one come with it from the tag pool
+      // (computed when the leaf's mask was registered), so the load reads them straight into
+      // the registers.
       ti_rem_q    <= ti_mask_new;
-      ti_last_q   <= (ti_mask_new & (ti_mask_new - 4'd1)) == 4'd0;
-      ti_r_org_q  <= lowest4(ti_mask_new);
-      ti_r_dir_q  <= lowest4(ti_mask_new);
-      ti_r_bt_q   <= lowest4(ti_mask_new);
-      ti_r_btri_q <= lowest4(ti_mask_new);
+      ti_last_q   <= ti_first_new[2];
+      ti_r_org_q  <= ti_first_new[1:0];
+      ti_r_dir_q  <= ti_first_new[1:0];
+      ti_r_bt_q   <= ti_first_new[1:0];
+      ti_r_btri_q <= ti_first_new[1:0];
     end else if (is_take) begin
       ti_rem_q    <= ti_rem_next;
       ti_last_q   <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
@@ -1919,6 +1929,10 @@ module rc_core #(
     wc_btri_new = put_lane_32(btri_m[wc_thr_q], wc_r_q, wc_tri_q);
   end
 
+  logic              push_v_q;
+  logic [StkAW-1:0]  push_addr_q;
+  logic [EntryW-1:0] push_data_q;
+
   // The current entry's write is registered (cur_*_q) and done in the next cycle, so the
   // choice among pop, traversal and set-up (the cull's and the traversal's masks) ends at
   // flip-flops instead of at the write enables of node_m, tmin_m and tmax_m. No read misses
@@ -1954,8 +1968,10 @@ module rc_core #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       cur_we_q <= 1'b0;
+      push_v_q <= 1'b0;
     end else begin
       cur_we_q <= cur_we;
+      push_v_q <= tr_push_ok;
     end
   end
 
@@ -1983,10 +1999,12 @@ module rc_core #(
       loff_m[nr_thr] <= {{(32 - NodeW){1'b0}}, nr_idx};
       lcnt_m[nr_thr] <= nr_upper;
     end
-    if (tr_push_ok) begin
-      stack_m[StkAW'({tr_thr, tr_sp[SpIdxW-1:0] + SpIdxW'(1)})] <=
-          {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
-    end
+    // The push is registered (push_*_q) and written a cycle later, so the traversal result's
+    // logic ends at flip-flops instead of at the stack's block RAM across the chip. The pushing
+    // thread pops no sooner than after its next node's response (PushFirst_A).
+    push_addr_q <= StkAW'({tr_thr, tr_sp[SpIdxW-1:0] + SpIdxW'(1)});
+    push_data_q <= {tr_second, tr_b_mask, tr_b_tmin, tr_b_tmax};
+    if (push_v_q) stack_m[push_addr_q] <= push_data_q;
     if (wc_we_q) begin
       bt_m[wc_thr_q]   <= wc_bt_new;
       bu_m[wc_thr_q]   <= wc_bu_new;
@@ -2202,6 +2220,11 @@ module rc_core #(
   CurNodeInRange_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                      cur_we && !su_last |->
                                      {{(32 - NodeW){1'b0}}, cur_node} < node_count_i);
+  // No pop reads a thread's stack while its registered push is still due.
+  PushFirst_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                push_v_q |-> !(pp_v_q &&
+                                               StkAW'({pp_thr_q, pp_sp[SpIdxW-1:0]}) ==
+                                               push_addr_q));
   // No read of a thread's current entry comes while its registered write is still due.
   CurWriteFirst_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     cur_we_q |-> !(fq_v_q && nreq_free && fq_thr_q == cur_thr_q) &&
@@ -2247,11 +2270,11 @@ module rc_core #(
   // A leaf's packet has at least one active ray, so every triangle is tested at least once.
   TriHasRay_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 is_valid |-> ti_rem_q != 4'd0);
-  // The registered lowest free tag is the lowest bit of the free set.
+  // The registered next tag is free, one-hot with its index (or none while none was free).
   TagFirst_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               tag_first_q == (tf_q & (~tf_q + ListTags'(1))) &&
-                               tag_avail_q == (|tf_q) &&
-                               tag_first_q == ListTags'(tf_q != '0) << tag_new_q);
+                               tag_avail_q ? (tf_q[tag_new_q] &&
+                                              tag_first_q == ListTags'(1) << tag_new_q) :
+                                             (tag_first_q == '0));
   // The lane copies are the lowest ray left.
   TiLane_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                              ti_v_q && !ti_err_q |-> ti_r_org_q == ti_r && ti_r_dir_q == ti_r &&
