@@ -110,8 +110,13 @@ module rc_board_host #(
   logic                drop_q;
   logic [TimeW-1:0]    idle_q;       // cycles since the last byte (saturating)
   logic                timeout;
+  logic                timeout_q;    // idle_q >= TimeoutCycles, registered from the next count
 
-  assign timeout = (TimeoutCycles != 0) && (idle_q >= TimeW'(TimeoutCycles));
+  // The count's compare is registered (from the count as it will be: no byte now and the count
+  // one short, or at its saturated top), so the command state starts at a flip-flop instead
+  // of at the compare's carry chain.
+  localparam int unsigned TimeLim = (TimeoutCycles > 0) ? TimeoutCycles : 1;
+  assign timeout = (TimeoutCycles != 0) && timeout_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -134,9 +139,11 @@ module rc_board_host #(
       fb_raddr_q  <= '0;
       drop_q      <= 1'b0;
       idle_q      <= '0;
+      timeout_q   <= 1'b0;
     end else begin
       we_q   <= 1'b0;
       drop_q <= 1'b0;
+      timeout_q <= !rx_valid_i && (32'(idle_q) + 32'd1 >= TimeLim);
       if (rx_valid_i) begin
         idle_q <= '0;
       end else if (idle_q != '1) begin

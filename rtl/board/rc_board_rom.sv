@@ -78,8 +78,9 @@ module rc_board_rom #(
   // the FIFO's oldest entry when there is one, else stage 1's result directly (then the entry
   // just written is not counted: the write pointer stays), whenever it is empty or being taken.
   // Stage 1 takes the skid buffer's request, or else the port's, whenever it is empty or
-  // moving on. So adv, and with it the read enable and every entry's clock enable, comes from
-  // registers and req_valid_i only; rsp_ready_i reaches s2, the pointers and the count.
+  // moving on (its valid bit from req_valid_i; its data and the read enable, s1_free, from
+  // registers only). So adv, and with it the read enable and every entry's clock enable, comes
+  // from registers only; rsp_ready_i reaches s2, the pointers and the count.
   logic             acc, take, in_range, adv, s1_free, rd_valid, s2_free, o_any, push, pop;
   logic             o_wp;
   logic [IdxW-1:0]  rd_index;
@@ -140,7 +141,7 @@ module rc_board_rom #(
       k_index_q <= req_index_i;
       k_tag_q   <= req_tag_i;
     end
-    if (take) begin
+    if (s1_free) begin
       s1_tag_q   <= rd_tag;
       s1_error_q <= ~in_range;
     end
@@ -162,9 +163,12 @@ module rc_board_rom #(
     end
   end
 
-  // The block RAM read port: registered, enabled by the request handshake.
+  // The block RAM read port: registered, enabled whenever the read stage is free (so the
+  // enable comes from this module's registers, not from the core's request valid across the
+  // chip: run 22's path into the read's enable). A read without a request loads data nobody
+  // uses (s1_valid_q stays 0).
   always_ff @(posedge clk_i) begin
-    if (take) s1_data_q <= mem[addr];
+    if (s1_free) s1_data_q <= mem[addr];
   end
 
   assign rsp_valid_o = s2_valid_q;

@@ -658,7 +658,7 @@ module rc_core #(
   assign n0_leaf_bad  = {{(33 - NodeW){1'b0}}, n0_idx} + {1'b0, n0_upper} >
                         {1'b0, list_count_i};
 
-  logic             nq_err_q, nq_leaf_q, nq_malformed_q, nq_leaf_bad_q, nq_empty_q;
+  logic             nq_err_q, nq_leaf_q, nq_malformed_q, nq_leaf_bad_q, nq_empty_q, nq_inner_q;
   logic [ThrW-1:0]  nq_thr_q;
   logic [NodeW-1:0] nq_idx_q;
   logic [31:0]      nq_upper_q;
@@ -677,6 +677,7 @@ module rc_core #(
       nq_malformed_q <= n0_malformed;
       nq_leaf_bad_q  <= n0_leaf_bad;
       nq_empty_q     <= n0_upper == 32'd0;
+      nq_inner_q     <= ~node_rsp_error_i & ~n0_leaf & ~n0_malformed;
       nq_thr_q       <= n0_thr;
       nq_idx_q       <= n0_idx;
       nq_upper_q     <= n0_upper;
@@ -692,7 +693,7 @@ module rc_core #(
   assign nr_empty     = nq_empty_q;
   assign nr_malformed = nq_malformed_q;
   assign nr_leaf_bad  = nq_leaf_bad_q;
-  assign nr_inner_ok  = nq_v_q & ~nr_err & ~nr_leaf & ~nr_malformed;
+  assign nr_inner_ok  = nq_v_q & nq_inner_q;
 
   // The rays' origins and inverse directions on the split axis are read as the response
   // arrives and registered with it (the thread's org_m and inv_m do not change while StNode),
@@ -1872,31 +1873,52 @@ module rc_core #(
   // pipeline, rc_isect_unit's contract, plus 2) or the io and wb registers: LfMax bounds them.
   // Up to three entries finish in one cycle (a failed list entry, a failed triangle read and an
   // intersection result); the last one finishes after the list unit has issued it, so the leaf
-  // ends exactly then.
+  // ends when it has finished (a cycle later, below).
   localparam int unsigned IsectDepth = 2 + (rc_pkg::FpStagesMul + 3 * rc_pkg::FpStagesAdd) +
                                        rc_pkg::FpStagesDiv + rc_pkg::FpStagesMul +
                                        2 * rc_pkg::FpStagesAdd + rc_pkg::FpStagesCmp + 2;
-  localparam int unsigned LfMax = ListTags + 2 + IsectDepth + 2;
+  // The finishing entries are counted per thread and registered (pend_dec, from the three
+  // events' thread numbers), so the events, which come from across the chip, end at flip-flops
+  // next to their thread's counter: the counter and the leaf's end see them a cycle late. A
+  // finished entry is then counted one cycle longer, so the bound is one more than the entries
+  // in flight; the leaf still ends only after its last entry is done and the list unit has let
+  // the thread go (the list unit takes a StLeaf thread, and the thread is StLeafRun until it
+  // ends), and the commit of its last hit (the cycle after its io_dec) is then already made.
+  localparam int unsigned LfMax = ListTags + 2 + IsectDepth + 3;
   localparam int unsigned LfW   = $clog2(LfMax + 1);
-  logic [2*Threads-1:0] pend_dec;                // thread t at [2t +: 2]
+  logic [2*Threads-1:0] pend_dec, pend_dec_d;    // thread t at [2t +: 2]
+  // Whether a thread's count is 1, 2 or 3 is registered with the count (lf_small_q, from the
+  // next count), so the leaf's end is the finishing entries' count against three flip-flops.
   logic [Threads*LfW-1:0] lf_q, lf_d;           // entries in flight, thread t at [t*LfW +: LfW]
+  logic [Threads*3-1:0]   lf_small_q, lf_small_d;  // count == 1, 2, 3 at [3t], [3t+1], [3t+2]
   always_comb begin
     for (int unsigned t = 0; t < Threads; t++) begin
       logic issuing;
+      logic [1:0] dec;
       issuing = lu_busy_q && lu_thr_q == ThrW'(t);
-      pend_dec[2*t +: 2] = 2'(lr_dec && lr_thr == ThrW'(t)) + 2'(te_dec && ti_thr_q == ThrW'(t)) +
-                           2'(io_dec && wb_thr_q == ThrW'(t));
+      pend_dec_d[2*t +: 2] = 2'(lr_dec && lr_thr == ThrW'(t)) +
+                             2'(te_dec && ti_thr_q == ThrW'(t)) +
+                             2'(io_dec && wb_thr_q == ThrW'(t));
+      dec = pend_dec[2*t +: 2];
       lf_d[t*LfW +: LfW] = lf_q[t*LfW +: LfW] + LfW'(li_take && lu_thr_q == ThrW'(t)) -
-                           LfW'(pend_dec[2*t +: 2]);
-      pend_zero[t] = (pend_dec[2*t +: 2] != 2'd0) && !issuing &&
-                     (lf_q[t*LfW +: LfW] == LfW'(pend_dec[2*t +: 2]));
+                           LfW'(dec);
+      for (int unsigned k = 1; k <= 3; k++) begin
+        lf_small_d[3*t + k - 1] = lf_d[t*LfW +: LfW] == LfW'(k);
+      end
+      pend_zero[t] = !issuing && ((dec == 2'd1 && lf_small_q[3*t]) ||
+                                  (dec == 2'd2 && lf_small_q[3*t + 1]) ||
+                                  (dec == 2'd3 && lf_small_q[3*t + 2]));
     end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      lf_q <= '0;
+      lf_q       <= '0;
+      lf_small_q <= '0;
+      pend_dec   <= '0;
     end else begin
-      lf_q <= lf_d;
+      lf_q       <= lf_d;
+      lf_small_q <= lf_small_d;
+      pend_dec   <= pend_dec_d;
     end
   end
 
@@ -2016,12 +2038,28 @@ module rc_core #(
 
   // Tag pool, per tag as a flat AND-OR: the taken tag is the one-hot lowest free tag itself
   // (tag_first, not its index decoded again), and a tag is freed only while it is in use
-  // (ListRspTag_A, TriRspTag_A), so taking and freeing never meet on one tag.
+  // (ListRspTag_A, TriRspTag_A), so taking and freeing never meet on one tag. The free of a
+  // triangle's tag as it enters the issue register is registered (tl_*_q) and made a cycle
+  // later, so the issue register's load, which waits on the intersection unit's ready across
+  // the chip, ends at two flip-flops instead of at every tag's free bit (run 22's critical
+  // path); the tag pool was read at the load, and the tag is offered again a cycle later.
+  logic           tl_v_q;
+  logic [LtW-1:0] tl_tag_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      tl_v_q <= 1'b0;
+    end else begin
+      tl_v_q <= ti_load;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    tl_tag_q <= ti_tag;
+  end
   always_comb begin
     for (int unsigned i = 0; i < ListTags; i++) begin
       tf_d[i] = (tf_q[i] & ~(li_take & tag_first[i])) |
                 (lr_dec & (lb_tag_q == LtW'(i))) |
-                (ti_load & (ti_tag == LtW'(i)));
+                (tl_v_q & (tl_tag_q == LtW'(i)));
     end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -2036,32 +2074,35 @@ module rc_core #(
   // Status                             //
   ////////////////////////////////////////
 
-  logic            idle, progress, wd_fire, wd_clr_q;
+  logic            idle, wd_fire, wd_clr;
+  logic [14:0]     wd_ev_d, wd_ev_q;
   logic [31:0]     wd_q;
   logic [StatusW-1:0] error_q;
 
-  assign idle     = (&free_vec) & ~feed_busy_q;
-  assign progress = acc_take | fb_take |
-                    (node_req_valid_q & node_req_ready_i) | n0_take | nr_take |
-                    (list_req_valid_q & list_req_ready_i) | lr_take |
-                    (tri_req_valid_q & tri_req_ready_i) | (tri_rsp_valid_i & tri_rsp_ready_o) |
-                    (shd_req_valid_q & shd_req_ready_i) | sr_take |
-                    (mat_req_valid_q & mat_req_ready_i) | ma_load | sh_in_take;
-  // Whether the core was idle or completed a handshake is registered (wd_clr_q) before it
-  // clears the count: the handshakes come from every port across the chip. The count then
-  // lags a cycle, so it fires at WatchdogCycles - 1, and never in the cycle the registered
-  // clear arrives: the same cycle as counting without the register (WatchdogCycles cycles
-  // without a handshake).
-  assign wd_fire  = (wd_q == 32'(WatchdogCycles - 1)) & ~wd_clr_q;
+  assign idle    = (&free_vec) & ~feed_busy_q;
+  assign wd_ev_d = {idle, acc_take, fb_take,
+                    node_req_valid_q & node_req_ready_i, n0_take, nr_take,
+                    list_req_valid_q & list_req_ready_i, lr_take,
+                    tri_req_valid_q & tri_req_ready_i, tri_rsp_valid_i & tri_rsp_ready_o,
+                    shd_req_valid_q & shd_req_ready_i, sr_take,
+                    mat_req_valid_q & mat_req_ready_i, ma_load, sh_in_take};
+  // Whether the core was idle or completed a handshake is registered, each event on its own
+  // (wd_ev_q: the handshakes come from every port across the chip, so each ends at a flip-flop
+  // near its port), and the registered events ORed clear the count. The count then lags a
+  // cycle, so it fires at WatchdogCycles - 1, and never in the cycle the registered clear
+  // arrives: the same cycle as counting without the register (WatchdogCycles cycles without a
+  // handshake).
+  assign wd_clr  = |wd_ev_q;
+  assign wd_fire = (wd_q == 32'(WatchdogCycles - 1)) & ~wd_clr;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      wd_q     <= '0;
-      wd_clr_q <= 1'b1;
-      error_q  <= '0;
+      wd_q    <= '0;
+      wd_ev_q <= 15'd1;
+      error_q <= '0;
     end else begin
-      wd_clr_q <= idle | progress;
-      if (wd_clr_q) begin
+      wd_ev_q <= wd_ev_d;
+      if (wd_clr) begin
         wd_q <= '0;
       end else if (!wd_fire) begin
         wd_q <= wd_q + 32'd1;
@@ -2286,6 +2327,13 @@ module rc_core #(
   // Intersection results belong to threads in their leaf, with triangles still outstanding.
   IsectOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  wb_v_q |-> st_q[wb_thr_q*4 +: 4] == StLeafRun && wb_pend != '0);
+  // The registered small-count flags are the count's.
+  for (genvar t = 0; t < Threads; t++) begin : g_lf_small_checks
+    LfSmall_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                lf_small_q[3*t +: 3] == {lf_q[t*LfW +: LfW] == LfW'(3),
+                                                         lf_q[t*LfW +: LfW] == LfW'(2),
+                                                         lf_q[t*LfW +: LfW] == LfW'(1)});
+  end
   // The entries in flight stay within their bound (so the counter cannot wrap) and none
   // finishes that was not issued.
   for (genvar t = 0; t < Threads; t++) begin : g_lf_checks
