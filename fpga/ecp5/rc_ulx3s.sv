@@ -162,8 +162,17 @@ module rc_ulx3s #(
     end
   end
 
-  // The press (debounced rising edge): one cycle.
-  assign start = fire_sync_q[1] && !fire_q && fire_cnt_q == DebounceW'(CoreHz / 100);
+  // The press (debounced rising edge): one cycle, registered (the count's compare ends at a
+  // flip-flop instead of at the board's frame control: run 23).
+  logic start_q;
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      start_q <= 1'b0;
+    end else begin
+      start_q <= fire_sync_q[1] && !fire_q && fire_cnt_q == DebounceW'(CoreHz / 100);
+    end
+  end
+  assign start = start_q;
 
   ///////////////
   // Host link //

@@ -21,8 +21,8 @@
 //   cycle before reading PerfLo/Hi. The counters' 64-bit multiplexer thus ends at a flip-flop
 //   and does not reach the read data's register in one cycle.
 // - Frame: the core renders every pixel into the framebuffer (pixel id y * width + x, 24-bit
-//   RGB). done_o rises when the last packet has been generated and the core is idle; it stays
-//   until the next start. BoardRegCycles holds the frame's cycle count.
+//   RGB). done_o rises two cycles after the first cycle in which the last packet has been
+//   generated and the core is idle; it stays until the next start. BoardRegCycles holds the frame's cycle count.
 // - Framebuffer read port: fb_rdata_o is pixel fb_raddr_i of the previous cycle (registered
 //   block RAM read; reading while a frame runs is legal and shows the frame in progress).
 // - Monitor: mon_valid_o and mon_* show each framebuffer write of the core with its hit record
@@ -113,7 +113,7 @@ module rc_board #(
 `endif
   end
 
-  logic running_q, done_q, size_error_q;
+  logic running_q, done_q, size_error_q, fin_q;
   logic [1:0] pend_q;  // start requested: cycles until the size check
   logic busy;
 
@@ -166,6 +166,7 @@ module rc_board #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       pend_q       <= 2'd0;
+      fin_q        <= 1'b0;
       running_q    <= 1'b0;
       done_q       <= 1'b0;
       size_error_q <= 1'b0;
@@ -183,11 +184,14 @@ module rc_board #(
           size_error_q <= !size_ok;
         end
       end
+      // The generator is busy from the cycle after its start until its last packet is taken;
+      // the core is not idle from the cycle after it took a packet until its last write. The
+      // end of the frame is registered (fin_q: the core's idle, an AND over its thread states,
+      // ends at one flip-flop instead of at the frame control) and acted on a cycle later.
+      fin_q <= running_q && !gen_busy && core_idle;
       if (running_q) begin
         cycles_q <= cycles_q + 32'd1;
-        // The generator is busy from the cycle after its start until its last packet is taken;
-        // the core is not idle from the cycle after it took a packet until its last write.
-        if (!gen_busy && core_idle) begin
+        if (fin_q) begin
           running_q <= 1'b0;
           done_q    <= 1'b1;
         end

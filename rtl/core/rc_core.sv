@@ -1016,10 +1016,10 @@ module rc_core #(
   logic [ThrW-1:0] lu_thr_q;
   logic [3:0]      lu_mask_q;
   logic [31:0]     lu_idx_q, lu_left_q;
-  logic            lreq_free, li_take;
-  logic            list_req_valid_q;
-  logic [LtW-1:0]  list_req_tag_q;
-  logic [31:0]     list_req_index_q;
+  logic            lreq_free, lout_free, li_take;
+  logic            list_req_valid_q, lsk_v_q;
+  logic [LtW-1:0]  list_req_tag_q, lsk_tag_q;
+  logic [31:0]     list_req_index_q, lsk_index_q;
 
   rc_rr_pick #(
     .N   (Threads),
@@ -1040,7 +1040,14 @@ module rc_core #(
   // (lu_mask_q) and go into the tag pool with each entry's tag. The thread stays StLeaf, then
   // StLeafRun, from its choice on: nothing writes its loff_m, lcnt_m and mask meanwhile.
   assign lp_take   = lp_any & ~lu_busy_q;
-  assign lreq_free = ~list_req_valid_q | list_req_ready_i;
+  // The list request leaves through a register with a one-entry skid buffer (lsk_*_q) beside
+  // it, so the list unit issues whenever the buffer is empty (lreq_free, a flip-flop): the
+  // list port's ready, which comes from the list memory across the chip, reaches the request
+  // registers only, not the issue (li_take) and with it the tag search, the tag pool and the
+  // threads' entry counts (run 23's critical path). An entry waits in the buffer only behind a
+  // request the port has not taken.
+  assign lout_free = ~list_req_valid_q | list_req_ready_i;
+  assign lreq_free = ~lsk_v_q;
   assign li_take   = lu_busy_q & ~lu_load_q & tag_avail & lreq_free;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -1055,6 +1062,9 @@ module rc_core #(
       list_req_valid_q <= 1'b0;
       list_req_tag_q   <= '0;
       list_req_index_q <= '0;
+      lsk_v_q          <= 1'b0;
+      lsk_tag_q        <= '0;
+      lsk_index_q      <= '0;
     end else begin
       if (lp_take) begin
         lu_busy_q <= 1'b1;
@@ -1068,11 +1078,19 @@ module rc_core #(
         lu_left_q <= lcnt_m[lu_thr_q];
         lu_mask_q <= get4(mask_q, lu_thr_q);
       end
-      if (list_req_valid_q && list_req_ready_i) list_req_valid_q <= 1'b0;
+      // The request register takes the skid buffer's entry first, else a new one; a new entry
+      // the register cannot take goes into the skid buffer.
+      if (lout_free) begin
+        list_req_valid_q <= lsk_v_q | li_take;
+        list_req_tag_q   <= lsk_v_q ? lsk_tag_q : tag_new;
+        list_req_index_q <= lsk_v_q ? lsk_index_q : lu_idx_q;
+      end
+      lsk_v_q <= lsk_v_q ? ~lout_free : (li_take & ~lout_free);
+      if (!lsk_v_q) begin
+        lsk_tag_q   <= tag_new;
+        lsk_index_q <= lu_idx_q;
+      end
       if (li_take) begin
-        list_req_valid_q <= 1'b1;
-        list_req_tag_q   <= tag_new;
-        list_req_index_q <= lu_idx_q;
         lu_idx_q         <= lu_idx_q + 32'd1;
         lu_left_q        <= lu_left_q - 32'd1;
         if (lu_left_q == 32'd1) lu_busy_q <= 1'b0;
@@ -1324,10 +1342,10 @@ module rc_core #(
     end
   end
 
-  logic              iu_v, iu_hit;
-  logic [ThrW+2:0]   iu_tag;
-  logic [31:0]       iu_tri;
-  logic [W-1:0]      iu_t, iu_u, iu_v_bits, iu_dz;
+  logic              ix_v, ix_hit;
+  logic [ThrW+2:0]   ix_tag;
+  logic [31:0]       ix_tri;
+  logic [W-1:0]      ix_t, ix_u, ix_v_bits, ix_dz;
 
   rc_isect_unit #(
     .ExpW       (ExpW),
@@ -1346,16 +1364,43 @@ module rc_core #(
     .dir_i     (ia_dir_q),
     .best_t_i  (ia_bt_q),
     .best_tri_i(ia_btri_q),
-    .valid_o   (iu_v),
+    .valid_o   (ix_v),
     .ready_i   (1'b1),
-    .tag_o     (iu_tag),
-    .tri_o     (iu_tri),
-    .hit_o     (iu_hit),
-    .t_o       (iu_t),
-    .u_o       (iu_u),
-    .v_o       (iu_v_bits),
-    .dz_o      (iu_dz)
+    .tag_o     (ix_tag),
+    .tri_o     (ix_tri),
+    .hit_o     (ix_hit),
+    .t_o       (ix_t),
+    .u_o       (ix_u),
+    .v_o       (ix_v_bits),
+    .dz_o      (ix_dz)
   );
+
+  // The unit's results pass a register slice (iu_*_q) first: the unit's output register sits
+  // in the unit beside its FIFO, and the result's thread addresses the best-hit arrays' reads
+  // below, across the chip (run 23's path into io_bt); from the slice the read starts at
+  // flip-flops placed near the arrays. A result is a cycle later, so its leaf ends a cycle later.
+  logic              iu_v_q, iu_hit_q;
+  logic [ThrW+2:0]   iu_tag_q;
+  logic [31:0]       iu_tri_q;
+  logic [W-1:0]      iu_t_q, iu_u_q, iu_v_bits_q, iu_dz_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      iu_v_q <= 1'b0;
+    end else begin
+      iu_v_q <= ix_v;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (ix_v) begin
+      iu_tag_q    <= ix_tag;
+      iu_tri_q    <= ix_tri;
+      iu_hit_q    <= ix_hit;
+      iu_t_q      <= ix_t;
+      iu_u_q      <= ix_u;
+      iu_v_bits_q <= ix_v_bits;
+      iu_dz_q     <= ix_dz;
+    end
+  end
 
   // The unit's results are registered (io_*) before the write-back, so the unit's output FIFO
   // read and the best-hit read, compare and write are in different cycles.
@@ -1368,18 +1413,18 @@ module rc_core #(
     if (!rst_ni) begin
       io_v_q <= 1'b0;
     end else begin
-      io_v_q <= iu_v;
+      io_v_q <= iu_v_q;
     end
   end
   always_ff @(posedge clk_i) begin
-    if (iu_v) begin
-      io_tag_q    <= iu_tag;
-      io_tri_q    <= iu_tri;
-      io_hit_q    <= iu_hit;
-      io_t_q      <= iu_t;
-      io_u_q      <= iu_u;
-      io_v_bits_q <= iu_v_bits;
-      io_dz_q     <= iu_dz;
+    if (iu_v_q) begin
+      io_tag_q    <= iu_tag_q;
+      io_tri_q    <= iu_tri_q;
+      io_hit_q    <= iu_hit_q;
+      io_t_q      <= iu_t_q;
+      io_u_q      <= iu_u_q;
+      io_v_bits_q <= iu_v_bits_q;
+      io_dz_q     <= iu_dz_q;
     end
   end
 
@@ -1405,12 +1450,12 @@ module rc_core #(
   logic [W-1:0]    wc_t_q, wc_u_q, wc_vb_q, wc_dz_q, wd_t_q;
   logic [31:0]     wc_tri_q, wd_tri_q;
 
-  // The ray's best hit is read as the result enters the io register (io_bt, io_btri: the unit's
-  // output is a register), so the read addressed by the result's thread ends at flip-flops; the
+  // The ray's best hit is read as the result enters the io register (io_bt, io_btri: from the
+  // slice's registers), so the read addressed by the result's thread ends at flip-flops; the
   // io stage then only forwards: the best decided this cycle (wb), the one committed at the end
   // of this cycle (wc) and the one committed at the end of the last (wd), which the read missed.
-  assign iu_thr  = iu_tag[ThrW-1:0];
-  assign iu_r    = iu_tag[ThrW +: 2];
+  assign iu_thr  = iu_tag_q[ThrW-1:0];
+  assign iu_r    = iu_tag_q[ThrW +: 2];
   assign io_r    = io_tag_q[ThrW +: 2];
   assign io_thr  = io_tag_q[ThrW-1:0];
   assign wb_fwd  = wb_better & (wb_thr_q == io_thr) & (wb_r_q == io_r);
@@ -1418,7 +1463,7 @@ module rc_core #(
   assign wd_fwd  = wd_we_q & (wd_thr_q == io_thr) & (wd_r_q == io_r);
 
   always_ff @(posedge clk_i) begin
-    if (iu_v) begin
+    if (iu_v_q) begin
       io_bt   <= lane_w(gate_t(bt_m[iu_thr], get4(bhit_q, iu_thr)), iu_r);
       io_btri <= lane_32(gate_tri(btri_m[iu_thr], get4(bhit_q, iu_thr)), iu_r);
     end
@@ -1870,7 +1915,8 @@ module rc_core #(
   // (pend_zero) is a small compare. An entry in flight holds a tag (at most ListTags) until its
   // triangle enters the issue register, and after that sits in the issue register, the input
   // slice, the intersection unit (at most its FIFO depth of tests: the latency of its fp
-  // pipeline, rc_isect_unit's contract, plus 2) or the io and wb registers: LfMax bounds them.
+  // pipeline, rc_isect_unit's contract, plus 2) or the iu, io and wb registers: LfMax bounds
+  // them.
   // Up to three entries finish in one cycle (a failed list entry, a failed triangle read and an
   // intersection result); the last one finishes after the list unit has issued it, so the leaf
   // ends when it has finished (a cycle later, below).
@@ -1884,7 +1930,7 @@ module rc_core #(
   // in flight; the leaf still ends only after its last entry is done and the list unit has let
   // the thread go (the list unit takes a StLeaf thread, and the thread is StLeafRun until it
   // ends), and the commit of its last hit (the cycle after its io_dec) is then already made.
-  localparam int unsigned LfMax = ListTags + 2 + IsectDepth + 3;
+  localparam int unsigned LfMax = ListTags + 2 + IsectDepth + 4;
   localparam int unsigned LfW   = $clog2(LfMax + 1);
   logic [2*Threads-1:0] pend_dec, pend_dec_d;    // thread t at [2t +: 2]
   // Whether a thread's count is 1, 2 or 3 is registered with the count (lf_small_q, from the
@@ -2285,6 +2331,9 @@ module rc_core #(
   // Ray set-up results belong to threads in set-up.
   SetupOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  su_v |-> st_q[su_thr*4 +: 4] == StSetup);
+  // A list entry waits in the skid buffer only behind a request the port has not taken.
+  ListSkid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               lsk_v_q |-> list_req_valid_q);
   // List and triangle responses carry an outstanding tag of a thread in its leaf.
   logic [ThrW-1:0] lr_owner;
   assign lr_owner = tp_thr_m[lr_tag];
