@@ -510,7 +510,7 @@ module rc_core #(
 
   // The current-entry arrays have one write port: pop results first, then traversal results,
   // then set-up results (the other two wait; their units hold them in their output FIFOs).
-  assign su_out_ready = ~pop2_v & ~tq_v_q;
+  assign su_out_ready = ~pop2_v & ~trav_v_all[0];
   assign su_v    = su_valid & su_out_ready;
   assign su_thr  = su_tag[RidW-1:2];
   assign su_r    = su_tag[1:0];
@@ -756,7 +756,6 @@ module rc_core #(
 
   logic [3:0]        trav_ready_all, trav_v_all;
   logic              tr_ready;      // the traversal result is taken (below)
-  logic              tq_free;       // the result register takes the sub-units' next result
   logic [4*TrTagW-1:0] trav_tag_all;
   logic [4*W-1:0]    trav_t;
   logic [7:0]        trav_case;
@@ -794,7 +793,7 @@ module rc_core #(
       .tmin_i (nr_tmin[r*W +: W]),
       .tmax_i (nr_tmax[r*W +: W]),
       .valid_o(trav_v_all[r]),
-      .ready_i(tq_free),
+      .ready_i(tr_ready),
       .tag_o  (trav_tag_all[r*TrTagW +: TrTagW]),
       .t_o    (trav_t[r*W +: W]),
       .case_o (trav_case[r*2 +: 2])
@@ -811,40 +810,12 @@ module rc_core #(
   logic [4*W-1:0]   tr_lo, tr_hi, tr_a_tmin, tr_a_tmax, tr_b_tmin, tr_b_tmax;
   logic [SpW-1:0]   tr_sp;
 
-  // The sub-units' results are registered (tq_*_q) before they act: the four sub-units' output
-  // FIFOs sit apart on the chip, and their heads went straight into the thread states, the
-  // stack push and the node index write (run 23's paths into st_q, mask_q, sp_q). A node
-  // result then acts a cycle later. The register takes the next result whenever it is empty
-  // or its result acts (tr_ready: the pop's result goes first).
-  logic               tq_v_q;
-  logic [TrComW-1:0]  tq_com_q;
-  logic [8*W-1:0]     tq_iv_q;     // {tmax, tmin} of ray r at [r*2W +: 2W]
-  logic [4*W-1:0]     tq_t_q;
-  logic [7:0]         tq_case_q;
   assign tr_ready = ~pop2_v;
-  assign tq_free  = ~tq_v_q | tr_ready;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      tq_v_q <= 1'b0;
-    end else if (tq_free) begin
-      tq_v_q <= trav_v_all[0];
-    end
-  end
-  always_ff @(posedge clk_i) begin
-    if (tq_free) begin
-      tq_com_q  <= trav_tag_all[0 +: TrComW];
-      for (int unsigned r = 0; r < 4; r++) begin
-        tq_iv_q[r*2*W +: 2*W] <= trav_tag_all[r*TrTagW + TrComW +: 2*W];
-      end
-      tq_t_q    <= trav_t;
-      tq_case_q <= trav_case;
-    end
-  end
-  assign tr_v     = tq_v_q & tr_ready;
-  assign {tr_full, tr_sp, tr_idx, tr_lsign, tr_same, tr_mask, tr_thr} = tq_com_q;
+  assign tr_v     = trav_v_all[0] & tr_ready;
+  assign {tr_full, tr_sp, tr_idx, tr_lsign, tr_same, tr_mask, tr_thr} = trav_tag_all[0 +: TrComW];
   for (genvar r = 0; r < 4; r++) begin : g_tr_iv
-    assign tr_lo[r*W +: W] = tq_iv_q[r*2*W +: W];
-    assign tr_hi[r*W +: W] = tq_iv_q[r*2*W + W +: W];
+    assign tr_lo[r*W +: W] = trav_tag_all[r*TrTagW + TrComW +: W];
+    assign tr_hi[r*W +: W] = trav_tag_all[r*TrTagW + TrComW + W +: W];
   end
 
   // The lead ray's near child first (left child when its direction sign bit is 0).
@@ -856,8 +827,8 @@ module rc_core #(
       logic       same, to_near, to_far, spl;
       logic [1:0] c;
       logic [W-1:0] t, lo, hi;
-      c       = tq_case_q[r*2 +: 2];
-      t       = tq_t_q[r*W +: W];
+      c       = trav_case[r*2 +: 2];
+      t       = trav_t[r*W +: W];
       lo      = tr_lo[r*W +: W];
       hi      = tr_hi[r*W +: W];
       same    = tr_same[r];
