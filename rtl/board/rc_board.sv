@@ -396,8 +396,26 @@ module rc_board #(
   logic [23:0] fb_mem [0:FbPixels-1];
   logic [23:0] fb_rdata_q;
 
+  // A write is registered first (fbw_*_q) and made a cycle later: the core's pixel id comes
+  // from a distributed-RAM read, and its range check's carry chain ended at the block RAM's
+  // write enable (run 24). The write lands before done_o rises (two cycles after the core is
+  // idle).
+  logic               fbw_q;
+  logic [FbAddrW-1:0] fbw_addr_q;
+  logic [23:0]        fbw_rgb_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      fbw_q <= 1'b0;
+    end else begin
+      fbw_q <= fb_valid && fb_pixel < 32'(FbPixels);
+    end
+  end
   always_ff @(posedge clk_i) begin
-    if (fb_valid && fb_pixel < 32'(FbPixels)) fb_mem[FbAddrW'(fb_pixel)] <= fb_rgb;
+    fbw_addr_q <= FbAddrW'(fb_pixel);
+    fbw_rgb_q  <= fb_rgb;
+  end
+  always_ff @(posedge clk_i) begin
+    if (fbw_q) fb_mem[fbw_addr_q] <= fbw_rgb_q;
   end
 
   always_ff @(posedge clk_i) begin

@@ -6,11 +6,12 @@
 //  - a response held back holds, unchanged, until taken;
 //  - req_ready_o comes from a register: within a cycle it does not move when rsp_ready_i,
 //    req_valid_i, the index or the tag change;
-//  - the read stage does not follow the consumer: within a cycle, its enable (`take`) and its
-//    move on (`adv`, also the clock enable of the FIFO entry it writes), read through the
-//    model's public signals, do not move when rsp_ready_i changes;
-//  - five requests are accepted while the consumer stalls (the skid buffer, the read stage,
-//    the FIFO's two entries and the output register), and no more;
+//  - the address and read stages do not follow the consumer: within a cycle, their enables
+//    (`a0_free`, `s1_free`: the read's) and the read stage's move on (`adv`, also the clock
+//    enable of the FIFO entry it writes), read through the model's public signals, do not move
+//    when rsp_ready_i changes;
+//  - six requests are accepted while the consumer stalls (the skid buffer, the address stage,
+//    the read stage, the FIFO's two entries and the output register), and no more;
 //  - one response per cycle when the consumer never stalls, and no request is lost or hangs.
 #include <gtest/gtest.h>
 
@@ -130,9 +131,13 @@ class Bench {
     EXPECT_EQ(bool(m_->req_ready_o), req_ready)
         << "req_ready_o changed with this cycle's inputs at cycle " << cycles_;
     drive(req_valid_, req_index_, req_tag_, rsp_ready);
-    const bool take = root().rc_board_rom__DOT__take, adv = root().rc_board_rom__DOT__adv;
+    const bool a0_free = root().rc_board_rom__DOT__a0_free;
+    const bool s1_free = root().rc_board_rom__DOT__s1_free;
+    const bool adv = root().rc_board_rom__DOT__adv;
     drive(req_valid_, req_index_, req_tag_, !rsp_ready);
-    EXPECT_EQ(bool(root().rc_board_rom__DOT__take), take)
+    EXPECT_EQ(bool(root().rc_board_rom__DOT__a0_free), a0_free)
+        << "the address stage's enable changed with rsp_ready_i at cycle " << cycles_;
+    EXPECT_EQ(bool(root().rc_board_rom__DOT__s1_free), s1_free)
         << "the read enable changed with rsp_ready_i at cycle " << cycles_;
     EXPECT_EQ(bool(root().rc_board_rom__DOT__adv), adv)
         << "the read stage's advance changed with rsp_ready_i at cycle " << cycles_;
@@ -221,20 +226,21 @@ TEST(BoardRom, RandomGapsAndStalls) {
   }
 }
 
-// A stalled consumer: the skid buffer, the read stage, the FIFO's two entries and the output
-// register hold five requests; then req_ready_o stays 0, and all five come out in order.
-TEST(BoardRom, FiveHeldWhileStalled) {
+// A stalled consumer: the skid buffer, the address stage, the read stage, the FIFO's two
+// entries and the output register hold six requests; then req_ready_o stays 0, and all six come
+// out in order.
+TEST(BoardRom, SixHeldWhileStalled) {
   Bench b(11);
-  EXPECT_EQ(b.fill(50), 5u);
+  EXPECT_EQ(b.fill(50), 6u);
   b.drain();
 }
 
 // With requests on every cycle and a consumer that never stalls, the ROM answers once per
-// cycle after its two cycles of latency (plus the cycle in which the first request is made).
+// cycle after its three cycles of latency (plus the cycle in which the first request is made).
 TEST(BoardRom, FullThroughput) {
   Bench b(7);
   const uint64_t taken = b.run(10000, 1.0, 1.0);
-  EXPECT_GE(taken, 10000u - 3u);
+  EXPECT_GE(taken, 10000u - 4u);
   b.drain();
 }
 
