@@ -1379,54 +1379,30 @@ module rc_core #(
   // in the unit beside its FIFO, and the result's thread addresses the best-hit arrays' reads
   // below, across the chip (run 23's path into io_bt); from the slice the read starts at
   // flip-flops placed near the arrays. A result is a cycle later, so its leaf ends a cycle later.
-  logic              iu_v_q, iu_hit_q;
-  logic [ThrW+2:0]   iu_tag_q;
-  logic [31:0]       iu_tri_q;
-  logic [W-1:0]      iu_t_q, iu_u_q, iu_v_bits_q, iu_dz_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      iu_v_q <= 1'b0;
-    end else begin
-      iu_v_q <= ix_v;
-    end
-  end
-  always_ff @(posedge clk_i) begin
-    if (ix_v) begin
-      iu_tag_q    <= ix_tag;
-      iu_tri_q    <= ix_tri;
-      iu_hit_q    <= ix_hit;
-      iu_t_q      <= ix_t;
-      iu_u_q      <= ix_u;
-      iu_v_bits_q <= ix_v_bits;
-      iu_dz_q     <= ix_dz;
-    end
-  end
-
-  // The unit's results are registered (io_*) before the write-back, so the unit's output FIFO
-  // read and the best-hit read, compare and write are in different cycles.
-  logic              io_v_q, io_hit_q;
+  // Then the results are registered again (io_*) before the write-back, so the unit's output
+  // FIFO read and the best-hit read, compare and write are in different cycles. Both stages
+  // hold the whole result {tag, tri, hit, t, u, v, dz} as one word.
+  localparam int unsigned IuW    = ThrW + 3 + 32 + 1 + 4 * W;
+  localparam int unsigned IuTagL = IuW - (ThrW + 3);  // the tag's lowest bit in the word
+  logic              iu_v_q, io_v_q, io_hit_q;
+  logic [IuW-1:0]    iu_res_q, io_res_q;
   logic [ThrW+2:0]   io_tag_q;
   logic [31:0]       io_tri_q;
   logic [W-1:0]      io_t_q, io_u_q, io_v_bits_q, io_dz_q;
-
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      iu_v_q <= 1'b0;
       io_v_q <= 1'b0;
     end else begin
+      iu_v_q <= ix_v;
       io_v_q <= iu_v_q;
     end
   end
   always_ff @(posedge clk_i) begin
-    if (iu_v_q) begin
-      io_tag_q    <= iu_tag_q;
-      io_tri_q    <= iu_tri_q;
-      io_hit_q    <= iu_hit_q;
-      io_t_q      <= iu_t_q;
-      io_u_q      <= iu_u_q;
-      io_v_bits_q <= iu_v_bits_q;
-      io_dz_q     <= iu_dz_q;
-    end
+    if (ix_v) iu_res_q <= {ix_tag, ix_tri, ix_hit, ix_t, ix_u, ix_v_bits, ix_dz};
+    if (iu_v_q) io_res_q <= iu_res_q;
   end
+  assign {io_tag_q, io_tri_q, io_hit_q, io_t_q, io_u_q, io_v_bits_q, io_dz_q} = io_res_q;
 
   // Write-back: the hit replaces the ray's best if (t, tri) is smaller, compared again here
   // because other tests of the same ray may have finished since this one read its best. Accepted
@@ -1454,8 +1430,8 @@ module rc_core #(
   // slice's registers), so the read addressed by the result's thread ends at flip-flops; the
   // io stage then only forwards: the best decided this cycle (wb), the one committed at the end
   // of this cycle (wc) and the one committed at the end of the last (wd), which the read missed.
-  assign iu_thr  = iu_tag_q[ThrW-1:0];
-  assign iu_r    = iu_tag_q[ThrW +: 2];
+  assign iu_thr  = iu_res_q[IuTagL +: ThrW];
+  assign iu_r    = iu_res_q[IuTagL + ThrW +: 2];
   assign io_r    = io_tag_q[ThrW +: 2];
   assign io_thr  = io_tag_q[ThrW-1:0];
   assign wb_fwd  = wb_better & (wb_thr_q == io_thr) & (wb_r_q == io_r);
