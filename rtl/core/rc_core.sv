@@ -25,7 +25,8 @@
 // - Status: idle_o = no packet in flight and no write pending. error_o (sticky until reset):
 //   CoreStatus* bits: malformed node, bad address (also any error response), stack overflow,
 //   watchdog (work held and no handshake completed for WatchdogCycles cycles; error_o shows it
-//   from the edge WatchdogCycles + 1 after the last handshake's).
+//   from the edge WatchdogCycles + 2 after the last handshake's: the handshakes reach the count
+//   through two register levels).
 // - Performance counters: perf_o = counter number perf_sel_i (CoreStatus/CorePerf* of rc_pkg),
 //   combinational from registers; numbers >= CorePerfCount read 0. The counters count an event
 //   one cycle after it (registered increments): read them from the cycle after idle_o rises on.
@@ -2110,20 +2111,24 @@ module rc_core #(
                     mat_req_valid_q & mat_req_ready_i, ma_load, sh_in_take};
   // Whether the core was idle or completed a handshake is registered, each event on its own
   // (wd_ev_q: the handshakes come from every port across the chip, so each ends at a flip-flop
-  // near its port), and the registered events ORed clear the count. The count then lags a
-  // cycle, so it fires at WatchdogCycles - 1, and never in the cycle the registered clear
-  // arrives: the same cycle as counting without the register (WatchdogCycles cycles without a
-  // handshake).
-  assign wd_clr  = |wd_ev_q;
+  // near its port), then ORed in four groups into registers (wd_grp_q), whose OR clears the
+  // count: no net runs from all of the ports to the count's 32 bits in one cycle (run 26's
+  // critical path). The count sees the events two cycles late; it fires at WatchdogCycles - 1
+  // and never in the cycle a clear arrives, so it counts WatchdogCycles cycles without a
+  // handshake and the bit shows a cycle after the undelayed count would (the contract's + 2).
+  logic [3:0] wd_grp_q;
+  assign wd_clr  = |wd_grp_q;
   assign wd_fire = (wd_q == 32'(WatchdogCycles - 1)) & ~wd_clr;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       wd_q    <= '0;
-      wd_ev_q <= 15'd1;
-      error_q <= '0;
+      wd_ev_q  <= 15'd1;
+      wd_grp_q <= 4'd1;
+      error_q  <= '0;
     end else begin
-      wd_ev_q <= wd_ev_d;
+      wd_ev_q  <= wd_ev_d;
+      wd_grp_q <= {|wd_ev_q[14:12], |wd_ev_q[11:8], |wd_ev_q[7:4], |wd_ev_q[3:0]};
       if (wd_clr) begin
         wd_q <= '0;
       end else if (!wd_fire) begin
