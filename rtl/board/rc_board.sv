@@ -22,7 +22,8 @@
 //   and does not reach the read data's register in one cycle.
 // - Frame: the core renders every pixel into the framebuffer (pixel id y * width + x, 24-bit
 //   RGB). done_o rises two cycles after the first cycle in which the last packet has been
-//   generated and the core is idle; it stays until the next start. BoardRegCycles holds the frame's cycle count.
+//   generated and the core is idle; it stays until the next start. BoardRegCycles holds the
+//   frame's cycle count.
 // - Framebuffer read port: fb_rdata_o is pixel fb_raddr_i of the previous cycle (registered
 //   block RAM read; reading while a frame runs is legal and shows the frame in progress).
 // - Monitor: mon_valid_o and mon_* show each framebuffer write of the core with its hit record

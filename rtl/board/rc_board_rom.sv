@@ -129,8 +129,8 @@ module rc_board_rom #(
       o_cnt_q    <= 2'd0;
       s2_valid_q <= 1'b0;
     end else begin
-      // Full only from an accepted request the read stage could not take; a full buffer is
-      // emptied by the read stage before anything else (req_ready_o is 0 meanwhile).
+      // Full only from an accepted request the address stage could not take; a full buffer is
+      // emptied by the address stage before anything else (req_ready_o is 0 meanwhile).
       k_valid_q <= k_valid_q ? ~a0_free : (acc & ~a0_free);
       if (a0_free) a0_valid_q <= rd_valid;
       if (s1_free) s1_valid_q <= a0_valid_q;
@@ -197,7 +197,7 @@ module rc_board_rom #(
   RspHold_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     rsp_valid_o && !rsp_ready_i |=> rsp_valid_o && $stable(rsp_tag_o) &&
     $stable(rsp_data_o) && $stable(rsp_error_o));
-  // A request waits in the skid buffer only behind a read stage that cannot move on.
+  // A request waits in the skid buffer only behind an address stage that cannot move on.
   SkidBehindRead_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     k_valid_q |-> a0_valid_q);
   // The FIFO holds two entries at most (adv waits while it is full).

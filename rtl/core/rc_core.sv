@@ -2122,7 +2122,7 @@ module rc_core #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      wd_q    <= '0;
+      wd_q     <= '0;
       wd_ev_q  <= 15'd1;
       wd_grp_q <= 4'd1;
       error_q  <= '0;
