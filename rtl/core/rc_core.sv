@@ -551,7 +551,7 @@ module rc_core #(
     .clk_i,
     .rst_ni,
     .req_i  (fetch_vec & ~h_fe),
-    .take_i (fe_take),
+    .take_i (fq_free),
     .valid_o(fe_any),
     .idx_o  (fe_thr),
     .grant_o(g_fe)
@@ -560,7 +560,9 @@ module rc_core #(
   // The choice is registered (fq_*_q) and the node index read from node_m in the next cycle,
   // so the scheduler's choice addresses no distributed RAM in its own cycle (one cycle of
   // latency per fetch). The thread stays StFetch, then StNode, from its choice on: nothing
-  // writes its node_m meanwhile.
+  // writes its node_m meanwhile. The choice's registers load whenever the register is free
+  // (fq_free), with or without a request (the choice is then zero: no grant, fq_v_q low), so
+  // the OR over the requests (fe_any) reaches only fq_v_q's input and no register's enable.
   assign nreq_free = ~node_req_valid_q | node_req_ready_i;
   assign fq_free   = ~fq_v_q | nreq_free;
   assign fe_take   = fe_any & fq_free;
@@ -589,11 +591,12 @@ module rc_core #(
       node_req_node_q  <= '0;
     end else begin
       fe_took_q <= fe_take;
-      gfe_q     <= g_fe;
-      if (fq_v_q && nreq_free) fq_v_q <= 1'b0;
-      if (fe_take && !fe_bad) begin
-        fq_v_q   <= 1'b1;
+      if (fq_free) begin
+        gfe_q    <= g_fe;
+        fq_v_q   <= fe_any & ~fe_bad;
         fq_thr_q <= fe_thr;
+      end else begin
+        gfe_q    <= '0;
       end
       if (node_req_valid_q && node_req_ready_i) node_req_valid_q <= 1'b0;
       if (fq_v_q && nreq_free) begin
@@ -1775,7 +1778,7 @@ module rc_core #(
   // the list unit and the shading choice are busy).
   assign h_acc = {Threads{acc_v_q}} & gacc_q;
   assign h_su  = hot(su_v, su_thr);
-  assign h_fe  = {Threads{fe_took_q}} & gfe_q;
+  assign h_fe  = gfe_q;
   assign h_nr  = hot(nr_take, nr_thr);
   assign h_tr  = hot(tr_v, tr_thr);
   assign h_lp  = {Threads{lu_load_q}} & glp_q;
@@ -1850,7 +1853,7 @@ module rc_core #(
     end
 
     // The sticky status bits of the whole core.
-    if (fe_take && fe_bad) ev_err[ErrMalformed] = 1'b1;
+    if (fe_took_q && node_empty_q) ev_err[ErrMalformed] = 1'b1;
     if (nr_take && nr_malf) ev_err[ErrMalformed] = 1'b1;
     if (nr_take && nr_bad_addr) ev_err[ErrBadAddr] = 1'b1;
     if (tr_v && tr_overflow) ev_err[ErrOverflow] = 1'b1;
@@ -2155,7 +2158,7 @@ module rc_core #(
     perf_inc[3*rc_pkg::CorePerfBusyCycles +: 3]       = 3'(!idle);
     perf_inc[3*rc_pkg::CorePerfPackets +: 3]          = 3'(acc_take);
     perf_inc[3*rc_pkg::CorePerfRays +: 3]             = acc_take ? popcount4(pkt_mask_i) : 3'd0;
-    perf_inc[3*rc_pkg::CorePerfNodesFetched +: 3]     = 3'(fe_take && !fe_bad);
+    perf_inc[3*rc_pkg::CorePerfNodesFetched +: 3]     = 3'(fe_took_q && !node_empty_q);
     perf_inc[3*rc_pkg::CorePerfInnerVisits +: 3]      = 3'(nr_take && nr_inner_ok);
     perf_inc[3*rc_pkg::CorePerfTraversalSteps +: 3]   = (nr_take && nr_inner_ok) ? popcount4(nr_mask) : 3'd0;
     perf_inc[3*rc_pkg::CorePerfLeafVisits +: 3]       = 3'(nr_take && !nr_err && nr_leaf);

@@ -5,15 +5,18 @@
 //   after the rotating pointer (wrapping around), combinational from req_i and the pointer
 //   register (log depth in N: an AND with the pointer mask, lowest-set-bit carry chains and OR
 //   trees).
-// - take_i: the choice is used this cycle (only with valid_o); the pointer then moves to idx_o + 1
-//   so that every requester is served within N takes of asking (no starvation).
+// - take_i: the choice is used this cycle if there is one; the pointer then moves to idx_o + 1
+//   so that every requester is served within N takes of asking (no starvation). take_i without
+//   a request (valid_o low) is legal and returns the pointer to 0: a user can take whenever it
+//   has room, so valid_o (an OR over all requests) need not reach its registers' enables. A
+//   requester that waits keeps valid_o high, so the return to 0 never delays it.
 // - The pointer is kept as a mask (hi_q: the requesters at or after it), so neither the choice
 //   nor the pointer's update compares indices: the update is the bits above the chosen one.
 // - grant_o: the choice as a one-hot vector (bit idx_o set; zero without a request), for users
 //   that decode the choice per requester (no index encoding and decoding on their path).
 // - Latency: 0 (combinational choice); the pointer updates at the clock edge.
 // - Parameters: N >= 1 requesters; IdxW index bits (>= 1, 2^IdxW >= N).
-// - Illegal input: take_i without valid_o (caught by an assertion).
+// - Illegal input: none.
 // - Reset: rst_ni (active low, asynchronous) sets the pointer to 0 (hi_q all ones).
 module rc_rr_pick #(
   parameter int unsigned N    = 8,
@@ -33,8 +36,9 @@ module rc_rr_pick #(
   end
 
   // hi_q bit i: requester i is at or after the pointer. After a take of requester k it holds the
-  // bits above k; all zeros (after a take of N-1) works as all ones, the pointer at 0, because
-  // the choice falls back to all requests when none at or after the pointer asks.
+  // bits above k; all zeros (after a take of N-1, or a take without a request) works as all
+  // ones, the pointer at 0, because the choice falls back to all requests when none at or after
+  // the pointer asks.
   logic [N-1:0]    hi_q, hi_d;
   logic [N-1:0]    upper, first_up, first_all, above_up, above_all;
   logic [IdxW-1:0] idx_up, idx_all;
@@ -79,18 +83,15 @@ module rc_rr_pick #(
     .on_o (checks_on)
   );
 
-  // A take uses the current choice, which only exists while someone requests.
-  TakeHasChoice_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                    take_i |-> valid_o);
   // The one-hot choice and the index agree.
   GrantIsIdx_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  grant_o == (valid_o ? N'(1) << idx_o : '0));
   // The pointer mask is all requesters from some number up: a set bit has its upper neighbour set.
   PtrMask_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               ((hi_q << 1) & ~hi_q) == '0);
-  // The new mask is the bits above the choice (a take needs a request, so hi_d is well defined).
+  // The new mask is the bits above the choice, or none (the pointer at 0) without a request.
   PtrMove_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                              take_i |-> hi_d == ~((N'(2) << idx_o) - N'(1)));
+                              take_i |-> hi_d == (valid_o ? ~((N'(2) << idx_o) - N'(1)) : '0));
 `endif
 
 endmodule

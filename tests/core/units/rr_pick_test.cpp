@@ -2,8 +2,9 @@
 // N = 16 (the default thread count), 5 (not a power of two) and 1, exhaustively: for every pointer
 // value and every request vector, valid_o and idx_o against a plain scan (the first requester at
 // or after the pointer, wrapping around); then seeded random takes, checking after each that the
-// pointer moved to the taken index + 1 (mod N) by the choice it makes next. grant_o (the choice
-// one-hot) is checked against the same reference in every case.
+// pointer moved to the taken index + 1 (mod N) by the choice it makes next; one take in eight has
+// no request at all, which must return the pointer to 0. grant_o (the choice one-hot) is checked
+// against the same reference in every case.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -65,7 +66,7 @@ class Picker {
   }
   // grant_o at the last choice.
   uint32_t grant() const { return grant_; }
-  // Take the current choice for req (which must be non-zero); returns it.
+  // Take the current choice for req; returns it (-1 with no request).
   int take(uint32_t req) {
     const int got = choose(req);
     m_->take_i = 1;
@@ -109,14 +110,16 @@ void run(int n, const char* what) {
     }
   }
   // Random takes: the pointer follows the taken index, observed through the next choice with all
-  // requesters asking (which must then be taken index + 1 mod N).
+  // requesters asking (which must then be taken index + 1 mod N, or 0 after a take without a
+  // request).
   std::mt19937 rng(0x5eed0000u + static_cast<uint32_t>(n));
   int ptr = 0;
   pk.set_ptr(0);
   for (int k = 0; k < 20000; ++k) {
     const uint32_t r = static_cast<uint32_t>(rng());
+    const bool none = (r >> 29) == 0u;
     const uint32_t req =
-        (r & all) | (1u << (static_cast<uint32_t>(rng()) % static_cast<uint32_t>(n)));
+        none ? 0u : (r & all) | (1u << (static_cast<uint32_t>(rng()) % static_cast<uint32_t>(n)));
     const int want = first_from(req, ptr, n);
     const int got = pk.take(req);
     ++cases;
@@ -124,7 +127,7 @@ void run(int n, const char* what) {
       if (bad < 8) ADD_FAILURE() << what << ": take " << k << ": idx " << got << ", want " << want;
       ++bad;
     }
-    ptr = (want + 1) % n;
+    ptr = none ? 0 : (want + 1) % n;
     ++cases;
     if (pk.choose(all) != ptr) {
       if (bad < 8) ADD_FAILURE() << what << ": take " << k << ": pointer not at " << ptr;
