@@ -858,6 +858,7 @@ module rc_core #(
   logic             pp_any, pp_v_q, pp_end;
   logic [ThrW-1:0]  pp_thr, pp_thr_q;
   logic [Threads-1:0] g_pp, gpp_q, pop_end_t;
+  logic [Threads-1:0] gpop0_q, gpop1_q, gpop2_q;
   logic [SpW-1:0]   pp_sp;
   logic             pop0_v_q, pop1_v_q;
   logic [ThrW-1:0]  pop0_thr_q, pop1_thr_q, pop2_thr_q;
@@ -896,12 +897,18 @@ module rc_core #(
       gpp_q    <= '0;
       pop0_v_q <= 1'b0;
       pop1_v_q <= 1'b0;
+      gpop0_q  <= '0;
+      gpop1_q  <= '0;
+      gpop2_q  <= '0;
     end else begin
       pp_v_q   <= pp_any;
       pp_thr_q <= pp_thr;
       gpp_q    <= g_pp;
       pop0_v_q <= pp_v_q & ~pp_end;
       pop1_v_q <= pop0_v_q;
+      gpop0_q  <= pp_end ? '0 : gpp_q;
+      gpop1_q  <= gpop0_q;
+      gpop2_q  <= gpop1_q;
     end
   end
 
@@ -960,6 +967,9 @@ module rc_core #(
     );
   end
   assign pop2_v    = pop_cmp_v[0];
+  // The popping thread one-hot beside the pipeline (gpop0_q .. gpop2_q, zero without a pop), so
+  // the thread-state update takes the result's thread from flip-flops rather than decoding
+  // pop2_thr_q with the compare's valid (run 27: 44 state inputs behind that decode).
   assign pop2_mask = pop2_entry_q[8*W +: 4] & pop_le;
 
   ////////////////////////////////////////
@@ -985,28 +995,34 @@ module rc_core #(
   // request, the tag pool's write address and the take start at flip-flops, and no response
   // (a freed tag) reaches the chain: a freed tag is offered a cycle later. The registered tag is
   // free when it is taken, since only a take makes a free tag busy (TagFirst_A).
-  logic [ListTags-1:0] tag_first, tag_first_d, tf_kept;
-  logic [LtW-1:0]      tag_new_d;
+  // The search runs twice side by side, on the free set with and without the registered tag,
+  // both from flip-flops, and the issue (li_take) picks one at the end: it reaches the three
+  // registers through a mux, not through the carry chain (run 27: 15 cells from lu_busy_q).
+  logic [ListTags-1:0] tag_first, tf_rest, tag_first_all, tag_first_rest;
+  logic [LtW-1:0]      tag_new_all, tag_new_rest;
   logic                tag_avail_q;
   logic [ListTags-1:0] tag_first_q;
   logic [LtW-1:0]      tag_new_q;
-  assign tf_kept     = tf_q & ~({ListTags{li_take}} & tag_first_q);
-  assign tag_first_d = tf_kept & (~tf_kept + ListTags'(1));
-  always_comb begin
-    tag_new_d = '0;
+  function automatic logic [LtW-1:0] tag_index(input logic [ListTags-1:0] one_hot);
+    tag_index = '0;
     for (int unsigned i = 0; i < ListTags; i++) begin
-      if (tag_first_d[i]) tag_new_d = tag_new_d | LtW'(i);
+      if (one_hot[i]) tag_index = tag_index | LtW'(i);
     end
-  end
+  endfunction
+  assign tf_rest        = tf_q & ~tag_first_q;
+  assign tag_first_all  = tf_q & (~tf_q + ListTags'(1));
+  assign tag_first_rest = tf_rest & (~tf_rest + ListTags'(1));
+  assign tag_new_all    = tag_index(tag_first_all);
+  assign tag_new_rest   = tag_index(tag_first_rest);
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       tag_avail_q <= 1'b1;
       tag_first_q <= ListTags'(1);
       tag_new_q   <= '0;
     end else begin
-      tag_avail_q <= |tf_kept;
-      tag_first_q <= tag_first_d;
-      tag_new_q   <= tag_new_d;
+      tag_avail_q <= li_take ? |tf_rest : |tf_q;
+      tag_first_q <= li_take ? tag_first_rest : tag_first_all;
+      tag_new_q   <= li_take ? tag_new_rest : tag_new_all;
     end
   end
   assign tag_avail = tag_avail_q;
@@ -1785,7 +1801,7 @@ module rc_core #(
   assign h_lr  = hot(lr_dec, lr_thr);
   assign h_te  = hot(te_dec, ti_thr_q);
   assign h_pe  = {Threads{pp_v_q}} & gpp_q;
-  assign h_p2  = hot(pop2_v, pop2_thr_q);
+  assign h_p2  = gpop2_q;
   assign h_wb  = hot(wc_we_q, wc_thr_q);
   assign h_sx  = {Threads{shp_v_q}} & gshp_q;
   assign h_fb  = hot(fb_take, fb_thr);
@@ -2396,6 +2412,9 @@ module rc_core #(
   // A pop result belongs to a thread that is popping.
   PopOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                pop2_v |-> st_q[pop2_thr_q*4 +: 4] == StPopping);
+  // The one-hot popping thread beside the pipeline is the result's thread, and only with one.
+  PopHot_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             gpop2_q == hot(pop2_v, pop2_thr_q));
   // The shading sequencer's copies of its packet's rays, hits and triangles are still the
   // thread's.
   logic [127:0] sh_btri_now;
