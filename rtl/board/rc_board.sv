@@ -9,7 +9,10 @@
 //   plusargs +nodes= +lists= +tris= +shading= +materials= override them). An index beyond a ROM
 //   gets an error response (the core's bad-address bit).
 // - Register port: reg_we_i writes reg_wdata_i to register reg_addr_i at the clock edge; reg_rdata_o
-//   is register reg_addr_i of the previous cycle (one cycle read latency). Register numbers are
+//   is register reg_addr_i as it was BoardReadLatency (2) cycles before: the value is sampled in
+//   the cycle the address is given and passes two register levels (a four-way preselection of
+//   the register file and the control registers' multiplexer, then the final choice). A new
+//   address can be given every cycle. Register numbers are
 //   rc_pkg's BoardReg* (docs/spec.toml [board_reg]). Registers 0 .. BoardRegs-1 are the register
 //   file (camera, frame size, background, root box, record counts, shading constants),
 //   initialised from RegsHex (plusarg +regs=); writes to it are ignored while busy_o. Writing bit
@@ -428,6 +431,19 @@ module rc_board #(
   ////////////////////
 
   logic [31:0] status, rdata_d, rdata_q;
+  // The read in two register levels: the register file's four-way preselection by the address's
+  // low bits (rd_grp_q, Regs/4 words) with the control registers' value (rd_ctl_q), then the
+  // choice among them. The host's address register fans out to the first level only.
+  localparam int unsigned RdGroups = (Regs + 3) / 4;
+  localparam int unsigned RdGrpW   = (RdGroups > 1) ? $clog2(RdGroups) : 1;
+  logic [31:0]       rd_grp_q [0:RdGroups-1];
+  logic [31:0]       rd_ctl_q;
+  logic              rd_file_q;
+  logic [RdGrpW-1:0] rd_sel_q;
+
+  if (rc_pkg::BoardReadLatency != 2 || Regs % 4 != 0) begin : g_read_check
+    $error("rc_board: the register read is built for BoardReadLatency = 2 and Regs a multiple of 4");
+  end
 
   always_comb begin
     status = '0;
@@ -439,18 +455,14 @@ module rc_board #(
 
   always_comb begin
     rdata_d = '0;
-    if ({1'b0, reg_addr_i} < (AddrW+1)'(Regs)) begin
-      rdata_d = regs_q[reg_addr_i[$clog2(Regs)-1:0]];
-    end else begin
-      unique case (32'(reg_addr_i))
-        rc_pkg::BoardRegStatus:  rdata_d = status;
-        rc_pkg::BoardRegCycles:  rdata_d = cycles_q;
-        rc_pkg::BoardRegPerfSel: rdata_d = 32'(perf_sel_q);
-        rc_pkg::BoardRegPerfLo:  rdata_d = perf_rd_q[31:0];
-        rc_pkg::BoardRegPerfHi:  rdata_d = perf_rd_q[63:32];
-        default:                 rdata_d = '0;
-      endcase
-    end
+    unique case (32'(reg_addr_i))
+      rc_pkg::BoardRegStatus:  rdata_d = status;
+      rc_pkg::BoardRegCycles:  rdata_d = cycles_q;
+      rc_pkg::BoardRegPerfSel: rdata_d = 32'(perf_sel_q);
+      rc_pkg::BoardRegPerfLo:  rdata_d = perf_rd_q[31:0];
+      rc_pkg::BoardRegPerfHi:  rdata_d = perf_rd_q[63:32];
+      default:                 rdata_d = '0;
+    endcase
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -463,7 +475,13 @@ module rc_board #(
 
   always_ff @(posedge clk_i) begin
     perf_rd_q <= perf;
-    rdata_q   <= rdata_d;
+    for (int unsigned g = 0; g < RdGroups; g++) begin
+      rd_grp_q[g] <= regs_q[4*g + 32'(reg_addr_i[1:0])];
+    end
+    rd_ctl_q  <= rdata_d;
+    rd_file_q <= {1'b0, reg_addr_i} < (AddrW+1)'(Regs);
+    rd_sel_q  <= reg_addr_i[2 +: RdGrpW];
+    rdata_q   <= rd_file_q ? rd_grp_q[rd_sel_q] : rd_ctl_q;
   end
 
   assign reg_rdata_o  = rdata_q;

@@ -23,10 +23,11 @@
 //   tx_valid_o/tx_ready_i/tx_data_o is a valid/ready handshake (rc_uart_tx); tx_valid_o comes from
 //   a register, never depends on tx_ready_i, and tx_valid_o/tx_data_o hold until taken.
 // - Register port: reg_we_o/reg_addr_o/reg_wdata_o come from registers; a write is a single cycle
-//   of reg_we_o. reg_rdata_i is the register of the previous cycle's reg_addr_o (rc_board's one
-//   cycle read latency). Framebuffer: fb_rdata_i is the pixel of the previous cycle's fb_raddr_o.
+//   of reg_we_o. reg_rdata_i is the register at reg_addr_o of rc_pkg::BoardReadLatency cycles
+//   before (rc_board's read latency). Framebuffer: fb_rdata_i is the pixel of the previous
+//   cycle's fb_raddr_o.
 // - Latency: a 'W' or 'S' writes 1 cycle after its last byte's strobe; an 'R' answer's first byte
-//   is offered 3 cycles after the addr strobe; each pixel of an 'F' is fetched in 4 cycles after
+//   is offered BoardReadLatency + 2 cycles after the addr strobe; each pixel of an 'F' is fetched in 4 cycles after
 //   its predecessor's last byte was taken (the UART, 30 bit times per pixel, is the bottleneck).
 //   fb_rdata_i goes straight into a register (the block RAM's output path has no logic here).
 // - Illegal input: none (every byte sequence is handled as above).
@@ -111,6 +112,16 @@ module rc_board_host #(
   logic [TimeW-1:0]    idle_q;       // cycles since the last byte (saturating)
   logic                timeout;
   logic                timeout_q;    // idle_q >= TimeoutCycles, registered from the next count
+  // A register read's wait: the *Wait states last BoardReadLatency cycles (rd_wait_q counts the
+  // cycles left after this one; loaded with every new read address).
+  localparam int unsigned RdLat   = rc_pkg::BoardReadLatency;
+  localparam int unsigned RdWaitW = (RdLat > 1) ? $clog2(RdLat) : 1;
+  logic [RdWaitW-1:0]  rd_wait_q;
+  logic                rd_ready;
+  assign rd_ready = rd_wait_q == '0;
+  if (RdLat < 1) begin : g_lat_check
+    $error("rc_board_host: BoardReadLatency must be at least 1");
+  end
 
   // The count's compare is registered (from the count as it will be: no byte now and the count
   // one short, or at its saturated top), so the command state starts at a flip-flop instead
@@ -140,7 +151,9 @@ module rc_board_host #(
       drop_q      <= 1'b0;
       idle_q      <= '0;
       timeout_q   <= 1'b0;
+      rd_wait_q   <= '0;
     end else begin
+      if (!rd_ready) rd_wait_q <= rd_wait_q - 1'b1;
       we_q   <= 1'b0;
       drop_q <= 1'b0;
       timeout_q <= !rx_valid_i && (32'(idle_q) + 32'd1 >= TimeLim);
@@ -168,8 +181,9 @@ module rc_board_host #(
                 we_q    <= 1'b1;
               end
               CmdFrame: begin
-                raddr_q <= AddrW'(rc_pkg::BoardRegWidth);
-                state_q <= StWidthWait;
+                raddr_q   <= AddrW'(rc_pkg::BoardRegWidth);
+                rd_wait_q <= RdWaitW'(RdLat - 1);
+                state_q   <= StWidthWait;
               end
               default: begin end  // not a command: ignored
             endcase
@@ -177,9 +191,10 @@ module rc_board_host #(
         end
         StAddr: begin
           if (rx_valid_i) begin
-            raddr_q  <= AddrW'(rx_data_i);
-            nbytes_q <= '0;
-            state_q  <= cmd_write_q ? StData : StRegWait;
+            raddr_q   <= AddrW'(rx_data_i);
+            nbytes_q  <= '0;
+            rd_wait_q <= RdWaitW'(RdLat - 1);
+            state_q   <= cmd_write_q ? StData : StRegWait;
           end else if (timeout) begin
             state_q <= StIdle;
           end
@@ -196,20 +211,21 @@ module rc_board_host #(
             state_q <= StIdle;
           end
         end
-        StRegWait: state_q <= StRegTake;
+        StRegWait: if (rd_ready) state_q <= StRegTake;
         StRegTake: begin
           out_q   <= reg_rdata_i;
           left_q  <= 3'd4;
           frame_q <= 1'b0;
           state_q <= StSend;
         end
-        StWidthWait: state_q <= StWidthTake;
+        StWidthWait: if (rd_ready) state_q <= StWidthTake;
         StWidthTake: begin
-          width_q <= reg_rdata_i[CoordW-1:0];
-          raddr_q <= AddrW'(rc_pkg::BoardRegHeight);
-          state_q <= StHeightWait;
+          width_q   <= reg_rdata_i[CoordW-1:0];
+          raddr_q   <= AddrW'(rc_pkg::BoardRegHeight);
+          rd_wait_q <= RdWaitW'(RdLat - 1);
+          state_q   <= StHeightWait;
         end
-        StHeightWait: state_q <= StHeightTake;
+        StHeightWait: if (rd_ready) state_q <= StHeightTake;
         StHeightTake: begin
           height_q <= reg_rdata_i[CoordW-1:0];
           x_q      <= '0;

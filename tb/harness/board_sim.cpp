@@ -221,9 +221,13 @@ BoardSimResult render_board(const scene::SceneImage& image, const RenderOptions&
     tick();
     m->reg_we_i = 0;
   };
+  // A read: the address for one cycle, then the read data spec::kBoardReadLatency cycles on
+  // (the address lines change meanwhile, as a pipelined host's would).
   const auto read_reg = [&](uint32_t addr) {
     m->reg_addr_i = static_cast<uint8_t>(addr);
     tick();
+    m->reg_addr_i = static_cast<uint8_t>(addr ^ 1u);
+    for (int64_t k = 1; k < spec::kBoardReadLatency; ++k) tick();
     return static_cast<uint32_t>(m->reg_rdata_o);
   };
 

@@ -6,9 +6,11 @@
 // - Host: the serial line rx_i (driven bit by bit by the test) -> rc_uart_rx -> rc_board_host ->
 //   rc_uart_tx -> the serial line tx_o (decoded by the test). The host's register port goes to a
 //   fake register file: 256 registers of 32 bits, register a initialised to RegInit(a), written
-//   by reg_we, read with rc_board's one cycle latency; its framebuffer port goes to a fake
-//   framebuffer of FbPixels 24-bit pixels with the same one cycle latency, which the test fills
-//   through fb_we_i/fb_waddr_i/fb_wdata_i. No core: it verilates and runs in seconds.
+//   by reg_we, read with rc_board's latency (rc_pkg::BoardReadLatency cycles, the value sampled
+//   in the address's cycle, so a host that takes it early gets an older read); its framebuffer
+//   port goes to a fake framebuffer of FbPixels 24-bit pixels with rc_board's one cycle
+//   latency, which the test fills through fb_we_i/fb_waddr_i/fb_wdata_i. No core: it verilates
+//   and runs in seconds.
 // - Monitor: mon_we_o/mon_addr_o/mon_wdata_o show each register write of the host, drop_o its
 //   dropped-byte pulses, rx_frame_error_o the host receiver's framing errors.
 // - Parameters: ClkHz and Baud of all UARTs (a small ratio keeps the test fast), FbPixels,
@@ -137,10 +139,15 @@ module rc_board_host_tb #(
     for (int unsigned a = 0; a < Regs; a++) regs_q[a] = reg_init(a);
   end
 
+  localparam int unsigned RdLat = rc_pkg::BoardReadLatency;
+  logic [31:0] rd_pipe_q [0:RdLat-1];
+
   always_ff @(posedge clk_i) begin
     if (reg_we) regs_q[reg_addr] <= reg_wdata;
-    reg_rdata_q <= regs_q[reg_addr];
+    rd_pipe_q[0] <= regs_q[reg_addr];
+    for (int unsigned k = 1; k < RdLat; k++) rd_pipe_q[k] <= rd_pipe_q[k-1];
   end
+  assign reg_rdata_q = rd_pipe_q[RdLat-1];
 
   //////////////////////
   // Fake framebuffer //
