@@ -1535,8 +1535,10 @@ module rc_core #(
   logic            wb_v_q, wb_last_q, wb_hit_q, wb_better, wb_fwd, wc_fwd;
   logic [1:0]      wb_r_q, io_r;
   logic [ThrW-1:0] wb_thr_q, io_thr;
-  logic [W-1:0]    io_bt, wb_bt_q, wb_t_q, wb_u_q, wb_vb_q, wb_dz_q;
-  logic [31:0]     io_btri, wb_btri_q, wb_tri_q;
+  logic [W-1:0]    io_bt, io_bt_q, wb_bt_q, wb_t_q, wb_u_q, wb_vb_q, wb_dz_q;
+  logic [31:0]     io_btri, io_btri_q, wb_btri_q, wb_tri_q;
+  logic            io_bhit_q;
+  logic [3:0]      iu_hits;
   logic            wc_we_q, wd_we_q, wd_fwd;
   logic [1:0]      wc_r_q, wd_r_q, iu_r;
   logic [ThrW-1:0] wc_thr_q, wd_thr_q, iu_thr;
@@ -1554,11 +1556,18 @@ module rc_core #(
   assign wb_fwd  = wb_better & (wb_thr_q == io_thr) & (wb_r_q == io_r);
   assign wc_fwd  = wc_we_q & (wc_thr_q == io_thr) & (wc_r_q == io_r);
   assign wd_fwd  = wd_we_q & (wd_thr_q == io_thr) & (wd_r_q == io_r);
+  assign iu_hits = get4(bhit_q, iu_thr);
+  assign io_bt   = io_bhit_q ? io_bt_q : FpInf;
+  assign io_btri = io_bhit_q ? io_btri_q : '1;
 
+  // The ray's hit bit is read beside its best hit and applied after the register (io_bt,
+  // io_btri: +inf and all ones without a hit), so the hit bits' thread multiplexer and the
+  // distributed-RAM read run side by side instead of in series (runs 31 and 32: -2.47 ns).
   always_ff @(posedge clk_i) begin
     if (iu_v_q) begin
-      io_bt   <= lane_w(gate_t(bt_m[iu_thr], get4(bhit_q, iu_thr)), iu_r);
-      io_btri <= lane_32(gate_tri(btri_m[iu_thr], get4(bhit_q, iu_thr)), iu_r);
+      io_bt_q   <= lane_w(bt_m[iu_thr], iu_r);
+      io_btri_q <= lane_32(btri_m[iu_thr], iu_r);
+      io_bhit_q <= iu_hits[iu_r];
     end
     wd_thr_q <= wc_thr_q;
     wd_r_q   <= wc_r_q;
