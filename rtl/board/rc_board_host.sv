@@ -27,8 +27,9 @@
 //   before (rc_board's read latency). Framebuffer: fb_rdata_i is the pixel of the previous
 //   cycle's fb_raddr_o.
 // - Latency: a 'W' or 'S' writes 1 cycle after its last byte's strobe; an 'R' answer's first byte
-//   is offered BoardReadLatency + 2 cycles after the addr strobe; each pixel of an 'F' is fetched in 4 cycles after
-//   its predecessor's last byte was taken (the UART, 30 bit times per pixel, is the bottleneck).
+//   is offered BoardReadLatency + 2 cycles after the addr strobe; each pixel of an 'F' is fetched
+//   in 4 cycles after its predecessor's last byte was taken (the UART, 30 bit times per pixel, is
+//   the bottleneck).
 //   fb_rdata_i goes straight into a register (the block RAM's output path has no logic here).
 // - Illegal input: none (every byte sequence is handled as above).
 // - Reset: rst_ni (active low, asynchronous) abandons any command and answer.
