@@ -442,7 +442,7 @@ module rc_board #(
   logic [RdGrpW-1:0] rd_sel_q;
 
   if (rc_pkg::BoardReadLatency != 2 || Regs % 4 != 0) begin : g_read_check
-    $error("rc_board: the two-level register read needs BoardReadLatency = 2, Regs % 4 == 0");
+    $error("rc_board: two-level register read: needs BoardReadLatency 2, Regs a multiple of 4");
   end
 
   always_comb begin
