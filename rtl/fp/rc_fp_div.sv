@@ -23,19 +23,20 @@
 // Algorithm: radix-2 restoring division of the significands. Slot 0 unpacks, classifies and
 // pre-normalises the dividend (doubled when its significand is below the divisor's, so the
 // quotient lies in [1, 2)); slots 1..N (N = FracW + 2) each produce one quotient bit (FracW + 1
-// significand bits and a round bit), and slot N also reduces the final remainder to the sticky
-// bit (nonzero remainder = inexact); slot N + 1 rounds to nearest even, adjusts the exponent and
-// packs.
+// significand bits and a round bit). Slot 1's bit is always 1, so its subtraction is made in
+// slot 0, for both pre-normalisations side by side. Slot N also decides the rounding increment
+// (round to nearest even, with the sticky bit of a nonzero final remainder); slot N + 1 adds
+// it, adjusts the exponent and packs.
 //
 // Pipeline: the N + 2 slots are spread evenly over Se = min(Stages, N + 2) cycles, the longer
 // cycles first: with Base = (N + 2) / Se and Rem = (N + 2) % Se, the first Rem cycles take
 // Base + 1 consecutive slots and the others Base; a register sits in front of every slot that
 // starts a cycle, and the remaining Stages - Se + 1 registers (at least one) sit at the output.
 // At fp24 (N = 18, 20 slots) the default Stages = 11 gives slots {0, 1} {2, 3} ... {16, 17}
-// {18} {19 = round}: at most two subtract-and-select carry chains per cycle, the last quotient
-// bit alone with the sticky reduction, and the rounding alone. That closes 100 MHz on an ECP5
-// LFE5U-85F (docs/fp24.md); spreading the same 11 cycles evenly ({17, 18} before the
-// rounding) reached only 84 to 88 MHz inside rc_ray_setup.
+// {18} {19 = round}: at most two subtract-and-select carry chains per cycle (slot 0's two run
+// side by side), the last quotient bit alone with the rounding decision, and the rounding
+// alone. That closes 100 MHz on an ECP5 LFE5U-85F (docs/fp24.md); spreading the same 11
+// cycles evenly ({17, 18} before the rounding) reached only 84 to 88 MHz inside rc_ray_setup.
 module rc_fp_div #(
   parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW  = rc_pkg::Fp24FracW,
@@ -82,8 +83,8 @@ module rc_fp_div #(
   localparam int unsigned HdrW  = MetaW + ExW;
   // Iteration state: {hdr, divisor fraction, partial remainder, quotient bits so far}.
   localparam int unsigned StW   = HdrW + FracW + RemW + N;
-  // State after the last iteration: the divisor is no longer needed, and of the final
-  // remainder only whether it is nonzero (the sticky bit).
+  // State after the last iteration: the divisor and the final remainder are no longer needed;
+  // the rounding increment is (round_up, in the place of the remainder).
   localparam int unsigned FinW  = HdrW + 1 + N;
 
   ///////////////////////////////////////
@@ -95,6 +96,8 @@ module rc_fp_div #(
   logic            spec_nan, spec_inf, spec_zero;
   logic [ManW-1:0] a_man, b_man;
   logic            a_below;
+  logic [ManW:0]   d_lo;
+  logic [ManW-1:0] d_hi;
   logic [RemW-1:0] rem0;
   logic [ExW-1:0]  exp0;
 
@@ -114,9 +117,14 @@ module rc_fp_div #(
   // The hidden bit is always 1 here: zero, infinity and NaN operands are overridden at the end.
   assign a_man   = {1'b1, a_i[FracW-1:0]};
   assign b_man   = {1'b1, b_i[FracW-1:0]};
-  assign a_below = a_man < b_man;
   // Dividend in [divisor, 2 * divisor), so the first quotient bit is 1 and q lies in [1, 2).
-  assign rem0    = a_below ? {a_man, 1'b0} : {1'b0, a_man};
+  // That bit's subtraction is made here for both pre-normalisations side by side (a - b, whose
+  // borrow is a_below, and 2a - b) and only selected, so slot 1 has no carry chain behind this
+  // slot's: rem0 is the remainder after slot 1's subtraction (below the divisor).
+  assign d_lo    = {1'b0, a_man} - {1'b0, b_man};
+  assign d_hi    = {a_man[ManW-2:0], 1'b0} - b_man;  // in [0, b): modulo 2^ManW is exact
+  assign a_below = d_lo[ManW];
+  assign rem0    = {1'b0, a_below ? d_hi : d_lo[ManW-1:0]};
   assign exp0    = ExW'(a_exp) - ExW'(b_exp) + ExW'(Bias) - ExW'(a_below);
 
   ///////////////////////////////////////////
@@ -148,16 +156,23 @@ module rc_fp_div #(
     logic [FracW-1:0] dvs_frac;
     logic [RemW-1:0]  rem;
     logic [N-1:0]     quo, quo_next;
-    logic [RemW:0]    diff;
     logic             q_bit;
-    logic [ManW-1:0]  rem_kept;
+    logic [ManW-1:0]  rem_kept;  // the kept remainder: below the divisor, so ManW bits
 
     assign {hdr, dvs_frac, rem, quo} = st_in[(k-1)*StW +: StW];
-    // Restoring step: subtract the divisor if it fits. The kept remainder is below the divisor,
-    // so it fits in ManW bits (the bit dropped by the cast is 0).
-    assign diff     = {1'b0, rem} - {3'b001, dvs_frac};
-    assign q_bit    = ~diff[RemW];
-    assign rem_kept = ManW'(q_bit ? diff[RemW-1:0] : rem);
+    if (k == 1) begin : g_first
+      // Slot 1's bit is always 1 and its subtraction was made in slot 0 (rem0).
+      logic unused_top;
+      assign unused_top = rem[RemW-1];  // 0: rem0 is below the divisor
+      assign q_bit      = 1'b1;
+      assign rem_kept   = rem[ManW-1:0];
+    end else begin : g_next
+      // Restoring step: subtract the divisor if it fits (the bit dropped by the cast is 0).
+      logic [RemW:0] diff;
+      assign diff     = {1'b0, rem} - {3'b001, dvs_frac};
+      assign q_bit    = ~diff[RemW];
+      assign rem_kept = ManW'(q_bit ? diff[RemW-1:0] : rem);
+    end
     // Quotient bits are placed MSB first, bit N - k in slot k.
     always_comb begin
       quo_next          = quo;
@@ -168,8 +183,17 @@ module rc_fp_div #(
       // The next slot's partial remainder is the kept one doubled.
       assign st_out[k*StW +: StW] = {hdr, dvs_frac, rem_kept, 1'b0, quo_next};
     end else begin : g_last
-      // The sticky bit is formed here, before the register, so the rounding cycle starts from it.
-      assign fin_d = {hdr, |rem_kept, quo_next};
+      // The rounding increment is decided here, before the register, so the rounding cycle
+      // starts from it. The final remainder is nonzero (the sticky bit) if the divisor did not
+      // fit and the remainder was nonzero, or if it fitted and the remainder was not the divisor
+      // itself: two equality compares beside the subtraction, which only selects (rem_kept is
+      // not needed). The increment rounds to nearest even: the round bit (this slot's) and the
+      // sticky bit or the last significand bit (slot N - 1's).
+      logic sticky, round_up_d, unused_kept;
+      assign unused_kept = ^rem_kept;
+      assign sticky      = q_bit ? (rem != {2'b01, dvs_frac}) : (rem != '0);
+      assign round_up_d  = q_bit & (sticky | quo[1]);
+      assign fin_d       = {hdr, round_up_d, quo_next};
     end
   end
 
@@ -188,15 +212,15 @@ module rc_fp_div #(
 
   logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
   logic [ExW-1:0]  exp_f;
-  logic            sticky_f;
+  logic            round_up;
   logic [N-1:0]    quo_f;
   logic [ManW-1:0] man;
-  logic            round_up;
   logic [W-1:0]    res_d;
+  logic            unused_round_bit;
 
-  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, sticky_f, quo_f} = fin_q;
-  assign man      = quo_f[N-1:1];
-  assign round_up = quo_f[0] & (sticky_f | man[0]);
+  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, round_up, quo_f} = fin_q;
+  assign man              = quo_f[N-1:1];
+  assign unused_round_bit = quo_f[0];  // (in round_up)
 
   rc_fp_round_pack #(
     .ExpW (ExpW),
