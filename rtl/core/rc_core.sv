@@ -1525,14 +1525,16 @@ module rc_core #(
   // because other tests of the same ray may have finished since this one read its best. Accepted
   // t are positive and finite, so their encodings order like their values. Three cycles after the
   // io register (whose load reads the ray's best hit): the best, forwarded where newer, into
-  // wb_*_q; then the compare (wb_better); then the commit (wc_*_q): the ray's words are read, its
-  // lane replaced and written back, and its hit bit set, all from registers, so the compare's
-  // carry chains end at a flip-flop instead of the write enables of hundreds of distributed-RAM
-  // cells. The read for the io stage misses the bests of the results ahead of it (decided and not
-  // yet committed, or committed after the read): those are forwarded when they are the same
-  // ray's, the newest first (WbForward_A). The leaf's triangle count goes down at the compare;
-  // its pop reads the best hits at least three cycles later, after the commit.
-  logic            wb_v_q, wb_last_q, wb_hit_q, wb_better, wb_fwd, wc_fwd;
+  // wb_*_q; then the compare (wb_better, WbBest_A); then the commit (wc_*_q): the ray's words
+  // are read, its lane replaced and written back, and its hit bit set, all from registers, so the
+  // compare's carry chains end at a flip-flop instead of the write enables of hundreds of
+  // distributed-RAM cells. The read for the io stage misses the bests of the results ahead of it
+  // (decided and not yet committed, or committed after the read): those are forwarded when they
+  // are the same ray's, the newest first (WbForward_A), or compared against (the one decided as
+  // the result enters wb). The leaf's triangle count goes down at the compare; its pop reads the
+  // best hits at least three cycles later, after the commit.
+  logic            wb_v_q, wb_last_q, wb_hit_q, wb_better, wb_fwd, wc_fwd, wb_pf_q;
+  logic            wb_lt_own, wb_lt_prev;
   logic [1:0]      wb_r_q, io_r;
   logic [ThrW-1:0] wb_thr_q, io_thr;
   logic [W-1:0]    io_bt, io_bt_q, wb_bt_q, wb_t_q, wb_u_q, wb_vb_q, wb_dz_q;
@@ -1547,13 +1549,14 @@ module rc_core #(
 
   // The ray's best hit is read as the result enters the io register (io_bt, io_btri: from the
   // slice's registers), so the read addressed by the result's thread ends at flip-flops; the
-  // io stage then only forwards: the best decided this cycle (wb), the one committed at the end
-  // of this cycle (wc) and the one committed at the end of the last (wd), which the read missed.
+  // io stage then only forwards the one committed at the end of this cycle (wc) and the one
+  // committed at the end of the last (wd), which the read missed. The best decided this cycle
+  // (wb) is only noted (wb_fwd into wb_pf_q) and compared against in the next (below).
   assign iu_thr  = iu_res_q[IuTagL +: ThrW];
   assign iu_r    = iu_res_q[IuTagL + ThrW +: 2];
   assign io_r    = io_tag_q[ThrW +: 2];
   assign io_thr  = io_tag_q[ThrW-1:0];
-  assign wb_fwd  = wb_better & (wb_thr_q == io_thr) & (wb_r_q == io_r);
+  assign wb_fwd  = wb_v_q & (wb_thr_q == io_thr) & (wb_r_q == io_r);
   assign wc_fwd  = wc_we_q & (wc_thr_q == io_thr) & (wc_r_q == io_r);
   assign wd_fwd  = wd_we_q & (wd_thr_q == io_thr) & (wd_r_q == io_r);
   assign iu_hits = get4(bhit_q, iu_thr);
@@ -1597,8 +1600,9 @@ module rc_core #(
       wb_u_q    <= io_u_q;
       wb_vb_q   <= io_v_bits_q;
       wb_dz_q   <= io_dz_q;
-      wb_bt_q   <= wb_fwd ? wb_t_q : wc_fwd ? wc_t_q : wd_fwd ? wd_t_q : io_bt;
-      wb_btri_q <= wb_fwd ? wb_tri_q : wc_fwd ? wc_tri_q : wd_fwd ? wd_tri_q : io_btri;
+      wb_pf_q   <= wb_fwd;
+      wb_bt_q   <= wc_fwd ? wc_t_q : wd_fwd ? wd_t_q : io_bt;
+      wb_btri_q <= wc_fwd ? wc_tri_q : wd_fwd ? wd_tri_q : io_btri;
     end
     // Loaded every cycle (only wc_we_q says whether they commit), so the compare reaches one
     // flip-flop and the forwarding muxes, no clock enables.
@@ -1611,8 +1615,13 @@ module rc_core #(
     wc_tri_q <= wb_tri_q;
   end
 
-  assign wb_better   = wb_v_q & wb_hit_q &
-                       ((wb_t_q < wb_bt_q) | ((wb_t_q == wb_bt_q) & (wb_tri_q < wb_btri_q)));
+  // The best decided in the cycle the result entered wb (the wb stage's then, now wc's) is not
+  // forwarded into wb_bt_q: its decision (wb_better) would sit between wb_bt_q and itself (run
+  // 33: -0.52 ns). wb_pf_q records that it was the same ray's, and the compare against it runs
+  // beside the compare against wb_bt_q; the commit's enable (wc_we_q) picks between the two.
+  assign wb_lt_own   = (wb_t_q < wb_bt_q) | ((wb_t_q == wb_bt_q) & (wb_tri_q < wb_btri_q));
+  assign wb_lt_prev  = (wb_t_q < wc_t_q) | ((wb_t_q == wc_t_q) & (wb_tri_q < wc_tri_q));
+  assign wb_better   = wb_v_q & wb_hit_q & ((wb_pf_q & wc_we_q) ? wb_lt_prev : wb_lt_own);
 
   ////////////////////////////////////////
   // Shading and framebuffer writes     //
@@ -1631,13 +1640,25 @@ module rc_core #(
   logic [31:0]     shd_req_index_q, mat_req_index_q;
   logic [127:0]    sh_btri;
 
+  // The threads in StDone, kept in a register of their own beside st_q (set as a walk ends,
+  // cleared as shading takes the packet: the only ways in and out of StDone, DoneMirror_A), so
+  // the shading choice starts from flip-flops instead of a decode of the thread states.
+  logic [Threads-1:0] done_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      done_q <= '0;
+    end else begin
+      done_q <= (done_q | (h_pe & pop_end_t)) & ~h_sx;
+    end
+  end
+
   rc_rr_pick #(
     .N   (Threads),
     .IdxW(ThrW)
   ) u_pick_done (
     .clk_i,
     .rst_ni,
-    .req_i  (done_vec),
+    .req_i  (done_q),
     .take_i (shp_room),
     .valid_o(shp_any),
     .idx_o  (shp_thr),
@@ -2386,6 +2407,9 @@ module rc_core #(
                                    (!h_sx[t] || st_t == StDone) &&
                                    (!h_fb[t] || st_t == StShade));
   end
+  // The shading choice's request register mirrors the thread states.
+  DoneMirror_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 done_q == done_vec);
   // The registered free-thread choice is a free thread when the packet input offers it.
   AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     pkt_ready_o |-> st_q[acc_thr_q*4 +: 4] == StFree &&
@@ -2522,6 +2546,20 @@ module rc_core #(
   WbForward_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 wc_we_q |-> (wc_t_q < wc_old_t) ||
                                             (wc_t_q == wc_old_t && wc_tri_q < wc_old_tri));
+  // The compare sees the ray's best as it will be after this cycle's commit: the committed one,
+  // or the commit's own when it is the same ray's (then the two are compared, not forwarded).
+  logic [W-1:0]  wb_now_t, wb_eff_t;
+  logic [31:0]   wb_now_tri, wb_eff_tri;
+  logic          wb_same_c;
+  assign wb_now_t   = lane_w(gate_t(bt_m[wb_thr_q], get4(bhit_q, wb_thr_q)), wb_r_q);
+  assign wb_now_tri = lane_32(gate_tri(btri_m[wb_thr_q], get4(bhit_q, wb_thr_q)), wb_r_q);
+  assign wb_same_c  = wc_we_q && wc_thr_q == wb_thr_q && wc_r_q == wb_r_q;
+  assign wb_eff_t   = (wb_pf_q && wc_we_q) ? wc_t_q : wb_bt_q;
+  assign wb_eff_tri = (wb_pf_q && wc_we_q) ? wc_tri_q : wb_btri_q;
+  WbBest_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             wb_v_q |-> (wb_pf_q && wc_we_q) == wb_same_c &&
+                                        wb_eff_t == (wb_same_c ? wc_t_q : wb_now_t) &&
+                                        wb_eff_tri == (wb_same_c ? wc_tri_q : wb_now_tri));
   // The best hits read with the stack entry are still the thread's (the cull uses them).
   logic [4*W-1:0] pop1_best_now;
   assign pop1_best_now = gate_t(bt_m[pop1_thr_q], get4(bhit_q, pop1_thr_q));
