@@ -111,16 +111,26 @@ module rc_ray_gen #(
   logic [1:0]        ir_q;           // its ray
   logic [CoordW-1:0] pw_last_q, ph_last_q;  // packets per row and packet rows (ceil(size / 2)),
                                             // minus one
-  logic              frame_empty;
+  logic              frame_empty_q;
+  logic              ix_last_q, iy_last_q, ox_last_q, oy_last_q;  // the walks at their ends
+  logic [CoordW-1:0] opx_q, opy_q;   // packet being assembled / offered (below)
 
-  // The frame's last packet column and row come from registers (the size is quasi-static and
-  // stable in the cycle before a start: SizeBeforeStart_A), so the walks' end compares start at
-  // flip-flops instead of behind the size's arithmetic.
+  // The frame's last packet column and row and whether it has no packets come from registers
+  // (the size is quasi-static and stable in the cycle before a start: SizeBeforeStart_A), so the
+  // walks' end compares start at flip-flops instead of behind the size's arithmetic. The
+  // compares themselves are registered too (the *_last_q flags, loaded every cycle): a walk's
+  // position changes at most every 3 cycles (the issue side: a ray's three slots; the output
+  // side: a packet's four FIFO reads), and its end is only looked at a whole packet later
+  // (LastFlags_A).
   always_ff @(posedge clk_i) begin
-    pw_last_q <= CoordW'(({1'b0, width_i} + (CoordW+1)'(1)) >> 1) - CoordW'(1);
-    ph_last_q <= CoordW'(({1'b0, height_i} + (CoordW+1)'(1)) >> 1) - CoordW'(1);
+    pw_last_q     <= CoordW'(({1'b0, width_i} + (CoordW+1)'(1)) >> 1) - CoordW'(1);
+    ph_last_q     <= CoordW'(({1'b0, height_i} + (CoordW+1)'(1)) >> 1) - CoordW'(1);
+    frame_empty_q <= (width_i == '0) || (height_i == '0);
+    ix_last_q     <= ipx_q == pw_last_q;
+    iy_last_q     <= ipy_q == ph_last_q;
+    ox_last_q     <= opx_q == pw_last_q;
+    oy_last_q     <= opy_q == ph_last_q;
   end
-  assign frame_empty = (width_i == '0) || (height_i == '0);
   // A ray takes three consecutive slot cycles (its x, y, z components); a new ray may start
   // only when the previous one's slots are done.
   logic [1:0] rem_q;  // slots of the current ray still to come
@@ -133,17 +143,17 @@ module rc_ray_gen #(
       ipy_q     <= '0;
       ir_q      <= '0;
     end else if (start_i && !busy_o) begin
-      issuing_q <= !frame_empty;
+      issuing_q <= !frame_empty_q;
       ipx_q     <= '0;
       ipy_q     <= '0;
       ir_q      <= '0;
     end else if (take) begin
       ir_q <= ir_q + 2'd1;
       if (ir_q == 2'd3) begin
-        if (ipx_q == pw_last_q) begin
+        if (ix_last_q) begin
           ipx_q <= '0;
           ipy_q <= ipy_q + CoordW'(1);
-          if (ipy_q == ph_last_q) issuing_q <= 1'b0;
+          if (iy_last_q) issuing_q <= 1'b0;
         end else begin
           ipx_q <= ipx_q + CoordW'(1);
         end
@@ -352,7 +362,6 @@ module rc_ray_gen #(
   // Packet assembly: rays in order r = 0..3 into the lanes of the packet register.
   logic              pkt_valid_q;
   logic [1:0]        olane_q;
-  logic [CoordW-1:0] opx_q, opy_q;   // packet being assembled / offered
   logic [31:0]       row_base_q;     // 2 * opy * width
   logic [12*W-1:0]   pkt_dir_q;
   logic [4*W-1:0]    pkt_inv_q;
@@ -360,7 +369,7 @@ module rc_ray_gen #(
 
   assign fifo_pop    = fifo_valid & ~pkt_valid_q;
   assign pkt_take    = pkt_valid_q & pkt_ready_i;
-  assign last_packet = (opx_q == pw_last_q) && (opy_q == ph_last_q);
+  assign last_packet = ox_last_q & oy_last_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -371,7 +380,7 @@ module rc_ray_gen #(
       opy_q       <= '0;
       row_base_q  <= '0;
     end else if (start_i && !busy_o) begin
-      out_busy_q  <= !frame_empty;
+      out_busy_q  <= !frame_empty_q;
       pkt_valid_q <= 1'b0;
       olane_q     <= '0;
       opx_q       <= '0;
@@ -385,7 +394,7 @@ module rc_ray_gen #(
       if (pkt_take) begin
         pkt_valid_q <= 1'b0;
         if (last_packet) out_busy_q <= 1'b0;
-        if (opx_q == pw_last_q) begin
+        if (ox_last_q) begin
           opx_q      <= '0;
           opy_q      <= opy_q + CoordW'(1);
           row_base_q <= row_base_q + 32'({width_i, 1'b0});
@@ -450,6 +459,11 @@ module rc_ray_gen #(
   // the frame's.
   SizeBeforeStart_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     start_i |-> $stable(width_i) && $stable(height_i));
+  // The registered end flags are the walks' own where they are used.
+  LastFlags_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    (!(take && ir_q == 2'd3) ||
+     (ix_last_q == (ipx_q == pw_last_q) && iy_last_q == (ipy_q == ph_last_q))) &&
+    (!pkt_take || (ox_last_q == (opx_q == pw_last_q) && oy_last_q == (opy_q == ph_last_q))));
   // The frame size must not change under a running frame (the walks would disagree).
   SizeStable_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     busy_o && $past(busy_o) |-> $stable(width_i) && $stable(height_i));
