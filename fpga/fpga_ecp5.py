@@ -4,8 +4,8 @@
 Usage: fpga_ecp5.py [--build BUILD] [--out OUT] [--scene SCENE] [--size WxH] [--freq MHZ]
                     [--seed N] [--baud BAUD] [--param NAME=VALUE ...] [--image DIR]
                     [--raycore CMD] [--yosys CMD] [--nextpnr CMD] [--ecppack CMD] [--no-lint]
-                    [--placer P] [--router R] [--synth-opts OPTS] [--netlist JSON]
-                    [--require-timing]
+                    [--placer P] [--router R] [--tmg-ripup] [--synth-opts OPTS]
+                    [--netlist JSON] [--require-timing]
 
 Target: the ULX3S board, Lattice ECP5 LFE5U-85F, package CABGA381; top fpga/ecp5/rc_ulx3s.sv
 (rc_board + UART host link + PLL), pins fpga/ecp5/ulx3s.lpf. Steps, all in OUT
@@ -33,7 +33,7 @@ Target: the ULX3S board, Lattice ECP5 LFE5U-85F, package CABGA381; top fpga/ecp5
               tree). The core clock's constraint comes from the 25 MHz input through the PLL;
               --freq F covers anything else. --netlist JSON places and routes an existing
               Yosys netlist instead of steps 3 and 4 (another seed, placer or router on the
-              same design).
+              same design); --tmg-ripup adds nextpnr's timing-driven rip-up in the router.
   6. pack     in OUT: `yowasp-ecppack --compress rc_ulx3s.config rc_ulx3s.bit`.
   7. sta      `fpga/sta.py rc_ulx3s.sdf --period P --netlist rc_ulx3s.json` over the routed
               delays: every failing endpoint, grouped by register with its RTL source line, and
@@ -393,6 +393,8 @@ def main():
                     help="nextpnr placer (static, heap, sa; default static: on the board it gave "
                          "75.75 MHz against HeAP's 68.34 on one netlist, in half the time)")
     ap.add_argument("--router", default="router1", help="nextpnr router (router1, router2)")
+    ap.add_argument("--tmg-ripup", action="store_true",
+                    help="nextpnr's timing-driven rip-up in the router (--tmg-ripup)")
     ap.add_argument("--synth-opts", default="",
                     help="more options of synth_ecp5 (e.g. \"-abc9\")")
     ap.add_argument("--netlist", default=None,
@@ -527,8 +529,10 @@ def main():
            "--freq", f"{args.freq:g}", "--textcfg", config.name, "--report", report.name,
            "--sdf", sdf.name, "--seed", str(args.seed), "--placer", args.placer,
            "--router", args.router, "--timing-allow-fail"]
+    if args.tmg_ripup:
+        cmd.append("--tmg-ripup")
     ctx = {"report": None, "pll": pll, "seed": args.seed, "placer": args.placer,
-           "router": args.router, "scene": args.scene, "image": image,
+           "router": args.router + (" with --tmg-ripup" if args.tmg_ripup else ""), "scene": args.scene, "image": image,
            "image_dir": image_dir, "extra_params": extra, "baud": args.baud, "freq": args.freq,
            "steps": steps, "commands": commands, "yosys_cells": yosys_cells}
     pnr_start = time.monotonic()
