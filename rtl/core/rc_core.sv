@@ -301,13 +301,14 @@ module rc_core #(
     put_lane_32 = v;
     for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) put_lane_32[r*32 +: 32] = x;
   endfunction
-  // Component a (an axis, 0..2) of ray r of a four-ray 3-vector [(3r + a)*W +: W]; a = 3 reads
-  // the next ray's x as the part-select it replaces did (never used: inner nodes have a < 3).
+  // Component a (an axis, 0..2) of ray r of a four-ray 3-vector [(3r + a)*W +: W]; a = 3 gives
+  // 0 (never used: inner nodes have a < 3). The loop stops at the last axis, so no part-select
+  // past the vector is elaborated.
   function automatic logic [W-1:0] axis_w(input logic [12*W-1:0] v, input int unsigned r,
                                           input logic [1:0] a);
     axis_w = '0;
-    for (int unsigned k = 0; k < 4; k++) begin
-      if (a == 2'(k) && 3 * r + k < 12) axis_w = v[(3*r+k)*W +: W];
+    for (int unsigned k = 0; k < 3; k++) begin
+      if (a == 2'(k)) axis_w = v[(3*r+k)*W +: W];
     end
   endfunction
 
@@ -1374,37 +1375,39 @@ module rc_core #(
   assign ti_err_take = ti_v_q & ti_err_q;
 
   // The current ray's lane, registered with ti_rem_q, in one copy per group of lane
-  // multiplexers (keep: synthesis would merge them), so no select net fans out to all of the
-  // slice's 600 multiplexed bits across the chip.
-  (* keep *) logic [1:0] ti_r_org_q;
-  (* keep *) logic [1:0] ti_r_dir_q;
-  (* keep *) logic [1:0] ti_r_bt_q;
-  (* keep *) logic [1:0] ti_r_btri_q;
+  // multiplexers, so no select net fans out to all of the slice's 600 multiplexed bits across
+  // the chip. The copies have a process of their own marked keep: Yosys merges identical
+  // flip-flops unless their cells are kept, and a keep on the signals alone does not reach the
+  // cells (runs 33 and 34 had a single copy, ti_r_org_q driving all four groups).
+  logic [1:0] ti_r_org_q, ti_r_dir_q, ti_r_bt_q, ti_r_btri_q, ti_r_next;
+  assign ti_r_next = ti_load ? ti_first_new[1:0] : lowest4(ti_rem_next);
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       ti_rem_q    <= '0;
       ti_last_q   <= 1'b0;
-      ti_r_org_q  <= '0;
-      ti_r_dir_q  <= '0;
-      ti_r_bt_q   <= '0;
-      ti_r_btri_q <= '0;
     end else if (ti_load) begin
       // The mask's first ray and whether it is the only one come with it from the tag pool
       // (computed when the leaf's mask was registered), so the load reads them straight into
       // the registers.
       ti_rem_q    <= ti_mask_new;
       ti_last_q   <= ti_first_new[2];
-      ti_r_org_q  <= ti_first_new[1:0];
-      ti_r_dir_q  <= ti_first_new[1:0];
-      ti_r_bt_q   <= ti_first_new[1:0];
-      ti_r_btri_q <= ti_first_new[1:0];
     end else if (is_take) begin
       ti_rem_q    <= ti_rem_next;
       ti_last_q   <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
-      ti_r_org_q  <= lowest4(ti_rem_next);
-      ti_r_dir_q  <= lowest4(ti_rem_next);
-      ti_r_bt_q   <= lowest4(ti_rem_next);
-      ti_r_btri_q <= lowest4(ti_rem_next);
+    end
+  end
+  (* keep *)
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ti_r_org_q  <= '0;
+      ti_r_dir_q  <= '0;
+      ti_r_bt_q   <= '0;
+      ti_r_btri_q <= '0;
+    end else if (ti_load || is_take) begin
+      ti_r_org_q  <= ti_r_next;
+      ti_r_dir_q  <= ti_r_next;
+      ti_r_bt_q   <= ti_r_next;
+      ti_r_btri_q <= ti_r_next;
     end
   end
 
