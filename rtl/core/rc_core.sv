@@ -1675,7 +1675,13 @@ module rc_core #(
   // (shp_room, from flip-flops), with or without a request: the OR over the requests reaches
   // only shp_v_q.
   assign shp_room = ~sh_busy_q & ~shp_v_q;
-  assign shp_none = get4(vmask_q, shp_thr_q) == 4'd0;
+  // Whether the chosen packet has no rays, through the one-hot choice (an AND-OR over the
+  // threads' own any-ray bits, no thread multiplexer of the masks).
+  logic [Threads-1:0] vm_any;
+  always_comb begin
+    for (int unsigned t = 0; t < Threads; t++) vm_any[t] = |vmask_q[t*4 +: 4];
+  end
+  assign shp_none = ~|(gshp_q & vm_any);
 
   // The packet's rays, their hits (none after an error) and their triangles are taken into
   // registers as its shading starts (a thread in shading changes none of them: ShadeSnap_A), so
@@ -1964,8 +1970,8 @@ module rc_core #(
       fb_last = fbw_q[t*3 +: 3] == 3'd1;
       we = {h_acc[t], h_su[t] & su_last, h_fe[t], h_nr[t] & nr_st_we, h_tr[t], h_lp[t],
             pend_zero[t], h_pe[t] & ~pop_end_t[t], h_pe[t] & pop_end_t[t], h_p2[t],
-            h_sx[t] & ~shp_none,
-            h_sx[t] & shp_none,
+            h_sx[t] & vm_any[t],   // the thread's own rays: h_sx is one-hot, so this is
+            h_sx[t] & ~vm_any[t],  // shp_none without the choice's AND-OR
             h_fb[t] & fb_last};
       st_or = ({4{we[12]}} & StSetup) | ({4{we[11]}} & su_st) |
               ({4{we[10]}} & (node_empty_q ? StPop : StNode)) | ({4{we[9]}} & nr_st) |
@@ -2413,6 +2419,9 @@ module rc_core #(
   // The shading choice's request register mirrors the thread states.
   DoneMirror_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  done_q == done_vec);
+  // The shading choice's one-hot grant is its thread (shp_none and the events read the grant).
+  ShadeGrant_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 shp_v_q |-> gshp_q == hot(1'b1, shp_thr_q));
   // The registered free-thread choice is a free thread when the packet input offers it.
   AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     pkt_ready_o |-> st_q[acc_thr_q*4 +: 4] == StFree &&
