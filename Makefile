@@ -149,8 +149,9 @@ fpga-vivado: $(GEN_PKG)
 # (rc_board, UART host link, PLL for FPGA_FREQ MHz), nextpnr-ecp5 (LFE5U-85F, CABGA381, pins
 # fpga/ecp5/ulx3s.lpf), ecppack; writes rc_ulx3s.bit and report.md (utilisation, Fmax against the
 # target with PASS/FAIL, critical path, step times) to $(BUILD)/fpga/ecp5/. FPGA_ARGS passes more
-# options (e.g. FPGA_ARGS="--param Threads=1" for a quick reduced build). Yosys takes 6 to
-# 10 minutes and nextpnr about 20 (static placer, seed 1) on the default build.
+# options (e.g. FPGA_ARGS="--param Threads=1" for a quick reduced build). Yosys takes 3 to
+# 10 minutes and nextpnr about 45 (static placer, seed 1, router1 with its timing-driven rip-up;
+# FPGA_ARGS=--no-tmg-ripup routes in a quarter of the time, to a lower Fmax) on the default build.
 FPGA_SCENE ?= scenes/cornell.json
 FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
