@@ -150,8 +150,9 @@ fpga-vivado: $(GEN_PKG)
 # fpga/ecp5/ulx3s.lpf), ecppack; writes rc_ulx3s.bit and report.md (utilisation, Fmax against the
 # target with PASS/FAIL, critical path, step times) to $(BUILD)/fpga/ecp5/. FPGA_ARGS passes more
 # options (e.g. FPGA_ARGS="--param Threads=1" for a quick reduced build). Yosys takes 3 to
-# 10 minutes and nextpnr about 45 (static placer, seed 1, router1 with its timing-driven rip-up;
-# FPGA_ARGS=--no-tmg-ripup routes in a quarter of the time, to a lower Fmax) on the default build.
+# 10 minutes and nextpnr 16 to 33 (static placer, seed 1, router1 with its timing-driven rip-up;
+# FPGA_ARGS=--no-tmg-ripup routes in up to a quarter of the time, to a lower Fmax) on the
+# default build.
 FPGA_SCENE ?= scenes/cornell.json
 FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100

@@ -536,7 +536,8 @@ def main():
     if args.tmg_ripup:
         cmd.append("--tmg-ripup")
     ctx = {"report": None, "pll": pll, "seed": args.seed, "placer": args.placer,
-           "router": args.router + (" with --tmg-ripup" if args.tmg_ripup else ""), "scene": args.scene, "image": image,
+           "router": args.router + (" with --tmg-ripup" if args.tmg_ripup else ""),
+           "scene": args.scene, "image": image,
            "image_dir": image_dir, "extra_params": extra, "baud": args.baud, "freq": args.freq,
            "steps": steps, "commands": commands, "yosys_cells": yosys_cells}
     pnr_start = time.monotonic()
