@@ -147,13 +147,15 @@ def run(cmd, log, what, cwd=None):
 
 
 def tool_version(cmd):
-    """The first line `cmd --version` prints, for the report ("?" when it prints none)."""
+    """The first line `cmd --version` prints, for the report ("?" when it prints none). YoWASP's
+    first call of a tool also prints "Preparing to run ..." on stderr: that line is left out."""
     try:
         res = subprocess.run([str(cmd), "--version"], capture_output=True, text=True, timeout=600)
     except (OSError, subprocess.TimeoutExpired) as e:
         return f"? ({e})"
-    lines = (res.stdout + res.stderr).strip().splitlines()
-    return lines[0].strip() if lines else "?"
+    lines = [l.strip() for l in (res.stdout + "\n" + res.stderr).splitlines()
+             if l.strip() and not l.startswith("Preparing to run")]
+    return lines[0] if lines else "?"
 
 
 def rtl_files(build):
