@@ -14,6 +14,7 @@
 #include "compiler.hpp"
 #include "error.hpp"
 #include "image.hpp"
+#include "output_paths.hpp"
 #include "scene.hpp"
 
 namespace rc::app {
@@ -39,7 +40,26 @@ void write_file(const std::string& path, const std::vector<uint8_t>& bytes) {
   if (!out) throw Error(path + ": write failed: " + std::strerror(errno));
 }
 
+// The files a loaded scene was read from: its meshes' files and their MTL files, and a JSON
+// scene's own file (built-in meshes have none).
+std::vector<NamedPath> scene_inputs(const rc::scene::Scene& scene) {
+  std::vector<NamedPath> in;
+  const auto file = [](const std::string& s) { return s.rfind("builtin:", 0) != 0; };
+  if (file(scene.source)) in.push_back({"input", scene.source});
+  for (const auto& m : scene.meshes) {
+    if (file(m.source) && m.source != scene.source) in.push_back({"mesh", m.source});
+    for (const auto& mtl : m.material_files) in.push_back({"MTL file", mtl});
+  }
+  return in;
+}
+
 int run_build(const BuildOptions& o) {
+  // The outputs before any work (each writable, neither the input nor the other output), and
+  // again once the scene is loaded, against every file it was read from (meshes, MTL files).
+  const std::vector<NamedPath> outputs = {{"-o", o.output}, {"--stats", o.stats_path}};
+  const bool builtin = o.input.rfind("builtin:", 0) == 0;
+  check_outputs(builtin ? std::vector<NamedPath>{} : std::vector<NamedPath>{{"input", o.input}},
+                outputs);
   rc::scene::LoadOptions load;
   load.models_path = o.models_path;
   rc::scene::CompileOptions options;
@@ -48,6 +68,7 @@ int run_build(const BuildOptions& o) {
   const rc::scene::Scene scene = rc::scene::load_scene(o.input, load);
   const double load_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  check_outputs(scene_inputs(scene), outputs);
   rc::scene::Compiled c = rc::scene::compile_scene(scene, options);
   c.stats.load_ms = load_ms;
   for (const auto& w : c.stats.warnings) std::cerr << "raycore: warning: " << w << "\n";
@@ -107,14 +128,17 @@ int run_info(const std::string& path, bool validate) {
       << rc::scene::section_name(s.id) << std::right << std::setw(11) << s.offset << std::setw(13)
       << s.bytes << std::setw(11) << s.count << std::setw(8) << s.stride << "\n";
   if (!validate) return 0;
-  const auto problems = img.validate();
-  if (problems.empty()) {
+  const rc::scene::Validation checked = img.validation();
+  if (checked.ok()) {
     o << "validate     tree and records well formed\n";
     return 0;
   }
-  for (const auto& p : problems) std::cerr << "raycore: malformed: " << p << "\n";
-  throw Error(path + ": the image is malformed (" + std::to_string(problems.size()) +
-              " problems listed above)");
+  for (const auto& p : checked.problems) std::cerr << "raycore: malformed: " << p << "\n";
+  const size_t total = checked.total, listed = checked.problems.size();
+  const std::string count = total == 1 ? "1 problem" : std::to_string(total) + " problems";
+  throw Error(path + ": the image is malformed (" + count +
+              (total == listed ? std::string(total == 1 ? ", listed above)" : ", all listed above)")
+                               : ", the first " + std::to_string(listed) + " listed above)"));
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 #include "camera.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -10,50 +10,67 @@ namespace rc {
 
 namespace {
 
-glm::dvec3 parse_vec(const std::string& key, const std::string& value) {
-  std::vector<double> parts;
-  std::stringstream ss(value);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      size_t used = 0;
-      parts.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw std::runtime_error("camera: " + key + " has a bad number '" + item + "'");
-    }
+// The parts of `text` between separators, empty ones included ("1,2," has three parts).
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (;;) {
+    const size_t end = text.find(sep, start);
+    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return parts;
+    start = end + 1;
   }
+}
+
+// One number of the --camera text: the whole item must be a number (no blanks, no trailing text).
+double parse_number(const std::string& key, const std::string& item) {
+  size_t used = 0;
+  double v = 0.0;
+  try {
+    if (item.empty() || std::isspace(static_cast<unsigned char>(item[0])))
+      throw std::invalid_argument(item);
+    v = std::stod(item, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != item.size())
+    throw std::runtime_error("camera: " + key + " has a bad number '" + item + "'");
+  return v;
+}
+
+glm::dvec3 parse_vec(const std::string& key, const std::string& value) {
+  const std::vector<std::string> parts = split(value, ',');
   if (parts.size() != 3)
     throw std::runtime_error("camera: " + key + " needs three numbers X,Y,Z, got '" + value + "'");
-  return {parts[0], parts[1], parts[2]};
+  return {parse_number(key, parts[0]), parse_number(key, parts[1]), parse_number(key, parts[2])};
 }
 
 }  // namespace
 
 Camera parse_camera(const std::string& text) {
   Camera cam;
-  bool have_eye = false, have_look = false;
-  std::stringstream ss(text);
-  std::string part;
-  while (std::getline(ss, part, ':')) {
+  bool have_eye = false, have_look = false, have_up = false, have_fov = false;
+  const auto once = [](bool* seen, const std::string& key) {
+    if (*seen) throw std::runtime_error("camera: " + key + " is given twice");
+    *seen = true;
+  };
+  for (const std::string& part : split(text, ':')) {
     const auto eq = part.find('=');
     if (eq == std::string::npos)
       throw std::runtime_error("camera: expected key=value, got '" + part + "'");
     const std::string key = part.substr(0, eq), value = part.substr(eq + 1);
     if (key == "eye") {
+      once(&have_eye, key);
       cam.eye = parse_vec(key, value);
-      have_eye = true;
     } else if (key == "look") {
+      once(&have_look, key);
       cam.look = parse_vec(key, value);
-      have_look = true;
     } else if (key == "up") {
+      once(&have_up, key);
       cam.up = parse_vec(key, value);
     } else if (key == "fov") {
-      try {
-        cam.fov_deg = std::stod(value);
-      } catch (const std::exception&) {
-        throw std::runtime_error("camera: fov has a bad number '" + value + "'");
-      }
+      once(&have_fov, key);
+      cam.fov_deg = parse_number(key, value);
     } else {
       throw std::runtime_error("camera: unknown key '" + key + "' (eye, look, up, fov)");
     }
@@ -63,17 +80,7 @@ Camera parse_camera(const std::string& text) {
   return cam;
 }
 
-void validate_camera(const Camera& cam) {
-  for (const auto* v : {&cam.eye, &cam.look, &cam.up})
-    for (int i = 0; i < 3; ++i)
-      if (!std::isfinite((*v)[i])) throw std::runtime_error("camera: coordinates must be finite");
-  const glm::dvec3 f = cam.look - cam.eye;
-  if (glm::length(f) == 0.0) throw std::runtime_error("camera: eye and look are the same point");
-  if (glm::length(glm::cross(glm::normalize(f), cam.up)) < 1e-9)
-    throw std::runtime_error("camera: up is parallel to the view direction (or zero)");
-  if (!(cam.fov_deg > 0.0 && cam.fov_deg < 180.0))
-    throw std::runtime_error("camera: fov must be between 0 and 180 degrees");
-}
+void validate_camera(const Camera& cam) { scene::check_camera(cam, "camera"); }
 
 RayGenerator::RayGenerator(const Camera& cam, uint32_t width, uint32_t height)
     : width_(width), height_(height) {

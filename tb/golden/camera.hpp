@@ -16,12 +16,15 @@ namespace rc {
 // the automatic one.
 using Camera = scene::Camera;
 
-// Parses "eye=X,Y,Z:look=X,Y,Z:up=X,Y,Z:fov=DEG" (every part optional but eye and look).
+// Parses "eye=X,Y,Z:look=X,Y,Z:up=X,Y,Z:fov=DEG" (every part optional but eye and look, none
+// twice; every number a whole decimal number, no trailing text), then validate_camera().
 // Throws std::runtime_error naming the problem.
 Camera parse_camera(const std::string& text);
 
-// Checks that the camera defines a view (eye != look, up not parallel to the view direction,
-// 0 < fov < 180); throws std::runtime_error naming the problem.
+// Checks the camera with the project's one camera rule, scene::check_camera() (tb/scene/scene.hpp:
+// finite float32 coordinates, eye != look, up not zero and not nearly parallel to the view
+// direction, fov in [0.001, 179.999] degrees), the rule `scene build` applies to scene files;
+// throws rc::scene::Error ("camera.FIELD: ...") naming the problem.
 void validate_camera(const Camera& cam);
 
 // One primary ray in double precision, before rounding to the core's format: origin, direction

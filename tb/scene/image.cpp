@@ -178,12 +178,14 @@ SceneImage SceneImage::from_bytes(std::vector<uint8_t> bytes, std::string name) 
 void SceneImage::check() {
   const auto fail = [&](const std::string& what) { throw Error(name_ + ": " + what); };
   const uint64_t size = bytes_.size();
+  // The magic first: a file that is not an image at all (an OBJ, a PNG) is "not a raycore image"
+  // whatever its size; only a file too short to hold the magic is just "truncated".
+  if (size >= 4 && u32(spec::kImageHeaderMagic) != spec::kImageMagic)
+    fail("not a raycore image: magic " + hex32(u32(spec::kImageHeaderMagic)) + ", expected " +
+         hex32(static_cast<uint32_t>(spec::kImageMagic)) + " (\"RCIM\")");
   if (size < static_cast<uint64_t>(spec::kImageHeaderBytes))
     fail("truncated image: " + std::to_string(size) + " bytes, smaller than the " +
          std::to_string(spec::kImageHeaderBytes) + "-byte header");
-  if (u32(spec::kImageHeaderMagic) != spec::kImageMagic)
-    fail("not a raycore image: magic " + hex32(u32(spec::kImageHeaderMagic)) + ", expected " +
-         hex32(static_cast<uint32_t>(spec::kImageMagic)) + " (\"RCIM\")");
   if (version_major() != spec::kImageVersionMajor)
     fail("unsupported image version " + std::to_string(version_major()) + "." +
          std::to_string(version_minor()) + ": this reader reads version " +
@@ -409,10 +411,19 @@ LightRecord SceneImage::light(size_t i) const {
 }
 
 std::vector<std::string> SceneImage::validate(size_t max_problems) const {
-  std::vector<std::string> out;
-  size_t total = 0;
+  Validation v = validation(max_problems);
+  if (v.total > v.problems.size())
+    v.problems.push_back("... and " + std::to_string(v.total - v.problems.size()) +
+                         " more problems");
+  return std::move(v.problems);
+}
+
+Validation SceneImage::validation(size_t max_listed) const {
+  Validation result;
+  std::vector<std::string>& out = result.problems;
+  size_t& total = result.total;
   const auto problem = [&](const std::string& what) {
-    if (out.size() < max_problems) out.push_back(what);
+    if (out.size() < max_listed) out.push_back(what);
     ++total;
   };
   const NumberFormat& f = format_;
@@ -555,9 +566,7 @@ std::vector<std::string> SceneImage::validate(size_t max_problems) const {
     if (type != spec::kImageLightTypePoint && type != spec::kImageLightTypeDirectional)
       problem("light " + std::to_string(i) + ": unknown type " + std::to_string(type));
   }
-  if (total > out.size())
-    out.push_back("... and " + std::to_string(total - out.size()) + " more problems");
-  return out;
+  return result;
 }
 
 }  // namespace rc::scene

@@ -158,6 +158,14 @@ uint32_t image_checksum(const std::vector<uint8_t>& image);
 // ---- Reader
 // ----------------------------------------------------------------------------------------
 
+// What SceneImage::validation() found: the first problems (one line each) and how many there are
+// in all (total > problems.size() when the list was cut short; total == 0: well formed).
+struct Validation {
+  std::vector<std::string> problems;
+  size_t total = 0;
+  bool ok() const { return total == 0; }
+};
+
 // A loaded, checked image. load() and from_bytes() check everything that can be checked without
 // walking the tree (size, magic, version, number format, section table, checksum, the required
 // sections and their strides and counts) and throw Error with a message naming the image.
@@ -220,9 +228,12 @@ class SceneImage {
   size_t light_count() const { return section(spec::kImageSectionIdLights).count; }
   LightRecord light(size_t i) const;
 
-  // Walks the tree from the root and checks every record; returns one line per problem (at most
-  // max_problems; an empty list means well formed). See docs/memory-format.md, "Malformed images".
+  // Walks the tree from the root and checks every record; returns one line per problem (an empty
+  // list means well formed): the first max_problems, then "... and N more problems" if there are
+  // more. See docs/memory-format.md, "Malformed images".
   std::vector<std::string> validate(size_t max_problems = 20) const;
+  // The same walk: the first max_listed problems and the total count.
+  Validation validation(size_t max_listed = 20) const;
 
  private:
   SceneImage() : format_(NumberFormat::fp24()) {}

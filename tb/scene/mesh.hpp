@@ -34,7 +34,8 @@ struct Mesh {
   std::vector<uint32_t> material;                  // per triangle: index into materials
   std::vector<uint32_t> line;                      // per triangle: source line of its face, or 0
   std::vector<Material> materials;
-  std::vector<std::string> warnings;  // things worth telling the user that are not errors
+  std::vector<std::string> material_files;  // the MTL files read for it (inputs too)
+  std::vector<std::string> warnings;        // things worth telling the user that are not errors
 };
 
 // Loads an OBJ file (and the MTL files it names) through tinyobjloader. Polygons are fan
@@ -42,7 +43,10 @@ struct Mesh {
 // run over all faces in file order. Malformed lines, face indices out of range and meshes without
 // faces throw rc::scene::Error naming the file and line. Vertex values are the correctly rounded
 // doubles of the decimal text (NaN and infinities are kept: the compiler rejects the triangles that
-// use them).
+// use them). The MTL files are checked line by line the same way (docs/memory-format.md, "MTL
+// values"): a bad number, a value out of its range or one no image format can store throws Error
+// naming the MTL file, the line and the keyword; an MTL file that cannot be opened is a warning
+// and its materials fall back to the default.
 Mesh load_obj(const std::string& path);
 
 // Parses OBJ text (for tests); `name` is used in messages, MTL files are looked up in mtl_dir.

@@ -8,20 +8,31 @@
 // loader uses instead of tinyobjloader's approximate decimal conversion. tinyobjloader then parses
 // the same text without triangulating (its own triangulation is not a fan), and the faces are fan
 // triangulated here in file order.
+//
+// The MTL files an OBJ names with `mtllib` get the same treatment: tinyobjloader reads them
+// through our MaterialReader (CheckedMtlReader), which first checks every line that gives a number
+// the image uses (check_mtl: Ka Kd Ks Ke Tf Kt Ns Ni d Tr illum; docs/memory-format.md, "MTL
+// values") and then replaces tinyobjloader's numbers by the checked, correctly rounded ones.
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <system_error>
 
 #include "error.hpp"
 #include "mesh.hpp"
+#include "number_format.hpp"
 
 namespace rc::scene {
 
@@ -38,6 +49,7 @@ bool is_blank(char c) { return c == ' ' || c == '\t'; }
 class Tokens {
  public:
   explicit Tokens(std::string_view s) : s_(s) {}
+  std::string_view line() const { return s_; }
   bool next(std::string_view* out) {
     while (pos_ < s_.size() && is_blank(s_[pos_])) ++pos_;
     if (pos_ >= s_.size()) return false;
@@ -90,24 +102,42 @@ std::string quoted(std::string_view line) {
   return "'" + s + "'";
 }
 
+// The lines of a text, numbered from 1; "\n", "\r\n" and a lone "\r" end a line (as
+// tinyobjloader's safeGetline counts them).
+class Lines {
+ public:
+  explicit Lines(const std::string& text) : text_(text) {}
+  bool next(std::string_view* line) {
+    if (pos_ >= text_.size()) return false;
+    size_t end = text_.find_first_of("\r\n", pos_);
+    if (end == std::string::npos) end = text_.size();
+    *line = std::string_view(text_.data() + pos_, end - pos_);
+    pos_ = end;
+    if (pos_ < text_.size() && text_[pos_] == '\r') {
+      ++pos_;
+      if (pos_ < text_.size() && text_[pos_] == '\n') ++pos_;
+    } else if (pos_ < text_.size()) {
+      ++pos_;  // '\n'
+    }
+    ++number_;
+    return true;
+  }
+  uint32_t number() const { return number_; }
+
+ private:
+  const std::string& text_;
+  size_t pos_ = 0;
+  uint32_t number_ = 0;
+};
+
 Checked check_text(const std::string& text, const std::string& name) {
   Checked c;
-  uint32_t line_no = 0;
-  size_t pos = 0;
   long max_index = 0;
   uint32_t max_index_line = 0;
-  while (pos < text.size()) {
-    size_t end = text.find_first_of("\r\n", pos);
-    if (end == std::string::npos) end = text.size();
-    const std::string_view full(text.data() + pos, end - pos);
-    pos = end;
-    if (pos < text.size() && text[pos] == '\r') {
-      ++pos;
-      if (pos < text.size() && text[pos] == '\n') ++pos;
-    } else if (pos < text.size()) {
-      ++pos;  // '\n'
-    }
-    ++line_no;
+  Lines lines(text);
+  std::string_view full;
+  while (lines.next(&full)) {
+    const uint32_t line_no = lines.number();
     if (full.find('\0') != std::string_view::npos)
       fail_line(name, line_no, "NUL byte in the text (is this an OBJ file?)");
     Tokens tok(full);
@@ -178,6 +208,248 @@ Checked check_text(const std::string& text, const std::string& name) {
   return c;
 }
 
+// ---- MTL files
+
+std::string num(double v) {
+  std::ostringstream ss;
+  ss << std::setprecision(9) << v;
+  return ss.str();
+}
+
+// The largest value every image number format stores (fp24's largest finite value; fp32's is
+// larger): an MTL number beyond it is refused whatever format the image is built in, so that an
+// MTL file that builds at fp32 also builds at fp24.
+const NumberFormat& mtl_format() {
+  static const NumberFormat f = NumberFormat::fp24();
+  return f;
+}
+
+// The numbers of one material as check_mtl() read them (unset: not given in the file).
+struct MtlMaterial {
+  std::optional<glm::dvec3> kd, ks, ke, tf;
+  std::optional<double> ns, ior, dissolve;
+  std::optional<int> illum;
+  bool has_d = false;  // d wins over Tr, in whatever order they come (as in tinyobjloader)
+};
+
+struct MtlCheck {
+  // One entry per material that tinyobjloader's LoadMtl adds, in its order: it flushes the
+  // current material at each `newmtl` when it has a name and once more at the end of the file.
+  std::vector<MtlMaterial> materials;
+  std::vector<std::string> warnings;  // "FILE:LINE: ..."
+};
+
+enum class MtlRange { kColour, kNonNegative, kPositive, kUnit };
+
+// One number of an MTL line: a decimal number (no trailing text), finite, storable in every image
+// number format, and in the keyword's range. Throws Error("FILE:LINE: KEY: ...").
+double mtl_number(std::string_view t, MtlRange range, const std::string& name, uint32_t line,
+                  const std::string& key) {
+  const std::string text(t);
+  const std::string what = key + ": ";
+  double v = 0.0;
+  if (!parse_number(t, &v)) fail_line(name, line, what + "'" + text + "' is not a number");
+  std::string lower;
+  for (char ch : text) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (std::isnan(v) || (std::isinf(v) && lower.find("inf") != std::string::npos))
+    fail_line(name, line, what + "'" + text + "' is not a finite number");
+  const NumberFormat& f = mtl_format();
+  if (!std::isfinite(f.round(v)))
+    fail_line(name, line,
+              what + text + " is too large: the largest " + f.name() + " value is " +
+                  num(f.max_value()) + " (images store material values as fp24 or fp32)");
+  switch (range) {
+    case MtlRange::kColour:
+      if (v < 0.0) fail_line(name, line, what + text + " is negative (colours are 0 or more)");
+      break;
+    case MtlRange::kNonNegative:
+      if (v < 0.0) fail_line(name, line, what + text + " is negative (it must be 0 or more)");
+      break;
+    case MtlRange::kPositive:
+      if (!(v > 0.0)) fail_line(name, line, what + text + " is not greater than 0");
+      if (f.round(v) == 0.0)
+        fail_line(name, line,
+                  what + text + " is too small: the smallest " + f.name() + " value is " +
+                      num(f.next_up(0.0)) + " (smaller ones flush to 0)");
+      break;
+    case MtlRange::kUnit:
+      if (v < 0.0 || v > 1.0) fail_line(name, line, what + text + " is outside [0, 1]");
+      break;
+  }
+  return v;
+}
+
+// The values after an MTL keyword, up to the end of the line or a '#' comment.
+std::vector<std::string_view> mtl_values(Tokens* tok) {
+  std::vector<std::string_view> out;
+  std::string_view t;
+  while (tok->next(&t) && t[0] != '#') out.push_back(t);
+  return out;
+}
+
+// Ka Kd Ks Ke Tf Kt: three numbers r g b, or one number for grey (r = g = b, as the MTL
+// specification says; tinyobjloader alone would read "Kd 0.5" as 0.5 0 0).
+glm::dvec3 mtl_colour(Tokens* tok, const std::string& name, uint32_t line, const std::string& key) {
+  const auto vals = mtl_values(tok);
+  if (!vals.empty() && (vals[0] == "spectral" || vals[0] == "xyz"))
+    fail_line(name, line,
+              key + ": the '" + std::string(vals[0]) +
+                  "' form is not supported (give r g b, or one number for grey)");
+  if (vals.size() != 1 && vals.size() != 3)
+    fail_line(name, line,
+              key + ": expected 3 numbers r g b (or 1 number for grey), got " +
+                  std::to_string(vals.size()) + " in " + quoted(tok->line()));
+  if (vals.size() == 1) return glm::dvec3(mtl_number(vals[0], MtlRange::kColour, name, line, key));
+  glm::dvec3 c;
+  for (int k = 0; k < 3; ++k)
+    c[k] = mtl_number(vals[static_cast<size_t>(k)], MtlRange::kColour, name, line, key);
+  return c;
+}
+
+// Ns Ni d Tr illum: one value. More numbers after it are a warning (teapot/default.mtl of the
+// shared models has "Tr 0  0"): tinyobjloader reads the first, and so do we.
+std::string_view mtl_single(Tokens* tok, const std::string& name, uint32_t line,
+                            const std::string& key, MtlCheck* c) {
+  const auto vals = mtl_values(tok);
+  if (vals.empty()) fail_line(name, line, key + ": expected a number, got nothing");
+  for (size_t i = 1; i < vals.size(); ++i) {
+    double ignored = 0.0;
+    if (!parse_number(vals[i], &ignored))
+      fail_line(name, line,
+                key + ": expected one number, got " + quoted(tok->line()) + " ('" +
+                    std::string(vals[i]) + "' is not a number)");
+  }
+  if (vals.size() > 1)
+    c->warnings.push_back(name + ":" + std::to_string(line) + ": " + key + ": " +
+                          std::to_string(vals.size()) +
+                          " numbers where one is expected; the first is used");
+  return vals[0];
+}
+
+MtlCheck check_mtl(const std::string& text, const std::string& name) {
+  MtlCheck c;
+  MtlMaterial cur;
+  bool named = false;
+  Lines lines(text);
+  std::string_view full;
+  while (lines.next(&full)) {
+    const uint32_t line = lines.number();
+    if (full.find('\0') != std::string_view::npos)
+      fail_line(name, line, "NUL byte in the text (is this an MTL file?)");
+    Tokens tok(full);
+    std::string_view key_view;
+    if (!tok.next(&key_view) || key_view[0] == '#') continue;
+    const std::string key(key_view);
+    if (key == "newmtl") {
+      std::string_view material;
+      if (!tok.next(&material)) fail_line(name, line, "newmtl without a material name");
+      if (named) c.materials.push_back(cur);
+      cur = MtlMaterial();
+      named = true;
+    } else if (key == "Ka") {
+      (void)mtl_colour(&tok, name, line, key);  // checked, but the image has no ambient colour
+    } else if (key == "Kd") {
+      cur.kd = mtl_colour(&tok, name, line, key);
+    } else if (key == "Ks") {
+      cur.ks = mtl_colour(&tok, name, line, key);
+    } else if (key == "Ke") {
+      cur.ke = mtl_colour(&tok, name, line, key);
+    } else if (key == "Tf" || key == "Kt") {
+      cur.tf = mtl_colour(&tok, name, line, key);
+    } else if (key == "Ns") {
+      cur.ns = mtl_number(mtl_single(&tok, name, line, key, &c), MtlRange::kNonNegative, name, line,
+                          key);
+    } else if (key == "Ni") {
+      cur.ior =
+          mtl_number(mtl_single(&tok, name, line, key, &c), MtlRange::kPositive, name, line, key);
+    } else if (key == "d") {
+      cur.dissolve =
+          mtl_number(mtl_single(&tok, name, line, key, &c), MtlRange::kUnit, name, line, key);
+      cur.has_d = true;
+    } else if (key == "Tr") {
+      const double tr =
+          mtl_number(mtl_single(&tok, name, line, key, &c), MtlRange::kUnit, name, line, key);
+      if (!cur.has_d) cur.dissolve = 1.0 - tr;
+    } else if (key == "illum") {
+      const std::string_view t = mtl_single(&tok, name, line, key, &c);
+      long illum = -1;
+      if (!parse_index(t, &illum) || illum < 0 || illum > 10)
+        fail_line(name, line,
+                  "illum: '" + std::string(t) + "' is not an integer in 0..10 (the MTL models)");
+      cur.illum = static_cast<int>(illum);
+    }
+  }
+  c.materials.push_back(cur);
+  return c;
+}
+
+// tinyobjloader's MaterialReader for the MTL files an OBJ names: the file is looked up in the
+// OBJ's directory (an absolute name as given), checked with check_mtl(), parsed by tinyobjloader's
+// LoadMtl, and the checked numbers replace LoadMtl's. A file that cannot be opened is what it was
+// with tinyobjloader's own reader: a warning, and the faces that use its materials get the default
+// material.
+class CheckedMtlReader : public tinyobj::MaterialReader {
+ public:
+  explicit CheckedMtlReader(std::string dir) : dir_(std::move(dir)) {}
+
+  bool operator()(const std::string& mat_id, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* mat_map, std::string* warn,
+                  std::string* err) override {
+    std::string path = mat_id;
+    if (mat_id.empty() || mat_id[0] != '/')
+      path = dir_.empty() ? mat_id : (dir_.back() == '/' ? dir_ : dir_ + "/") + mat_id;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      if (warn) *warn += "cannot open MTL file " + path + ": " + std::strerror(errno) + "\n";
+      return false;
+    }
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+      throw Error(path + ": cannot read MTL file: not a regular file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    if (in.bad()) throw Error(path + ": read error");
+    const std::string text = ss.str();
+    MtlCheck checked = check_mtl(text, path);
+
+    const size_t base = materials->size();
+    std::istringstream stream(text);
+    std::string mtl_warn;
+    tinyobj::LoadMtl(mat_map, materials, &stream, &mtl_warn, err);
+    if (warn) *warn += mtl_warn;
+    if (materials->size() - base != checked.materials.size())
+      throw Error(path + ": internal error: tinyobjloader read " +
+                  std::to_string(materials->size() - base) + " materials, the line check " +
+                  std::to_string(checked.materials.size()));
+    const auto rgb = [](tinyobj::real_t* out, const glm::dvec3& v) {
+      for (int k = 0; k < 3; ++k) out[k] = static_cast<tinyobj::real_t>(v[k]);
+    };
+    for (size_t i = 0; i < checked.materials.size(); ++i) {
+      const MtlMaterial& v = checked.materials[i];
+      tinyobj::material_t& m = (*materials)[base + i];
+      if (v.kd) rgb(m.diffuse, *v.kd);
+      if (v.ks) rgb(m.specular, *v.ks);
+      if (v.ke) rgb(m.emission, *v.ke);
+      if (v.tf) rgb(m.transmittance, *v.tf);
+      if (v.ns) m.shininess = static_cast<tinyobj::real_t>(*v.ns);
+      if (v.ior) m.ior = static_cast<tinyobj::real_t>(*v.ior);
+      if (v.dissolve) m.dissolve = static_cast<tinyobj::real_t>(*v.dissolve);
+      if (v.illum) m.illum = *v.illum;
+    }
+    files_.push_back(path);
+    warnings_.insert(warnings_.end(), checked.warnings.begin(), checked.warnings.end());
+    return true;
+  }
+
+  const std::vector<std::string>& files() const { return files_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+ private:
+  std::string dir_;
+  std::vector<std::string> files_;
+  std::vector<std::string> warnings_;
+};
+
 Material convert(const tinyobj::material_t& m) {
   Material out;
   out.name = m.name;
@@ -222,12 +494,15 @@ Mesh parse_obj(const std::string& text, const std::string& name, const std::stri
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
   std::istringstream in(text);
-  tinyobj::MaterialFileReader mtl_reader(mtl_dir.empty() ? std::string(".") : mtl_dir);
+  CheckedMtlReader mtl_reader(mtl_dir.empty() ? std::string(".") : mtl_dir);
   const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtl_reader,
                                    /*triangulate=*/false, /*default_vcols_fallback=*/false);
   if (!ok) throw Error(name + ": " + (err.empty() ? std::string("cannot parse OBJ") : err));
   if (!err.empty()) add_warnings(&mesh, err);  // MTL problems: the materials fall back
   add_warnings(&mesh, warn);
+  mesh.warnings.insert(mesh.warnings.end(), mtl_reader.warnings().begin(),
+                       mtl_reader.warnings().end());
+  mesh.material_files = mtl_reader.files();
 
   const size_t nv = checked.vertices.size();
   if (attrib.vertices.size() != 3 * nv)

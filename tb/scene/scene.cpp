@@ -10,6 +10,8 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
+#include <iomanip>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -60,6 +62,39 @@ bool ends_with(const std::string& s, const std::string& suffix) {
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+std::string num(double v) {
+  std::ostringstream ss;
+  ss << std::setprecision(9) << v;
+  return ss.str();
+}
+
+// Why a coordinate cannot be stored as float32 (the view and light records), or "".
+std::string f32_problem(double x, char axis) {
+  const std::string what = std::string(1, axis) + " = " + num(x);
+  if (!std::isfinite(x)) return what + " is not a finite number";
+  if (std::abs(x) > static_cast<double>(std::numeric_limits<float>::max()))
+    return what + " is outside the float32 range (|x| <= " +
+           num(static_cast<double>(std::numeric_limits<float>::max())) +
+           "; the image stores it as float32)";
+  return "";
+}
+
+// v rounded to float32, as the view and light records store it. The floats go through a volatile:
+// GCC 12.2's SLP vectorizer (-O2 and -O3) drops the double -> float -> double round trip of the
+// plain expression inlined into camera_problem(), which then never sees the rounded camera.
+glm::dvec3 to_f32(const glm::dvec3& v) {
+  const volatile float f[3] = {static_cast<float>(v.x), static_cast<float>(v.y),
+                               static_cast<float>(v.z)};
+  return glm::dvec3(f[0], f[1], f[2]);
+}
+
+// The direction of v, computed without overflow or underflow for any finite v (zero for zero).
+glm::dvec3 direction(const glm::dvec3& v) {
+  const double m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+  if (m == 0.0) return glm::dvec3(0.0);
+  return glm::normalize(v / m);
+}
+
 // Strict JSON field access: every problem names the file and the field.
 class Fields {
  public:
@@ -82,27 +117,50 @@ class Fields {
     }
   }
   bool has(const char* key) const { return obj_.contains(key); }
-  const json& at(const char* key) const { return obj_.at(key); }
+  // The value of a key; a missing key (or a value that is not an object) is an Error naming the
+  // file and the key's path, never nlohmann's own exception.
+  const json& at(const char* key) const {
+    expect_object();
+    const auto it = obj_.find(key);
+    if (it == obj_.end()) fail(key, "missing (this key is required)");
+    return *it;
+  }
   double number(const char* key) const {
-    const json& v = obj_.at(key);
+    const json& v = at(key);
     if (!v.is_number()) fail(key, "expected a number");
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail(key, "expected a finite number");
     return d;
   }
   std::string string(const char* key) const {
-    const json& v = obj_.at(key);
+    const json& v = at(key);
     if (!v.is_string()) fail(key, "expected a string");
     return v.get<std::string>();
   }
   glm::dvec3 vec3(const char* key) const {
-    const json& v = obj_.at(key);
+    const json& v = at(key);
     if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
         !v[2].is_number())
       fail(key, "expected an array of 3 numbers");
     const glm::dvec3 r(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
     if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z))
       fail(key, "expected finite numbers");
+    return r;
+  }
+  // A vec3 the image stores as float32: finite and inside the float32 range.
+  glm::dvec3 vec3_f32(const char* key) const {
+    const glm::dvec3 r = vec3(key);
+    for (int k = 0; k < 3; ++k)
+      if (const std::string why = f32_problem(r[k], "xyz"[k]); !why.empty()) fail(key, why);
+    return r;
+  }
+  // A colour: three numbers in [0, kMaxColour].
+  glm::dvec3 colour(const char* key) const {
+    const glm::dvec3 r = vec3(key);
+    for (int k = 0; k < 3; ++k)
+      if (!(r[k] >= 0.0 && r[k] <= kMaxColour))
+        fail(key, std::string(1, "rgb"[k]) + " = " + num(r[k]) + " is outside [0, " +
+                      num(kMaxColour) + "] (colours are fractions per channel, 1 = 255)");
     return r;
   }
   std::string sub(const std::string& key) const {
@@ -188,6 +246,39 @@ std::string find_model(const std::string& path, const std::string& base_dir,
               "\n(set --models-path or RAYCORE_MODELS_PATH)");
 }
 
+std::optional<CameraProblem> camera_problem(const Camera& cam) {
+  const std::pair<const char*, const glm::dvec3*> vectors[] = {
+      {"eye", &cam.eye}, {"look", &cam.look}, {"up", &cam.up}};
+  for (const auto& [field, v] : vectors)
+    for (int k = 0; k < 3; ++k)
+      if (std::string why = f32_problem((*v)[k], "xyz"[k]); !why.empty())
+        return CameraProblem{field, std::move(why)};
+  if (!(cam.fov_deg >= kMinFovDeg && cam.fov_deg <= kMaxFovDeg))
+    return CameraProblem{"fov", num(cam.fov_deg) + " degrees is outside [" + num(kMinFovDeg) +
+                                    ", " + num(kMaxFovDeg) +
+                                    "] (the vertical field of view, in degrees)"};
+  // The view in double, then as the image's view record holds it (float32).
+  for (int pass = 0; pass < 2; ++pass) {
+    const glm::dvec3 eye = pass == 0 ? cam.eye : to_f32(cam.eye);
+    const glm::dvec3 look = pass == 0 ? cam.look : to_f32(cam.look);
+    const glm::dvec3 up = pass == 0 ? cam.up : to_f32(cam.up);
+    const std::string as = pass == 0 ? "" : " once rounded to float32 (the image stores float32)";
+    if (look == eye) return CameraProblem{"look", "must differ from eye" + as};
+    if (up == glm::dvec3(0.0)) return CameraProblem{"up", "must not be zero" + as};
+    const double sine = glm::length(glm::cross(direction(look - eye), direction(up)));
+    if (!(sine >= kMinUpSine))
+      return CameraProblem{"up", "is parallel to the view direction" + as +
+                                     ": the sine of the angle between them is " + num(sine) +
+                                     ", it must be at least " + num(kMinUpSine)};
+  }
+  return std::nullopt;
+}
+
+void check_camera(const Camera& cam, const std::string& where) {
+  if (const auto problem = camera_problem(cam))
+    throw Error(where + "." + problem->field + ": " + problem->what);
+}
+
 Camera auto_camera(const glm::dvec3& lo, const glm::dvec3& hi) {
   Camera cam;
   cam.fov_deg = 45.0;
@@ -202,7 +293,7 @@ Scene load_scene_json_text(const std::string& text, const std::string& name,
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse errors, and numbers too large for a double
     throw Error(name + ": invalid JSON: " + e.what());
   }
   const Fields top(doc, "", name);
@@ -227,10 +318,7 @@ Scene load_scene_json_text(const std::string& text, const std::string& name,
     cam.look = cf.vec3("look");
     if (cf.has("up")) cam.up = cf.vec3("up");
     if (cf.has("fov")) cam.fov_deg = cf.number("fov");
-    if (!(cam.fov_deg > 0.0 && cam.fov_deg < 180.0)) cf.fail("fov", "must be in (0, 180) degrees");
-    if (glm::length(cam.look - cam.eye) == 0.0) cf.fail("look", "must differ from eye");
-    if (glm::length(glm::cross(cam.look - cam.eye, cam.up)) == 0.0)
-      cf.fail("up", "must not be parallel to the view direction");
+    if (const auto problem = camera_problem(cam)) cf.fail(problem->field, problem->what);
     scene.camera = cam;
   }
   if (top.has("resolution")) {
@@ -242,7 +330,7 @@ Scene load_scene_json_text(const std::string& text, const std::string& name,
     scene.width = r[0].get<uint32_t>();
     scene.height = r[1].get<uint32_t>();
   }
-  if (top.has("background")) scene.background = top.vec3("background");
+  if (top.has("background")) scene.background = top.colour("background");
   if (top.has("lights")) {
     const json& lights = top.at("lights");
     if (!lights.is_array()) top.fail("lights", "expected an array");
@@ -255,18 +343,24 @@ Scene load_scene_json_text(const std::string& text, const std::string& name,
         light.type = Light::Type::kPoint;
         if (!lf.has("position")) lf.fail("position", "a point light needs a position");
         if (lf.has("direction")) lf.fail("direction", "a point light has no direction");
-        light.position = lf.vec3("position");
+        light.position = lf.vec3_f32("position");
       } else if (type == "directional") {
         light.type = Light::Type::kDirectional;
         if (!lf.has("direction")) lf.fail("direction", "a directional light needs a direction");
         if (lf.has("position")) lf.fail("position", "a directional light has no position");
-        light.position = lf.vec3("direction");
-        if (glm::length(light.position) == 0.0) lf.fail("direction", "must not be zero");
+        light.position = lf.vec3_f32("direction");
+        if (to_f32(light.position) == glm::dvec3(0.0))
+          lf.fail("direction", "must not be zero (as float32, as the image stores it)");
       } else {
         lf.fail("type", "expected \"point\" or \"directional\"");
       }
-      if (lf.has("color")) light.color = lf.vec3("color");
-      if (lf.has("intensity")) light.intensity = lf.number("intensity");
+      if (lf.has("color")) light.color = lf.colour("color");
+      if (lf.has("intensity")) {
+        light.intensity = lf.number("intensity");
+        if (!(light.intensity >= 0.0 && light.intensity <= kMaxIntensity))
+          lf.fail("intensity",
+                  num(light.intensity) + " is outside [0, " + num(kMaxIntensity) + "]");
+      }
       scene.lights.push_back(light);
     }
   }

@@ -21,6 +21,33 @@ struct Camera {
   double fov_deg = 45.0;  // vertical field of view
 };
 
+// The one camera rule of the project, used by `scene build` for scene files and by `render`
+// (tb/golden's validate_camera(): the --camera option, a scene's camera, an image's view record):
+//  - eye, look and up are finite and inside the float32 range (the image's view record stores
+//    float32);
+//  - the vertical fov is in [kMinFovDeg, kMaxFovDeg] degrees: below kMinFovDeg tan(fov/2) is so
+//    small that the ray generator's pixel steps vanish in the core's format, above kMaxFovDeg the
+//    directions through the image's corners grow without bound;
+//  - look differs from eye, up is not zero, and up is not (nearly) parallel to the view direction:
+//    |normalize(look - eye) x normalize(up)| >= kMinUpSine, so only the directions count, not the
+//    lengths (an up of (0, 1e-12, 0) is as good as (0, 1, 0));
+//  - and the last point holds again for the camera rounded to float32, as an image stores it.
+// kMinUpSine (an angle of 0.0057 degrees) keeps the image's rotation caused by that rounding (at
+// most 2^-24 / kMinUpSine radians) below 0.001 degrees.
+inline constexpr double kMinFovDeg = 1e-3;
+inline constexpr double kMaxFovDeg = 180.0 - 1e-3;
+inline constexpr double kMinUpSine = 1e-4;
+
+struct CameraProblem {
+  std::string field;  // "eye", "look", "up" or "fov"
+  std::string what;   // e.g. "must differ from eye"
+};
+// The first problem of the camera under the rule above, if any.
+std::optional<CameraProblem> camera_problem(const Camera& cam);
+// Throws Error("WHERE.FIELD: WHAT") for the first problem (WHERE is e.g. "camera" or
+// "FILE: camera").
+void check_camera(const Camera& cam, const std::string& where = "camera");
+
 struct Light {
   enum class Type { kPoint, kDirectional };
   Type type = Type::kPoint;
@@ -28,6 +55,12 @@ struct Light {
   glm::dvec3 color{1.0, 1.0, 1.0};
   double intensity = 1.0;
 };
+
+// The ranges a scene file's colours and light intensities must lie in (docs/memory-format.md,
+// "Scene files"): the background and light colours are fractions per channel (the core shows the
+// background as 8-bit RGB, 1 = 255), the intensity scales a light's colour.
+inline constexpr double kMaxColour = 1.0;
+inline constexpr double kMaxIntensity = 1e6;
 
 struct Scene {
   std::string name;
