@@ -1,11 +1,14 @@
-// The raycore executable: exit status 0 on success, 1 for errors (with a message naming the file
-// and the problem), 2 for usage errors; never a crash or a hang.
+// `raycore scene build` and `raycore scene info` run as a process: exit status 0 on success, 1 for
+// errors (with a message naming the file and the problem), 2 for usage errors; never a crash or a
+// hang, nothing written on an error. render and board-image: render_cli_test.cpp.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "compiler.hpp"
+#include "image.hpp"
 #include "test_util.hpp"
 
 namespace rc::test {
@@ -82,6 +85,38 @@ TEST(Cli, ErrorsAndUsage) {
   write_temp("empty.obj", "# nothing\n");
   write_temp("nan.obj", "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
   write_temp("bad.json", "{\"meshes\": 3}");
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string self = write_temp("self.obj", tri);
+  const std::string with_mtl = write_temp("withmtl.obj", "mtllib withmtl.mtl\n" + tri);
+  const std::string mtl = write_temp("withmtl.mtl", "newmtl a\nKd 0.5 0.5 0.5\n");
+  write_temp("badmtl.obj", "mtllib badmtl.mtl\n" + tri);
+  write_temp("badmtl.mtl", "newmtl a\nKd banana -1 1e40\n");
+  const std::string mesh = write_temp("mesh.obj", tri);
+  const std::string scene = write_temp("scene.json", R"({"meshes": [{"path": "mesh.obj"}]})");
+  write_temp("fov.json",
+             R"({"meshes": [{"builtin": "cornell"}],
+                 "camera": {"eye": [0, 0, 5], "look": [0, 0, 0], "fov": 1e-300}})");
+  write_temp("up.json", R"({"meshes": [{"builtin": "cornell"}],
+                 "camera": {"eye": [0, 0, 5], "look": [0, 0, 0], "up": [0, 1e-12, 1]}})");
+  write_temp("noeye.json",
+             R"({"meshes": [{"builtin": "cornell"}], "camera": {"look": [0, 0, 0]}})");
+  write_temp("thirtytwo.bin", std::string(32, 'x'));
+  write_temp("three.bin", "RCI");
+  // An image with 32 problems: every shading record names a material beyond the table.
+  auto many = bytes;
+  {
+    const auto img = rc::scene::SceneImage::from_bytes(bytes);
+    const auto& sh = section_of(img, rc::spec::kImageSectionIdShading);
+    ASSERT_EQ(img.triangle_count(), 32u);
+    ASSERT_EQ(img.dropped_count(), 0u);
+    for (uint32_t t = 0; t < img.triangle_count(); ++t)
+      patch(&many, sh.offset + t * sh.stride + rc::spec::kImageShadingMaterial, 1000 + t, 4);
+    fix_checksum(&many);
+    const auto v = rc::scene::SceneImage::from_bytes(many).validation();
+    EXPECT_EQ(v.total, 32u);
+    EXPECT_EQ(v.problems.size(), 20u);
+  }
+  write_file(dir + "/many.rcimg", many);
   const std::string out = dir + "/out.rcimg";
   const std::vector<BadRun> cases = {
       {"no arguments", {}, 2, "subcommand"},
@@ -136,7 +171,72 @@ TEST(Cli, ErrorsAndUsage) {
        1,
        "unsupported image version 9"},
       {"checksum mismatch", {"scene", "info", dir + "/corrupt.rcimg"}, 1, "checksum mismatch"},
-      {"OBJ given to info", {"scene", "info", dir + "/bad.obj"}, 1, "truncated image"},
+      {"OBJ given to info", {"scene", "info", dir + "/bad.obj"}, 1, "not a raycore image"},
+      {"32-byte non-image given to info",
+       {"scene", "info", dir + "/thirtytwo.bin"},
+       1,
+       "thirtytwo.bin: not a raycore image: magic 0x78787878"},
+      {"3-byte file given to info", {"scene", "info", dir + "/three.bin"}, 1, "truncated image"},
+      {"image with 32 problems",
+       {"scene", "info", dir + "/many.rcimg"},
+       1,
+       "many.rcimg: the image is malformed (32 problems, the first 20 listed above)"},
+      {"image with 32 problems: the 21st line",
+       {"scene", "info", dir + "/many.rcimg"},
+       1,
+       "raycore: malformed: triangle 19: material 1019 out of range (4 materials)\nraycore: "
+       "error:"},
+      {"output is the input",
+       {"scene", "build", self, "-o", self},
+       1,
+       "-o " + self + ": is the input " + self + ": refusing to overwrite an input"},
+      {"--stats is -o",
+       {"scene", "build", "builtin:cornell", "-o", out, "--stats", out},
+       1,
+       "--stats " + out + " and -o " + out + " are the same file"},
+      {"--stats is the input",
+       {"scene", "build", self, "-o", out, "--stats", self},
+       1,
+       "--stats " + self + ": is the input"},
+      {"output in a missing directory",
+       {"scene", "build", "builtin:cornell", "-o", dir + "/no/such/dir/x.rcimg"},
+       1,
+       "-o " + dir + "/no/such/dir/x.rcimg: cannot write: the directory " + dir +
+           "/no/such/dir does not exist"},
+      {"output is the OBJ's MTL file",
+       {"scene", "build", with_mtl, "-o", mtl},
+       1,
+       "-o " + mtl + ": is the MTL file " + mtl + ": refusing to overwrite an input"},
+      {"output is a JSON scene's mesh",
+       {"scene", "build", scene, "-o", mesh},
+       1,
+       "-o " + mesh + ": is the mesh " + mesh + ": refusing to overwrite an input"},
+      {"bad MTL value",
+       {"scene", "build", dir + "/badmtl.obj", "-o", out},
+       1,
+       "raycore: error: " + dir + "/badmtl.mtl:2: Kd: 'banana' is not a number"},
+      {"camera fov too small",
+       {"scene", "build", dir + "/fov.json", "-o", out},
+       1,
+       "fov.json: camera.fov: 1e-300 degrees is outside [0.001, 179.999]"},
+      {"camera up parallel to the view",
+       {"scene", "build", dir + "/up.json", "-o", out},
+       1,
+       "up.json: camera.up: is parallel to the view direction"},
+      {"camera without eye",
+       {"scene", "build", dir + "/noeye.json", "-o", out},
+       1,
+       "noeye.json: camera.eye: missing (this key is required)"},
+      {"render --camera with trailing text",
+       {"render", "builtin:cornell", "--engine", "golden", "-o", dir + "/r.png", "--camera",
+        "eye=0,1,3.8:look=0,1,0:fov=45deg"},
+       1,
+       "camera: fov has a bad number '45deg'"},
+      {"render --camera up parallel to the view",
+       {"render", "builtin:cornell", "--engine", "golden", "-o", dir + "/r.png", "--camera",
+        "eye=0,0,5:look=0,0,0:up=0,1e-12,1"},
+       1,
+       "camera.up: is parallel to the view direction"},
   };
   size_t mismatches = 0;
   for (const auto& c : cases) {
@@ -148,6 +248,12 @@ TEST(Cli, ErrorsAndUsage) {
                     << r.output;
   }
   report_cases("raycore command line errors", cases.size(), mismatches);
+  // Nothing was written: no output appeared, and no input was overwritten.
+  for (const std::string& f : {out, dir + "/r.png"}) EXPECT_FALSE(std::filesystem::exists(f)) << f;
+  EXPECT_EQ(read_file(self), std::vector<uint8_t>(tri.begin(), tri.end()));
+  const std::string mtl_text = "newmtl a\nKd 0.5 0.5 0.5\n";
+  EXPECT_EQ(read_file(mtl), std::vector<uint8_t>(mtl_text.begin(), mtl_text.end()));
+  EXPECT_EQ(read_file(mesh), std::vector<uint8_t>(tri.begin(), tri.end()));
 }
 
 }  // namespace

@@ -13,12 +13,13 @@
 #include "embree_engine.hpp"
 #include "geometry.hpp"
 #include "job.hpp"
+#include "models_dir.hpp"
 
 namespace rc::test {
 namespace {
 
 const std::string kRoot = RC_SOURCE_DIR;
-const std::string kModels = kRoot + "/../shared/models";
+const std::string kModels = shared_models_dir();
 
 RenderInput load(const std::string& input) {
   return load_render_input(input, scene::LoadOptions{}, scene::NumberFormat::fp24());
@@ -91,8 +92,9 @@ TEST_P(GoldenVsEmbree, HitAgreementAtLeast99Percent) {
   const AgreementCase c = GetParam();
   std::string input = c.input;
   input = (input.rfind("scenes/", 0) == 0 ? kRoot : kModels) + "/" + input;
-  if (c.needs_models && !std::filesystem::exists(kModels))
-    GTEST_SKIP() << kModels << " is not there";
+  if (c.needs_models && kModels.empty())
+    GTEST_SKIP() << "the shared test models are not there (../shared/models beside the "
+                    "repository, or RAYCORE_MODELS_PATH)";
   const RenderInput in = load(input);
   RenderOptions opt = input_options(in);
   if (c.auto_camera) opt.camera = auto_camera_for(in.image);

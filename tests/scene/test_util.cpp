@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "error.hpp"
+#include "models_dir.hpp"
 
 #ifndef RC_SOURCE_DIR
 #error "RC_SOURCE_DIR must be defined"
@@ -211,10 +212,7 @@ std::string write_temp(const std::string& name, const std::string& text) {
   return path;
 }
 
-std::string models_dir() {
-  const std::string dir = std::string(RC_SOURCE_DIR) + "/../shared/models";
-  return std::filesystem::is_directory(dir) ? dir : std::string();
-}
+std::string models_dir() { return shared_models_dir(); }
 
 std::vector<std::string> readme_models() {
   std::vector<std::string> out;

@@ -51,7 +51,8 @@ const rc::scene::SectionInfo& section_of(const rc::scene::SceneImage& img, uint3
 std::string temp_dir();
 std::string write_temp(const std::string& name, const std::string& text);
 
-// The shared models directory (../shared/models from the repository root); empty if absent.
+// The shared models directory (tests/models_dir.hpp: RAYCORE_MODELS_PATH or ../shared/models);
+// empty if absent.
 std::string models_dir();
 // The .obj files listed in models/README.md ("a/{b,c}.obj" expanded), relative to models_dir().
 std::vector<std::string> readme_models();
