@@ -22,6 +22,7 @@
 #include "error.hpp"
 #include "geometry.hpp"
 #include "job.hpp"
+#include "output_paths.hpp"
 
 namespace rc::app {
 namespace {
@@ -40,6 +41,7 @@ struct RenderArgs {
   uint64_t stall_seed = 0;
   uint64_t watchdog = 200000;
   std::string threads_rtl = "default", isect_interval_rtl = "default", trace, trace_window;
+  std::vector<std::string> rtl_options_given;  // the --engine rtl options on the command line
 };
 
 void parse_size(const std::string& text, uint32_t& w, uint32_t& h) {
@@ -52,6 +54,17 @@ void parse_size(const std::string& text, uint32_t& w, uint32_t& h) {
   w = static_cast<uint32_t>(a);
   h = static_cast<uint32_t>(b);
 }
+
+// Whole numbers on the command line: decimal digits only. CLI11 alone would read "-1" into an
+// unsigned option as 2^64 - 1 and "45deg" as 45.
+const CLI::Validator kDigits(
+    [](std::string& text) {
+      if (text.empty() || text.size() > 19 ||
+          text.find_first_not_of("0123456789") != std::string::npos)
+        return "expected a whole number of decimal digits, got '" + text + "'";
+      return std::string();
+    },
+    "UINT");
 
 nlohmann::json counters_json(const Counters& c) {
   const auto per_packet = [&](uint64_t v) {
@@ -226,12 +239,16 @@ harness::CoreSimResult run_rtl(const RenderArgs& a, const RenderInput& in,
   so.stall_seed = a.stall_seed;
   so.watchdog_cycles = a.watchdog;
   so.trace_path = a.trace;
-  if (!a.trace_window.empty()) {
-    if (a.trace.empty()) throw Error("--trace-window needs --trace");
-    parse_window(a.trace_window, so.trace_first, so.trace_last);
-  }
+  if (!a.trace_window.empty()) parse_window(a.trace_window, so.trace_first, so.trace_last);
   so.progress = !a.quiet;
   return harness::render_rtl(in.image, opt, so, rtl_model(a));
+}
+
+// Where --check writes its difference image on a mismatch: --diff, or beside the output
+// (out/x.png -> out/x.diff.png).
+std::string check_diff_path(const RenderArgs& a) {
+  if (!a.diff.empty()) return a.diff;
+  return std::filesystem::path(a.output).replace_extension(".diff.png").string();
 }
 
 // --check: the golden model's frame against the RTL's, bit for bit. Returns whether they agree.
@@ -244,7 +261,11 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   std::vector<std::string> counters, allowed;  // differences that fail the check, and not
   for (const CounterDifference& d : counter_differences(gold.counters, rtl.counters))
     (d.required ? counters : allowed).push_back(d.text());
-  const bool ok = cmp.equal() && counters.empty();
+  // The run itself: idle at the end, misses without a hit record, one write per pixel, no
+  // watchdog (the regression tests judge a run by the same function).
+  const std::vector<std::string> run =
+      sim ? harness::run_problems(*sim) : std::vector<std::string>{};
+  const bool ok = cmp.equal() && counters.empty() && run.empty();
   js["check"] = {{"engine", "golden"},
                  {"pixels", cmp.pixels},
                  {"differing_pixels", cmp.differing},
@@ -252,6 +273,7 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
                  {"hits_differ", cmp.hits_differ},
                  {"counter_differences", counters},
                  {"counter_differences_after_error", allowed},
+                 {"run_problems", run},
                  {"pass", ok}};
   if (ok) {
     if (!a.quiet) {
@@ -289,12 +311,11 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
     }
     js["check"]["first"] = {{"x", x}, {"y", y}};
     // --diff, or next to the output: out/x.png -> out/x.diff.png
-    const std::string diff =
-        !a.diff.empty() ? a.diff
-                        : std::filesystem::path(a.output).replace_extension(".diff.png").string();
+    const std::string diff = check_diff_path(a);
     write_image(diff, rtl.width, rtl.height, exact_difference_image(gold, rtl));
     std::printf("    difference image (red: hit record, yellow: rgb only): %s\n", diff.c_str());
   }
+  for (const std::string& d : run) std::printf("  run: %s\n", d.c_str());
   for (const std::string& d : counters) std::printf("  counter %s\n", d.c_str());
   for (const std::string& d : allowed)
     std::printf("  counter %s (after an error: allowed to differ)\n", d.c_str());
@@ -343,18 +364,53 @@ int run_render(const RenderArgs& a) {
         a.ray_source + "'");
   if (!a.reference.empty() && a.reference != "embree" && a.reference != "golden")
     throw Error("--reference: expected embree or golden, got '" + a.reference + "'");
+  if (!a.diff.empty() && a.reference.empty() && !a.check)
+    throw Error("--diff needs --reference (or --engine rtl --check)");
+  if (a.engine != "rtl" && !a.rtl_options_given.empty())
+    throw Error(a.rtl_options_given.front() + " needs --engine rtl");
+  if (!a.trace_window.empty() && a.trace.empty()) throw Error("--trace-window needs --trace");
+  if (a.engine == "rtl") (void)rtl_model(a);   // --threads-rtl, --isect-interval-rtl
+  uint64_t window_first = 0, window_last = 0;  // checked here, used by run_rtl()
+  if (!a.trace_window.empty()) parse_window(a.trace_window, window_first, window_last);
+  const RaySource ray_source = a.ray_source.empty()
+                                   ? (a.engine == "board" ? RaySource::kRayGen : RaySource::kHost)
+                                   : parse_ray_source(a.ray_source);
+  uint32_t width = 0, height = 0;
+  if (!a.size.empty()) parse_size(a.size, width, height);
+  std::optional<Camera> camera;
+  if (!a.camera.empty()) camera = parse_camera(a.camera);
+  const scene::NumberFormat format = scene::NumberFormat::parse(a.format);
+
+  // The outputs before any work: each writable, none an input, no two the same file.
+  const std::string diff = a.check ? check_diff_path(a) : a.diff;
+  const std::vector<NamedPath> outputs = {{"-o", a.output},
+                                          {"--hits", a.hits},
+                                          {"--stats", a.stats},
+                                          {"--trace", a.trace},
+                                          {"--diff", diff}};
+  check_outputs({{"input", a.input}}, outputs);
+  check_image_name(a.output);
+  if (!diff.empty()) check_image_name(diff);
+
   scene::LoadOptions load;
   load.models_path = a.models_path;
-  const RenderInput in = load_render_input(a.input, load, scene::NumberFormat::parse(a.format));
+  const RenderInput in = load_render_input(a.input, load, format);
+  require_valid(in.image);
+  if (in.scene) {  // the meshes a scene file named are inputs too
+    std::vector<NamedPath> meshes;
+    for (const auto& m : in.scene->meshes) meshes.push_back({"mesh", m.source});
+    check_outputs(meshes, outputs);
+  }
   RenderOptions opt = input_options(in);
-  if (!a.size.empty()) parse_size(a.size, opt.width, opt.height);
-  if (!a.camera.empty()) opt.camera = parse_camera(a.camera);
+  if (width) {
+    opt.width = width;
+    opt.height = height;
+  }
+  if (camera) opt.camera = *camera;
   if (a.auto_camera) opt.camera = auto_camera_for(in.image);
   opt.threads = a.threads;
   opt.progress = !a.quiet;
-  opt.ray_source = a.ray_source.empty()
-                       ? (a.engine == "board" ? RaySource::kRayGen : RaySource::kHost)
-                       : parse_ray_source(a.ray_source);
+  opt.ray_source = ray_source;
 
   std::optional<harness::CoreSimResult> rtl;
   std::optional<harness::BoardSimResult> board;
@@ -447,8 +503,6 @@ int run_render(const RenderArgs& a) {
           static_cast<unsigned long long>(ag.same_depth),
           static_cast<unsigned long long>(ag.only_a_hits), a.engine.c_str(),
           static_cast<unsigned long long>(ag.only_b_hits), a.reference.c_str(), ag.psnr_db);
-  } else if (!a.diff.empty() && !a.check) {
-    throw Error("--diff needs --reference (or --engine rtl --check)");
   }
   if (!a.stats.empty()) {
     std::ofstream out(a.stats);
@@ -468,12 +522,27 @@ struct BoardImageArgs {
 
 // `raycore board-image`: the block RAM contents and register file of the board build.
 int run_board_image(const BoardImageArgs& a) {
+  uint32_t width = 0, height = 0;
+  if (!a.size.empty()) parse_size(a.size, width, height);
+  std::optional<Camera> camera;
+  if (!a.camera.empty()) camera = parse_camera(a.camera);
+  const scene::NumberFormat format = scene::NumberFormat::parse(a.format);
+  check_output_dir({"-o", a.output});
+  for (const std::string& name : harness::board_image_files()) {
+    const std::string file = (std::filesystem::path(a.output) / name).string();
+    if (same_file(file, a.input))
+      throw Error("-o " + a.output + ": would overwrite the input " + a.input + " (" + name + ")");
+  }
   scene::LoadOptions load;
   load.models_path = a.models_path;
-  const RenderInput in = load_render_input(a.input, load, scene::NumberFormat::parse(a.format));
+  const RenderInput in = load_render_input(a.input, load, format);
+  require_valid(in.image);
   RenderOptions opt = input_options(in);
-  if (!a.size.empty()) parse_size(a.size, opt.width, opt.height);
-  if (!a.camera.empty()) opt.camera = parse_camera(a.camera);
+  if (width) {
+    opt.width = width;
+    opt.height = height;
+  }
+  if (camera) opt.camera = *camera;
   if (a.auto_camera) opt.camera = auto_camera_for(in.image);
   const harness::BoardImage b = harness::make_board_image(in.image, opt, a.fb_pixels);
   harness::write_board_image(b, a.output, a.input);
@@ -505,8 +574,10 @@ void add_render_commands(CLI::App& app, Action* action) {
     cmd->add_option("--format", args->format, "number format (the board is fp24: 7/16)")
         ->capture_default_str();
     cmd->add_option("--models-path", args->models_path, "directories searched for meshes");
-    cmd->add_option("--fb-pixels", args->fb_pixels, "the board's framebuffer size in pixels")
-        ->capture_default_str();
+    cmd->add_option("--fb-pixels", args->fb_pixels,
+                    "the board's framebuffer size in pixels (1 to 16777216)")
+        ->capture_default_str()
+        ->check(kDigits & CLI::Range(1u, 1u << 24));
     cmd->callback([args, action] { *action = [args] { return run_board_image(*args); }; });
   }
 
@@ -538,7 +609,11 @@ void add_render_commands(CLI::App& app, Action* action) {
   cmd->add_option("--format", args->format, "number format for scene inputs: 7/16 or 8/23")
       ->capture_default_str();
   cmd->add_option("--models-path", args->models_path, "directories searched for meshes");
-  cmd->add_option("--threads", args->threads, "threads (0: all)")->capture_default_str();
+  cmd->add_option("--threads", args->threads,
+                  "golden and embree: host threads (0: all; at most " +
+                      std::to_string(kMaxRenderThreads) + ")")
+      ->capture_default_str()
+      ->check(kDigits & CLI::Range(0u, kMaxRenderThreads));
   cmd->add_flag("-q,--quiet", args->quiet, "no progress bar or summary");
   cmd->add_flag(
       "--check", args->check,
@@ -546,11 +621,12 @@ void add_render_commands(CLI::App& app, Action* action) {
       "and the counters bit for bit (exit status 1 on a mismatch)");
   cmd->add_option("--latency", args->latency, "rtl: memory latency in cycles, every port")
       ->capture_default_str()
-      ->check(CLI::Range(1u, 100000u));
+      ->check(kDigits & CLI::Range(1u, 100000u));
   cmd->add_option("--stall-seed", args->stall_seed,
                   "rtl: seeded random memory stalls, packet gaps and framebuffer back-pressure "
                   "(0: none)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kDigits);
   cmd->add_option("--threads-rtl", args->threads_rtl,
                   "rtl: the core's packet threads: default or 1")
       ->capture_default_str();
@@ -561,9 +637,16 @@ void add_render_commands(CLI::App& app, Action* action) {
   cmd->add_option("--trace", args->trace, "rtl: write an FST waveform");
   cmd->add_option("--trace-window", args->trace_window, "rtl: trace only cycles FIRST:LAST");
   cmd->add_option("--watchdog", args->watchdog,
-                  "rtl: fail after this many cycles without any handshake")
-      ->capture_default_str();
-  cmd->callback([args, action] { *action = [args] { return run_render(*args); }; });
+                  "rtl: fail after this many cycles without any handshake (at least 1; the "
+                  "board: ten times as many)")
+      ->capture_default_str()
+      ->check(kDigits & CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  cmd->callback([cmd, args, action] {
+    for (const char* name : {"--latency", "--stall-seed", "--threads-rtl", "--isect-interval-rtl",
+                             "--trace", "--trace-window"})
+      if (cmd->get_option(name)->count() > 0) args->rtl_options_given.push_back(name);
+    *action = [args] { return run_render(*args); };
+  });
 }
 
 }  // namespace rc::app

@@ -30,6 +30,18 @@ RenderInput load_render_input(const std::string& input, const scene::LoadOptions
   return {input, std::move(s), std::move(img), std::move(c.stats)};
 }
 
+void require_valid(const scene::SceneImage& image) {
+  const scene::Validation v = image.validation(4);
+  if (v.ok()) return;
+  std::string text;
+  for (const std::string& p : v.problems) text += "\n  " + p;
+  if (v.total > v.problems.size())
+    text += "\n  ... and " + std::to_string(v.total - v.problems.size()) +
+            " more (`raycore scene info` lists them)";
+  throw scene::Error(image.name() + ": the image is malformed (" + std::to_string(v.total) +
+                     (v.total == 1 ? " problem):" : " problems):") + text);
+}
+
 Camera auto_camera_for(const scene::SceneImage& img) {
   const auto b = img.bounds();
   return scene::auto_camera(glm::dvec3(b[0], b[1], b[2]), glm::dvec3(b[3], b[4], b[5]));

@@ -24,6 +24,11 @@ struct RenderInput {
 RenderInput load_render_input(const std::string& input, const scene::LoadOptions& load,
                               const scene::NumberFormat& format);
 
+// Runs the image's validation (the checks of `raycore scene info`: tree, list ranges, records,
+// bounds, materials, lights) and throws rc::scene::Error naming the problems when it finds any.
+// Every engine's input passes through it before a render starts.
+void require_valid(const scene::SceneImage& image);
+
 // The render options the input itself asks for: its camera (or the automatic camera when it has
 // none), its frame size and background colour.
 RenderOptions input_options(const RenderInput& in);

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <functional>
 #include <mutex>
@@ -37,11 +38,29 @@ void parallel_rows(uint32_t rows, unsigned threads, bool progress, const char* l
       printed = true;
     }
   };
+  // An exception in a row (a worker's or this thread's) ends the work and is rethrown here after
+  // every thread has joined; a thread that cannot be started leaves the rows to the others.
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto guarded = [&] {
+    try {
+      worker();
+    } catch (...) {
+      next.store(rows);
+      std::lock_guard<std::mutex> lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+    }
+  };
   std::vector<std::thread> pool;
-  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
+  try {
+    pool.reserve(threads - 1);
+    for (unsigned i = 1; i < threads; ++i) pool.emplace_back(guarded);
+  } catch (const std::exception&) {  // std::system_error (no more threads) or bad_alloc
+  }
+  guarded();
   for (auto& t : pool) t.join();
   if (printed) std::fprintf(stderr, "\n");
+  if (failure) std::rethrow_exception(failure);
 }
 
 template <class T>
@@ -116,6 +135,14 @@ void write_hits(const std::string& path, const Frame& f) {
     put_u32(out, tb);
   }
   if (!out) throw std::runtime_error("error writing hits file '" + path + "'");
+}
+
+void check_image_name(const std::string& path) {
+  if (!OIIO::ImageOutput::create(path)) {
+    (void)OIIO::geterror();  // clears OpenImageIO's message ("could not find a format writer")
+    throw std::runtime_error("cannot write image '" + path +
+                             "': no image format for this file name (use .png, .exr, .ppm, ...)");
+  }
 }
 
 void write_image(const std::string& path, uint32_t width, uint32_t height,

@@ -42,11 +42,14 @@ enum class RaySource { kHost, kRayGen };
 RaySource parse_ray_source(const std::string& name);  // "host" | "raygen"; throws otherwise
 const char* ray_source_name(RaySource s);
 
+// The most threads a render takes (the command line's --threads bound).
+constexpr unsigned kMaxRenderThreads = 256;
+
 struct RenderOptions {
   uint32_t width = 256, height = 192;
   Camera camera;
   std::array<uint8_t, 3> background{0, 0, 0};
-  unsigned threads = 0;  // 0: all hardware threads
+  unsigned threads = 0;  // 0: all hardware threads; at most kMaxRenderThreads
   bool progress = true;  // progress bar on stderr for renders longer than a second
   RaySource ray_source = RaySource::kHost;
 };
@@ -135,8 +138,10 @@ class PacketSource {
   RaySource src_;
 };
 
-// Runs fn(first_row, last_row) for rows [0, rows) in chunks on `threads` threads (0: all), with a
-// progress bar on stderr when `progress` and the work takes longer than a second.
+// Runs fn(row) for every row of [0, rows) on `threads` threads (0: all hardware threads), with a
+// progress bar on stderr when `progress` and the work takes longer than a second. Threads that
+// cannot be started leave their rows to the others; an exception thrown by fn stops the work and
+// is rethrown once every thread has joined.
 void parallel_rows(uint32_t rows, unsigned threads, bool progress, const char* label,
                    const std::function<void(uint32_t)>& fn);
 
@@ -149,5 +154,8 @@ void write_hits(const std::string& path, const Frame& f);
 // Writes rgb through OpenImageIO (format from the file name: PNG, EXR, ...).
 void write_image(const std::string& path, uint32_t width, uint32_t height,
                  const std::vector<uint8_t>& rgb);
+// Throws std::runtime_error when OpenImageIO has no writer for the file name's extension, before
+// any work (creates no file).
+void check_image_name(const std::string& path);
 
 }  // namespace rc

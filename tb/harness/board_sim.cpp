@@ -112,6 +112,14 @@ BoardImage make_board_image(const scene::SceneImage& image, const RenderOptions&
   return b;
 }
 
+std::vector<std::string> board_image_files() {
+  std::vector<std::string> names;
+  for (const char* rom : kRomNames) names.push_back(std::string(rom) + ".hex");
+  names.push_back("regs.hex");
+  names.push_back("board.json");
+  return names;
+}
+
 void write_board_image(const BoardImage& b, const std::string& dir, const std::string& source) {
   namespace fs = std::filesystem;
   fs::create_directories(dir);

@@ -43,6 +43,8 @@ BoardImage make_board_image(const scene::SceneImage& image, const RenderOptions&
 // Writes <dir>/{nodes,lists,tris,shading,materials,regs}.hex ($readmemh) and <dir>/board.json
 // (depths, frame size, the parameters the FPGA flow passes to rc_board). Creates dir.
 void write_board_image(const BoardImage& b, const std::string& dir, const std::string& source);
+// The names of the files write_board_image() writes into its directory.
+std::vector<std::string> board_image_files();
 
 struct BoardSimOptions {
   uint64_t watchdog_cycles = 2000000;  // fail when the frame takes longer than this

@@ -88,6 +88,13 @@ struct CoreSimResult {
   double cycles_per_second = 0.0;    // simulated cycles per wall second
 };
 
+// What a run must show besides a frame and counters equal to the golden model's: the core idle at
+// the end, no miss carrying a hit record, the core's own count of framebuffer writes equal to the
+// frame's pixels, no error bit the golden model does not have (the watchdog, unknown bits). One
+// line per problem, empty for a clean run. `raycore render --check` and the regression tests both
+// judge a run by it.
+std::vector<std::string> run_problems(const CoreSimResult& r);
+
 // A run that went wrong: a hang (watchdog), the core's watchdog bit, a pixel written twice or not
 // at all, a write to a pixel that does not exist, a memory protocol violation. The message names
 // the cycle and the state of every port.

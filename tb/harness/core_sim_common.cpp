@@ -1,5 +1,8 @@
 // The parts of the core harness that do not depend on a verilated model (core_sim.hpp).
 #include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 #include "core_sim.hpp"
 
@@ -72,6 +75,30 @@ Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf_val
   c.errors = perf(spec::kCorePerfFailedPackets);
   c.error_bits = error_bits & (kErrMalformedNode | kErrBadAddress | kErrStackOverflow);
   return c;
+}
+
+std::vector<std::string> run_problems(const CoreSimResult& r) {
+  std::vector<std::string> out;
+  const uint32_t golden_bits = kErrMalformedNode | kErrBadAddress | kErrStackOverflow;
+  if (r.error_bits & ~golden_bits) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf,
+                  "error bits 0x%x outside the golden model's 0x%x (watchdog: 0x%x)",
+                  r.error_bits & ~golden_bits, golden_bits,
+                  1u << static_cast<unsigned>(spec::kCoreStatusWatchdog));
+    out.push_back(buf);
+  }
+  if (!r.idle) out.push_back("the core is not idle at the end of the frame (idle_o low)");
+  if (r.misses_with_payload)
+    out.push_back(std::to_string(r.misses_with_payload) +
+                  " misses carry a non-zero hit record (a miss must report tri, t, u, v = 0)");
+  const uint64_t pixels = static_cast<uint64_t>(r.frame.width) * r.frame.height;
+  const uint64_t counted = r.perf[static_cast<size_t>(spec::kCorePerfFbWrites)];
+  if (counted != pixels || r.fb_writes != pixels)
+    out.push_back("framebuffer writes: the core counted " + std::to_string(counted) +
+                  ", the harness saw " + std::to_string(r.fb_writes) + ", the frame has " +
+                  std::to_string(pixels) + " pixels");
+  return out;
 }
 
 uint64_t ideal_cycles(const Counters& c, uint32_t isect_interval) {

@@ -296,6 +296,8 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
       s.fst = std::make_unique<VerilatedFstC>();
       m.trace(s.fst.get(), 99);
       s.fst->open(s.opt.trace_path.c_str());
+      if (!s.fst->isOpen())
+        throw CoreSimError("--trace " + s.opt.trace_path + ": cannot open the waveform file");
     }
     s.fst->dump(time);
   };
@@ -447,6 +449,10 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
     res.memory[static_cast<size_t>(i)] = s.ports[static_cast<size_t>(i)]->stats();
   f.counters = counters_from_perf(res.perf, res.error_bits);
   if (s.fst) s.fst->flush();
+  if (!s.opt.trace_path.empty() && !s.fst)
+    throw CoreSimError("--trace " + s.opt.trace_path + ": no waveform written: the trace window " +
+                       std::to_string(s.opt.trace_first) + ":" + std::to_string(s.opt.trace_last) +
+                       " lies after the frame's last cycle " + std::to_string(s.cycle));
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   f.seconds = res.seconds;
   res.cycles_per_second = res.seconds > 0 ? static_cast<double>(res.cycles) / res.seconds : 0.0;

@@ -7,6 +7,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <iterator>
 #include <string>
 
 #include "Vrc_fake_core.h"
@@ -124,6 +126,58 @@ TEST(CoreHarness, TraceWindow) {
   }
   ASSERT_TRUE(std::filesystem::exists(o.trace_path));
   EXPECT_GT(std::filesystem::file_size(o.trace_path), 100u);
+}
+
+// The trace file must open: an unwritable path ends the run with a message naming it.
+TEST(CoreHarness, TraceThatCannotOpen) {
+  RenderOptions ro = input_options(cornell());
+  ro.width = 4;
+  ro.height = 4;
+  CoreSimOptions o;
+  o.trace_path = "/no/such/dir/t.fst";
+  try {
+    CoreSim<Vrc_fake_core>(cornell().image, o).render(ro);
+    ADD_FAILURE() << "no error for an unwritable trace";
+  } catch (const CoreSimError& e) {
+    EXPECT_NE(std::string(e.what()).find("/no/such/dir/t.fst: cannot open"), std::string::npos)
+        << e.what();
+  }
+}
+
+// run_problems(): what `raycore render --check` and the regression judge besides the frame.
+TEST(CoreHarness, RunProblems) {
+  RenderOptions ro = input_options(cornell());
+  ro.width = 6;
+  ro.height = 4;
+  const CoreSimResult clean = CoreSim<Vrc_fake_core>(cornell().image, {}).render(ro);
+  EXPECT_TRUE(harness::run_problems(clean).empty());
+  struct Bad {
+    const char* name;
+    std::function<void(CoreSimResult&)> apply;
+    const char* expect;
+  };
+  const Bad cases[] = {
+      {"watchdog bit", [](CoreSimResult& r) { r.error_bits |= 1u << spec::kCoreStatusWatchdog; },
+       "outside the golden model's"},
+      {"unknown bit", [](CoreSimResult& r) { r.error_bits |= 0x80u; }, "outside the golden"},
+      {"not idle", [](CoreSimResult& r) { r.idle = false; }, "not idle"},
+      {"miss with a payload", [](CoreSimResult& r) { r.misses_with_payload = 2; },
+       "2 misses carry"},
+      {"a write short (core's count)", [](CoreSimResult& r) { --r.perf[spec::kCorePerfFbWrites]; },
+       "the core counted 23"},
+      {"a write extra (harness)", [](CoreSimResult& r) { ++r.fb_writes; }, "the harness saw 25"},
+  };
+  size_t mismatches = 0;
+  for (const Bad& c : cases) {
+    CoreSimResult r = clean;
+    c.apply(r);
+    const auto problems = harness::run_problems(r);
+    const bool ok = problems.size() == 1 && problems[0].find(c.expect) != std::string::npos;
+    mismatches += !ok;
+    EXPECT_TRUE(ok) << c.name << ": " << (problems.empty() ? "no problem" : problems[0]);
+  }
+  std::printf("[cases] core harness run_problems: %zu cases, %zu mismatches\n", std::size(cases),
+              mismatches);
 }
 
 }  // namespace
