@@ -16,6 +16,8 @@
 #   make fpga-vivado  Vivado bitstream for the Nexys Video (fpga/xilinx/; needs Vivado on PATH and
 #                     VIVADO_SCENE=<directory written by `raycore board-image`>)
 #   make deps         installs the Debian/PyPI packages the project needs when they are missing
+#   make fuzz         libFuzzer targets for the OBJ/MTL, scene JSON and image readers
+#                     (FUZZ_SECONDS each, default 60; tests/fuzz/fuzz.mk; not part of CI)
 # Every target that needs a dependency calls `deps` first, so a fresh machine needs no extra step.
 
 BUILD   ?= build
@@ -208,6 +210,10 @@ format:
 
 clean:
 	rm -rf $(BUILD)
+
+# Fuzzing (libFuzzer with ASan/UBSan) of the OBJ/MTL loader, the scene JSON reader and the image
+# reader and validator: `make fuzz` (FUZZ_SECONDS per target, default 60; not part of CI).
+include tests/fuzz/fuzz.mk
 
 # Scene compiler benchmark: build time and SAH cost for bunny, Sponza and the conference room.
 .PHONY: bench-scene
