@@ -1,4 +1,5 @@
-// The board build's C++ side (board_sim.hpp): block RAM contents and the verilated rc_board.
+// The board build's C++ side (board_sim.hpp): block RAM contents, and the verilated rc_board's
+// run (board_module.cpp, a module: model_module.hpp).
 #include "board_sim.hpp"
 
 #include <unistd.h>
@@ -13,10 +14,9 @@
 #include <sstream>
 #include <type_traits>
 
-#include "Vrc_board.h"
 #include "error.hpp"
+#include "model_module.hpp"
 #include "rc_constants.hpp"
-#include "verilated.h"
 
 namespace rc::harness {
 
@@ -157,7 +157,10 @@ uint32_t board_model_fb_pixels() { return RC_BOARD_SIM_FbPixels; }
 BoardSimResult render_board(const scene::SceneImage& image, const RenderOptions& render,
                             const BoardSimOptions& options) {
   namespace fs = std::filesystem;
-  const auto start_time = std::chrono::steady_clock::now();
+  using ModuleSimulate =
+      int(const BoardImage*, const char*, const BoardSimOptions*, BoardSimResult*, std::string*);
+  auto* simulate = reinterpret_cast<ModuleSimulate*>(
+      module_symbol("rc_board_model", "rc_board_module_simulate"));
   const BoardImage b = make_board_image(image, render, board_model_fb_pixels());
   const uint32_t model_depth[kCorePorts] = {RC_BOARD_SIM_NodeDepth, RC_BOARD_SIM_ListDepth,
                                             RC_BOARD_SIM_TriDepth, RC_BOARD_SIM_ShdDepth,
@@ -186,132 +189,15 @@ BoardSimResult render_board(const scene::SceneImage& image, const RenderOptions&
     }
   } cleanup{dir};
 
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->assertOn(true);
-  ctx->fatalOnError(false);
-  std::vector<std::string> args = {"raycore-board"};
-  for (const BoardRom& rom : b.roms)
-    args.push_back("+" + rom.name + "=" + (dir / (rom.name + ".hex")).string());
-  args.push_back("+regs=" + (dir / "regs.hex").string());
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  ctx->commandArgs(static_cast<int>(argv.size()), argv.data());
-  auto m = std::make_unique<Vrc_board>(ctx.get(), "board");
-
   BoardSimResult res;
-  uint64_t cycle = 0;
-  const auto fail = [&](const std::string& what) {
-    throw BoardSimError("board: " + what + " (cycle " + std::to_string(cycle) + ")");
-  };
-  const auto tick = [&] {
-    m->clk_i = 1;
-    m->eval();
-    m->clk_i = 0;
-    m->eval();
-    ++cycle;
-    if (ctx->gotError()) fail("the RTL stopped (an assertion or $stop; see the message above)");
-  };
-  m->clk_i = 0;
-  m->rst_ni = 0;
-  m->reg_we_i = 0;
-  m->start_i = 0;
-  m->fb_raddr_i = 0;
-  m->eval();
-  for (int i = 0; i < 4; ++i) tick();
-  m->rst_ni = 1;
-  m->eval();
-  tick();
-
-  const auto write_reg = [&](uint32_t addr, uint32_t value) {
-    m->reg_we_i = 1;
-    m->reg_addr_i = static_cast<uint8_t>(addr);
-    m->reg_wdata_i = value;
-    tick();
-    m->reg_we_i = 0;
-  };
-  // A read: the address for one cycle, then the read data spec::kBoardReadLatency cycles on
-  // (the address lines change meanwhile, as a pipelined host's would).
-  const auto read_reg = [&](uint32_t addr) {
-    m->reg_addr_i = static_cast<uint8_t>(addr);
-    tick();
-    m->reg_addr_i = static_cast<uint8_t>(addr ^ 1u);
-    for (int64_t k = 1; k < spec::kBoardReadLatency; ++k) tick();
-    return static_cast<uint32_t>(m->reg_rdata_o);
-  };
-
-  // Program the camera and the frame size, then read the whole register file back.
-  for (uint32_t k = spec::kBoardRegEye; k <= spec::kBoardRegHeight; ++k) write_reg(k, b.regs[k]);
-  for (uint32_t k = 0; k < spec::kBoardRegs; ++k)
-    if (read_reg(k) != b.regs[k]) ++res.register_readback_differ;
-
-  // The frame.
-  Frame& f = res.frame;
-  f.width = b.width;
-  f.height = b.height;
-  const size_t npix = static_cast<size_t>(b.width) * b.height;
-  f.rgb.assign(npix * 3, 0);
-  f.hit_tri.assign(npix, -1);
-  f.hit_t.assign(npix, 0.0f);
-  f.hits.assign(npix, HitRecord{});
-  std::vector<uint8_t> seen(npix, 0);
-  write_reg(spec::kBoardRegControl, 1u);
-  const uint64_t frame_start = cycle;
-  while (!m->done_o) {
-    if (m->size_error_o) fail("the board refused the frame size");
-    if (m->mon_valid_o) {
-      const uint32_t pix = m->mon_pixel_o;
-      if (pix >= npix) fail("write to pixel " + std::to_string(pix) + " outside the frame");
-      if (seen[pix]++) fail("pixel " + std::to_string(pix) + " written twice");
-      const uint32_t rgb = m->mon_rgb_o;
-      for (int c = 0; c < 3; ++c)
-        f.rgb[pix * 3 + static_cast<size_t>(c)] = (rgb >> (8 * c)) & 0xffu;
-      if (m->mon_hit_o) {
-        f.hits[pix] =
-            HitRecord{static_cast<int32_t>(m->mon_tri_o), m->mon_t_o, m->mon_u_o, m->mon_v_o};
-        f.hit_tri[pix] = static_cast<int32_t>(m->mon_tri_o);
-        f.hit_t[pix] = fp24::from_bits(m->mon_t_o).to_float();
-      }
-    }
-    tick();
-    if (cycle - frame_start > options.watchdog_cycles)
-      fail("no done after " + std::to_string(options.watchdog_cycles) + " cycles (status " +
-           std::to_string(read_reg(spec::kBoardRegStatus)) + ")");
-    if (options.progress && (cycle & 0xfffff) == 0)
-      std::fprintf(stderr, "\rboard: %llu cycles", static_cast<unsigned long long>(cycle));
+  std::string error;
+  switch (simulate(&b, dir.c_str(), &options, &res, &error)) {
+    case kModuleOk: break;
+    case kModuleSimError: throw BoardSimError(error);
+    case kModuleSceneError: throw scene::Error(error);
+    default: throw std::runtime_error(error);
   }
-  if (options.progress && cycle - frame_start > 0xfffff) std::fprintf(stderr, "\n");
-  for (size_t p = 0; p < npix; ++p)
-    if (!seen[p]) fail("pixel " + std::to_string(p) + " never written");
-
-  // Status, cycles, counters and the framebuffer, all through the ports.
-  res.status = read_reg(spec::kBoardRegStatus);
-  res.error_bits =
-      (res.status >> spec::kBoardStatusCoreErrorLsb) & ((1u << spec::kCoreStatusBits) - 1u);
-  res.cycles = read_reg(spec::kBoardRegCycles);
-  for (int k = 0; k < kCorePerfCount; ++k) {
-    write_reg(spec::kBoardRegPerfSel, static_cast<uint32_t>(k));
-    tick();  // the counter reaches perf_lo/perf_hi through a register (rc_board's contract)
-    const uint64_t lo = read_reg(spec::kBoardRegPerfLo);
-    const uint64_t hi = read_reg(spec::kBoardRegPerfHi);
-    res.perf[static_cast<size_t>(k)] = lo | hi << 32;
-  }
-  f.counters = counters_from_perf(res.perf, res.error_bits);
-  for (size_t p = 0; p < npix; ++p) {
-    m->fb_raddr_i = static_cast<std::remove_reference_t<decltype(m->fb_raddr_i)>>(p);
-    tick();
-    const uint32_t rgb = m->fb_rdata_o;
-    for (int c = 0; c < 3; ++c)
-      if (((rgb >> (8 * c)) & 0xffu) != f.rgb[p * 3 + static_cast<size_t>(c)]) {
-        ++res.fb_readback_differ;
-        break;
-      }
-  }
-  m->final();
-  res.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  f.seconds = res.seconds;
-  res.cycles_per_second = res.seconds > 0 ? static_cast<double>(cycle) / res.seconds : 0.0;
-  return res;
+  return res;  // seconds and cycles per second: the simulation's own
 }
 
 }  // namespace rc::harness

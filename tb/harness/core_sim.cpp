@@ -1,13 +1,13 @@
-// The harness around the verilated core: instantiations for the build's three core models.
+// The harness around the verilated core: the default model is linked in; the other
+// configurations (Threads = 1, IsectInterval = 1) are modules loaded when a run asks for them
+// (model_module.hpp, core_module.cpp).
 #include "core_sim.hpp"
 
 #include "Vrc_core.h"
 #include "Vrc_core___024root.h"
-#include "Vrc_core_i1.h"
-#include "Vrc_core_i1___024root.h"
-#include "Vrc_core_t1.h"
-#include "Vrc_core_t1___024root.h"
 #include "core_sim_impl.hpp"
+#include "error.hpp"
+#include "model_module.hpp"
 
 namespace rc::harness {
 
@@ -16,25 +16,33 @@ std::string thread_states(const Vrc_core& m) {
   return describe_thread_states(m.rootp->rc_core__DOT__st_q,
                                 static_cast<uint32_t>(spec::kCoreThreads));
 }
-template <>
-std::string thread_states(const Vrc_core_t1& m) {
-  return describe_thread_states(m.rootp->rc_core__DOT__st_q, 1u);
-}
-
-template <>
-std::string thread_states(const Vrc_core_i1& m) {
-  return describe_thread_states(m.rootp->rc_core__DOT__st_q,
-                                static_cast<uint32_t>(spec::kCoreThreads));
-}
 
 template class CoreSim<Vrc_core>;
-template class CoreSim<Vrc_core_t1>;
-template class CoreSim<Vrc_core_i1>;
+
+namespace {
+
+using ModuleRender = int(const scene::SceneImage*, const RenderOptions*, const CoreSimOptions*,
+                         CoreSimResult*, std::string*);
+
+CoreSimResult render_module(const char* module, const scene::SceneImage& image,
+                            const RenderOptions& render, const CoreSimOptions& options) {
+  auto* fn = reinterpret_cast<ModuleRender*>(module_symbol(module, "rc_core_module_render"));
+  CoreSimResult r;
+  std::string error;
+  switch (fn(&image, &render, &options, &r, &error)) {
+    case kModuleOk: return r;
+    case kModuleSimError: throw CoreSimError(error);
+    case kModuleSceneError: throw scene::Error(error);
+    default: throw std::runtime_error(error);
+  }
+}
+
+}  // namespace
 
 CoreSimResult render_rtl(const scene::SceneImage& image, const RenderOptions& render,
                          const CoreSimOptions& options, CoreModel model) {
-  if (model == CoreModel::kThreads1) return CoreSim<Vrc_core_t1>(image, options).render(render);
-  if (model == CoreModel::kIsect1) return CoreSim<Vrc_core_i1>(image, options).render(render);
+  if (model == CoreModel::kThreads1) return render_module("rc_core_t1", image, render, options);
+  if (model == CoreModel::kIsect1) return render_module("rc_core_i1", image, render, options);
   return CoreSim<Vrc_core>(image, options).render(render);
 }
 

@@ -1,0 +1,49 @@
+// One core model built as a module (model_module.hpp): the harness around the verilated rc_core
+// of another configuration than the default. RC_CORE_MODEL names the model class (Vrc_core_t1,
+// Vrc_core_i1), RC_CORE_MODEL_H and RC_CORE_MODEL_ROOT_H its headers, RC_CORE_MODEL_THREADS its
+// Threads parameter when it is not the default (tb/harness/CMakeLists.txt). render_rtl()
+// (core_sim.cpp) calls its entry point.
+#include <exception>
+#include <string>
+
+#include RC_CORE_MODEL_H
+#include RC_CORE_MODEL_ROOT_H
+#include "core_sim_impl.hpp"
+#include "error.hpp"
+#include "model_module.hpp"
+
+#ifndef RC_CORE_MODEL_THREADS
+#define RC_CORE_MODEL_THREADS static_cast<uint32_t>(rc::spec::kCoreThreads)
+#endif
+
+namespace rc::harness {
+
+template <>
+std::string thread_states(const RC_CORE_MODEL& m) {
+  return describe_thread_states(m.rootp->rc_core__DOT__st_q, RC_CORE_MODEL_THREADS);
+}
+
+template class CoreSim<RC_CORE_MODEL>;
+
+}  // namespace rc::harness
+
+// Renders *render of *image through the model: the result in *out, or a status and the message.
+extern "C" __attribute__((visibility("default"))) int rc_core_module_render(
+    const rc::scene::SceneImage* image, const rc::RenderOptions* render,
+    const rc::harness::CoreSimOptions* options, rc::harness::CoreSimResult* out,
+    std::string* error) {
+  using namespace rc::harness;
+  try {
+    *out = CoreSim<RC_CORE_MODEL>(*image, *options).render(*render);
+    return kModuleOk;
+  } catch (const CoreSimError& e) {
+    *error = e.what();
+    return kModuleSimError;
+  } catch (const rc::scene::Error& e) {
+    *error = e.what();
+    return kModuleSceneError;
+  } catch (const std::exception& e) {
+    *error = e.what();
+    return kModuleOtherError;
+  }
+}
