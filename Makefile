@@ -26,7 +26,7 @@ BUILD_TYPE ?= Release
 PYTHON  ?= python3
 
 # Debian packages the project needs (one list: .ci/run installs through `make deps` too).
-DEB_PKGS := build-essential cmake python3 pkg-config verilator yosys \
+DEB_PKGS := build-essential cmake ninja-build python3 pkg-config verilator yosys \
             libgtest-dev libgmock-dev libbenchmark-dev libmpfr-dev libgmp-dev \
             libglm-dev libopenimageio-dev libtinyobjloader-dev libcli11-dev nlohmann-json3-dev \
             libembree-dev zlib1g-dev gtkwave \
@@ -38,7 +38,7 @@ RTL_FILES  = $(patsubst build/%,$(BUILD)/%,$(shell grep -v '^\s*\#' rtl/rtl_file
 TB_RTL    := $(wildcard tests/rtl/*.sv)
 WAIVERS   := rtl/lint_waivers.vlt
 
-.PHONY: all build raycore configure deps test render lint synth-units synth-core synth-xilinx pnr-units \
+.PHONY: all build raycore configure configure-tests deps test render lint synth-units synth-core synth-xilinx pnr-units \
         fpga-deps fpga-vivado fpga-ecp5 format clean
 
 all: build
@@ -54,12 +54,22 @@ deps:
 	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
 	fi
 
+# A new build directory uses Ninja (it compiles a target's files while the libraries it links are
+# still being built, which Make's generator does not) and is configured without the tests when the
+# command asks only for raycore (make render, make fpga-ecp5): configuring them verilates a dozen
+# more models. Targets that need the tests turn them on (configure-tests: one more configure,
+# once). A build directory configured earlier keeps its generator.
+RC_TESTS_ON := $(if $(filter-out render raycore fpga-ecp5,$(or $(MAKECMDGOALS),all)),ON,OFF)
 $(BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DRAYCORE_TESTS=$(RC_TESTS_ON)
 
 configure: deps $(BUILD)/CMakeCache.txt
 
-build: configure
+configure-tests: configure
+	@grep -q '^RAYCORE_TESTS:BOOL=ON' $(BUILD)/CMakeCache.txt || \
+	  cmake -S . -B $(BUILD) -DRAYCORE_TESTS=ON
+
+build: configure-tests
 	cmake --build $(BUILD) -j$(JOBS)
 
 # The raycore command alone (and what it links): all that `make render` and `make fpga-ecp5` need.
@@ -217,6 +227,6 @@ include tests/fuzz/fuzz.mk
 
 # Scene compiler benchmark: build time and SAH cost for bunny, Sponza and the conference room.
 .PHONY: bench-scene
-bench-scene: configure
+bench-scene: configure-tests
 	cmake --build $(BUILD) -j$(JOBS) --target scene_bench
 	$(BUILD)/tests/scene/scene_bench
