@@ -6,7 +6,6 @@
 // back through the ports.
 #include <chrono>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -163,17 +162,5 @@ extern "C" __attribute__((visibility("default"))) int rc_board_module_simulate(
     const rc::harness::BoardSimOptions* options, rc::harness::BoardSimResult* out,
     std::string* error) {
   using namespace rc::harness;
-  try {
-    *out = simulate(*image, dir, *options);
-    return kModuleOk;
-  } catch (const BoardSimError& e) {
-    *error = e.what();
-    return kModuleSimError;
-  } catch (const rc::scene::Error& e) {
-    *error = e.what();
-    return kModuleSceneError;
-  } catch (const std::exception& e) {
-    *error = e.what();
-    return kModuleOtherError;
-  }
+  return run_in_module<BoardSimError>(error, [&] { *out = simulate(*image, dir, *options); });
 }

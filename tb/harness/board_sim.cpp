@@ -191,12 +191,7 @@ BoardSimResult render_board(const scene::SceneImage& image, const RenderOptions&
 
   BoardSimResult res;
   std::string error;
-  switch (simulate(&b, dir.c_str(), &options, &res, &error)) {
-    case kModuleOk: break;
-    case kModuleSimError: throw BoardSimError(error);
-    case kModuleSceneError: throw scene::Error(error);
-    default: throw std::runtime_error(error);
-  }
+  rethrow_module_status<BoardSimError>(simulate(&b, dir.c_str(), &options, &res, &error), error);
   return res;  // seconds and cycles per second: the simulation's own
 }
 

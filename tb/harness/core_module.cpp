@@ -3,7 +3,6 @@
 // Vrc_core_i1), RC_CORE_MODEL_H and RC_CORE_MODEL_ROOT_H its headers, RC_CORE_MODEL_THREADS its
 // Threads parameter when it is not the default (tb/harness/CMakeLists.txt). render_rtl()
 // (core_sim.cpp) calls its entry point.
-#include <exception>
 #include <string>
 
 #include RC_CORE_MODEL_H
@@ -33,17 +32,6 @@ extern "C" __attribute__((visibility("default"))) int rc_core_module_render(
     const rc::harness::CoreSimOptions* options, rc::harness::CoreSimResult* out,
     std::string* error) {
   using namespace rc::harness;
-  try {
-    *out = CoreSim<RC_CORE_MODEL>(*image, *options).render(*render);
-    return kModuleOk;
-  } catch (const CoreSimError& e) {
-    *error = e.what();
-    return kModuleSimError;
-  } catch (const rc::scene::Error& e) {
-    *error = e.what();
-    return kModuleSceneError;
-  } catch (const std::exception& e) {
-    *error = e.what();
-    return kModuleOtherError;
-  }
+  return run_in_module<CoreSimError>(
+      error, [&] { *out = CoreSim<RC_CORE_MODEL>(*image, *options).render(*render); });
 }

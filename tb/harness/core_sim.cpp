@@ -29,12 +29,8 @@ CoreSimResult render_module(const char* module, const scene::SceneImage& image,
   auto* fn = reinterpret_cast<ModuleRender*>(module_symbol(module, "rc_core_module_render"));
   CoreSimResult r;
   std::string error;
-  switch (fn(&image, &render, &options, &r, &error)) {
-    case kModuleOk: return r;
-    case kModuleSimError: throw CoreSimError(error);
-    case kModuleSceneError: throw scene::Error(error);
-    default: throw std::runtime_error(error);
-  }
+  rethrow_module_status<CoreSimError>(fn(&image, &render, &options, &r, &error), error);
+  return r;
 }
 
 }  // namespace

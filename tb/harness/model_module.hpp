@@ -9,7 +9,11 @@
 // Verilator's runtime; only plain data (the image, options and results) is passed between them.
 #pragma once
 
+#include <exception>
+#include <stdexcept>
 #include <string>
+
+#include "error.hpp"
 
 namespace rc::harness {
 
@@ -25,5 +29,35 @@ enum ModuleStatus : int {
 // directory), loading it once. Throws scene::Error naming the module and how to build it when it
 // cannot be loaded.
 void* module_symbol(const std::string& name, const char* symbol);
+
+// A module's entry point runs its work through this: kModuleOk, or the status of the exception
+// the work threw (SimError: the run failed) with its message in *error.
+template <class SimError, class Work>
+int run_in_module(std::string* error, Work&& work) {
+  try {
+    work();
+    return kModuleOk;
+  } catch (const SimError& e) {
+    *error = e.what();
+    return kModuleSimError;
+  } catch (const scene::Error& e) {
+    *error = e.what();
+    return kModuleSceneError;
+  } catch (const std::exception& e) {
+    *error = e.what();
+    return kModuleOtherError;
+  }
+}
+
+// The caller's side: throws again what a module's status stands for (nothing for kModuleOk).
+template <class SimError>
+void rethrow_module_status(int status, const std::string& error) {
+  switch (status) {
+    case kModuleOk: return;
+    case kModuleSimError: throw SimError(error);
+    case kModuleSceneError: throw scene::Error(error);
+    default: throw std::runtime_error(error);
+  }
+}
 
 }  // namespace rc::harness

@@ -26,18 +26,6 @@ using rc::scene::SceneImage;
 
 const std::string kRoot = RC_SOURCE_DIR;
 
-std::vector<uint8_t> read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)),
-                              std::istreambuf_iterator<char>());
-}
-
-void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()),
-            static_cast<std::streamsize>(bytes.size()));
-}
-
 // The default scene (it has a light) compiled at fp24.
 const std::vector<uint8_t>& default_image() {
   static const std::vector<uint8_t> bytes = [] {
@@ -59,7 +47,7 @@ struct Case {
 void run_cases(const std::string& what, const std::vector<Case>& cases,
                const std::vector<std::string>& inputs) {
   std::vector<std::vector<uint8_t>> before;
-  for (const auto& p : inputs) before.push_back(read_bytes(p));
+  for (const auto& p : inputs) before.push_back(read_file(p));
   size_t mismatches = 0, n = 0;
   for (const Case& c : cases) {
     const std::string out = temp_dir() + "/out" + std::to_string(n++);
@@ -84,7 +72,7 @@ void run_cases(const std::string& what, const std::vector<Case>& cases,
                     << r.output;
   }
   for (size_t i = 0; i < inputs.size(); ++i)
-    EXPECT_EQ(read_bytes(inputs[i]), before[i]) << inputs[i] << " was changed";
+    EXPECT_EQ(read_file(inputs[i]), before[i]) << inputs[i] << " was changed";
   report_cases(what, cases.size(), mismatches);
 }
 
@@ -93,7 +81,7 @@ TEST(RenderCli, BadOptionsAndOutputs) {
   const std::string scene = dir + "/scene.json";
   fs::copy_file(kRoot + "/scenes/default.json", scene, fs::copy_options::overwrite_existing);
   const std::string img = dir + "/good.rcimg";
-  write_bytes(img, default_image());
+  write_file(img, default_image());
   fs::create_directories(dir + "/a_directory");
   const std::string png = "OUT/x.png";
   const std::vector<std::string> rtl = {"render", img, "--engine", "rtl", "--size", "4x4", "-q"};
@@ -265,7 +253,7 @@ TEST(RenderCli, MalformedImagesRefusedByEveryEngine) {
     for (char& ch : file)
       if (ch == ' ') ch = '_';
     file = dir + "/" + file + ".rcimg";
-    write_bytes(file, bytes);
+    write_file(file, bytes);
     inputs.push_back(file);
     for (const auto& cmd : commands) {
       Case c{b.name + ", " + cmd[0] + (cmd.size() > 8 ? " " + cmd[8] : ""), cmd, 1,

@@ -50,6 +50,9 @@ const rc::scene::SectionInfo& section_of(const rc::scene::SceneImage& img, uint3
 // A fresh temporary directory for this process, and files in it.
 std::string temp_dir();
 std::string write_temp(const std::string& name, const std::string& text);
+// A whole file's bytes (empty when it cannot be read), and writing bytes to a file.
+std::vector<uint8_t> read_file(const std::string& path);
+void write_file(const std::string& path, const std::vector<uint8_t>& bytes);
 
 // The shared models directory (tests/models_dir.hpp: RAYCORE_MODELS_PATH or ../shared/models);
 // empty if absent.
