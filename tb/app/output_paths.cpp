@@ -74,6 +74,17 @@ void check_output_dir(const NamedPath& dir) {
     fail("the directory " + p.string() + " is not writable (" + std::strerror(errno) + ")");
 }
 
+std::vector<NamedPath> scene_inputs(const rc::scene::Scene& scene) {
+  std::vector<NamedPath> in;
+  const auto file = [](const std::string& s) { return s.rfind("builtin:", 0) != 0; };
+  if (file(scene.source)) in.push_back({"input", scene.source});
+  for (const auto& m : scene.meshes) {
+    if (file(m.source) && m.source != scene.source) in.push_back({"mesh", m.source});
+    for (const auto& mtl : m.material_files) in.push_back({"MTL file", mtl});
+  }
+  return in;
+}
+
 void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
   for (size_t i = 0; i < outputs.size(); ++i) {
     const NamedPath& o = outputs[i];

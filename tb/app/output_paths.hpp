@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "scene.hpp"
+
 namespace rc::app {
 
 // A file a command reads or writes, with the option that named it ("-o", "--hits", "input").
@@ -24,6 +26,10 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
 // Throws rc::scene::Error when `dir` cannot be a directory to write into: it exists and is not a
 // directory, or its nearest existing parent is not a writable directory. Creates nothing.
 void check_output_dir(const NamedPath& dir);
+
+// The files a loaded scene was read from, as inputs for check_outputs(): a JSON scene's own file,
+// its meshes' files and their MTL files (built-in scenes and meshes have none).
+std::vector<NamedPath> scene_inputs(const rc::scene::Scene& scene);
 
 // Whether two paths name the same file: the same inode when both exist, else the same
 // normalised absolute path (symbolic links in the existing part resolved).

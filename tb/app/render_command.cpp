@@ -396,11 +396,7 @@ int run_render(const RenderArgs& a) {
   load.models_path = a.models_path;
   const RenderInput in = load_render_input(a.input, load, format);
   require_valid(in.image);
-  if (in.scene) {  // the meshes a scene file named are inputs too
-    std::vector<NamedPath> meshes;
-    for (const auto& m : in.scene->meshes) meshes.push_back({"mesh", m.source});
-    check_outputs(meshes, outputs);
-  }
+  if (in.scene) check_outputs(scene_inputs(*in.scene), outputs);  // meshes and MTL files too
   RenderOptions opt = input_options(in);
   if (width) {
     opt.width = width;

@@ -40,19 +40,6 @@ void write_file(const std::string& path, const std::vector<uint8_t>& bytes) {
   if (!out) throw Error(path + ": write failed: " + std::strerror(errno));
 }
 
-// The files a loaded scene was read from: its meshes' files and their MTL files, and a JSON
-// scene's own file (built-in meshes have none).
-std::vector<NamedPath> scene_inputs(const rc::scene::Scene& scene) {
-  std::vector<NamedPath> in;
-  const auto file = [](const std::string& s) { return s.rfind("builtin:", 0) != 0; };
-  if (file(scene.source)) in.push_back({"input", scene.source});
-  for (const auto& m : scene.meshes) {
-    if (file(m.source) && m.source != scene.source) in.push_back({"mesh", m.source});
-    for (const auto& mtl : m.material_files) in.push_back({"MTL file", mtl});
-  }
-  return in;
-}
-
 int run_build(const BuildOptions& o) {
   // The outputs before any work (each writable, neither the input nor the other output), and
   // again once the scene is loaded, against every file it was read from (meshes, MTL files).

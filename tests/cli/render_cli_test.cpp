@@ -83,6 +83,11 @@ TEST(RenderCli, BadOptionsAndOutputs) {
   const std::string img = dir + "/good.rcimg";
   write_file(img, default_image());
   fs::create_directories(dir + "/a_directory");
+  // A mesh with its MTL file, and a scene file naming the mesh: both are inputs of a render.
+  write_temp("tri.obj", "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n");
+  write_temp("tri.mtl", "newmtl red\nKd 1 0 0\n");
+  write_temp("tri.json", R"({"meshes": [{"path": "tri.obj"}]})");
+  const std::string obj = dir + "/tri.obj", mtl = dir + "/tri.mtl", tri_scene = dir + "/tri.json";
   const std::string png = "OUT/x.png";
   const std::vector<std::string> rtl = {"render", img, "--engine", "rtl", "--size", "4x4", "-q"};
   const auto with = [](std::vector<std::string> base, std::vector<std::string> more) {
@@ -162,6 +167,14 @@ TEST(RenderCli, BadOptionsAndOutputs) {
        {"render", img, "-o", png, "--stats", img},
        1,
        "refusing to overwrite an input"},
+      {"hits is the OBJ's MTL file",
+       {"render", obj, "-o", png, "--hits", mtl},
+       1,
+       "--hits " + mtl + ": is the MTL file"},
+      {"stats is the scene's mesh",
+       {"render", tri_scene, "-o", png, "--stats", obj},
+       1,
+       "--stats " + obj + ": is the mesh"},
       {"output format unknown", {"render", img, "-o", "OUT/x.nosuchformat"}, 1, "no image format"},
       {"check's difference image unwritable",
        with(rtl, {"-o", png, "--check", "--diff", "/no/such/dir/d.png"}), 1,
@@ -184,7 +197,8 @@ TEST(RenderCli, BadOptionsAndOutputs) {
        1,
        "is not a directory"},
   };
-  run_cases("raycore render/board-image options and outputs", cases, {scene, img});
+  run_cases("raycore render/board-image options and outputs", cases,
+            {scene, img, obj, mtl, tri_scene});
 }
 
 // A malformed memory image is refused by every engine and by board-image, naming the problem,
