@@ -5,14 +5,10 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <type_traits>
 
 #include "error.hpp"
 #include "model_module.hpp"

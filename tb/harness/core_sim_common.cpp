@@ -8,6 +8,11 @@
 
 namespace rc::harness {
 
+namespace {
+// The error bits the golden model has too (malformed node, bad address, stack overflow).
+constexpr uint32_t kGoldenErrorBits = kErrMalformedNode | kErrBadAddress | kErrStackOverflow;
+}  // namespace
+
 const char* core_port_name(int port) {
   switch (port) {
     case kPortNodes: return "nodes";
@@ -73,18 +78,17 @@ Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf_val
   c.culled_pops = perf(spec::kCorePerfCulledPops);
   c.max_stack = perf(spec::kCorePerfMaxStack);
   c.errors = perf(spec::kCorePerfFailedPackets);
-  c.error_bits = error_bits & (kErrMalformedNode | kErrBadAddress | kErrStackOverflow);
+  c.error_bits = error_bits & kGoldenErrorBits;
   return c;
 }
 
 std::vector<std::string> run_problems(const CoreSimResult& r) {
   std::vector<std::string> out;
-  const uint32_t golden_bits = kErrMalformedNode | kErrBadAddress | kErrStackOverflow;
-  if (r.error_bits & ~golden_bits) {
+  if (r.error_bits & ~kGoldenErrorBits) {
     char buf[96];
     std::snprintf(buf, sizeof buf,
                   "error bits 0x%x outside the golden model's 0x%x (watchdog: 0x%x)",
-                  r.error_bits & ~golden_bits, golden_bits,
+                  r.error_bits & ~kGoldenErrorBits, kGoldenErrorBits,
                   1u << static_cast<unsigned>(spec::kCoreStatusWatchdog));
     out.push_back(buf);
   }
