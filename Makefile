@@ -94,7 +94,7 @@ render: raycore
 	  -o $(RENDER_OUT)/default.png --hits $(RENDER_OUT)/default.hits --stats $(RENDER_OUT)/default.json
 	@echo "wrote $(RENDER_OUT)/default.png, $(RENDER_OUT)/default.hits, $(RENDER_OUT)/default.json"
 
-$(GEN_PKG): docs/spec.toml tb/gen_constants.py
+$(GEN_PKG): docs/spec.toml tb/gen_constants.py $(wildcard rtl/core/rc_core_types.svh)
 	$(PYTHON) tb/gen_constants.py docs/spec.toml $(BUILD)/gen
 
 # Every module is linted as a top of its own (so submodules are checked with default parameters

@@ -312,6 +312,7 @@ module rc_board #(
   logic [63:0]       perf, perf_rd_q;
   logic [StatusW-1:0] core_error;
 
+  logic [Threads*rc_pkg::ThreadStateBits-1:0] core_dbg_states;
   rc_core #(
     .ExpW   (ExpW),
     .FracW  (FracW),
@@ -390,8 +391,12 @@ module rc_board #(
     .idle_o          (core_idle),
     .error_o         (core_error),
     .perf_sel_i      (perf_sel_q),
-    .perf_o          (perf)
+    .perf_o          (perf),
+    .dbg_thread_state_o(core_dbg_states)
   );
+  // The core's debug port feeds nothing on the board (the harness reads it on a core alone).
+  logic unused_core_dbg;
+  assign unused_core_dbg = ^core_dbg_states;
 
   /////////////////
   // Framebuffer //

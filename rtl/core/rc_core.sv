@@ -22,6 +22,7 @@
 //   order after any delay. Records: node 64 bits, list entry 32, triangle 12*W, shading record
 //   32 + 4*W, material 96 (the material record's kd field: three 32-bit slots). Tags are
 //   CoreTagBits wide; the core never has two requests with the same tag outstanding on a port.
+// - Debug: dbg_thread_state_o, every thread's state (rc_pkg::thread_state_e, 4 bits per thread).
 // - Status: idle_o = no packet in flight and no write pending. error_o (sticky until reset):
 //   CoreStatus* bits: malformed node, bad address (also any error response), stack overflow,
 //   watchdog (work held and no handshake completed for WatchdogCycles cycles; error_o shows it
@@ -148,7 +149,11 @@ module rc_core #(
   output logic              idle_o,
   output logic [StatusW-1:0] error_o,
   input  logic [7:0]        perf_sel_i,
-  output logic [63:0]       perf_o
+  output logic [63:0]       perf_o,
+
+  // Debug: every thread's state (thread t at [4t +: 4], rc_pkg::thread_state_e), for the
+  // harness's hang reports and waveforms; no logic depends on it.
+  output logic [Threads*rc_pkg::ThreadStateBits-1:0] dbg_thread_state_o
 );
 
 
@@ -173,17 +178,18 @@ module rc_core #(
     $error("rc_core: need 1 <= Threads <= CoreMaxThreads, StackDepth a power of two, ListTags >= 2 and at most 2^TagW, an fp format of at most 32 bits with FracW >= 7, IsectInterval 1 or 2");
   end
 
-  // Thread states (one per thread; exactly one unit owns a thread at a time).
-  localparam logic [3:0] StFree    = 4'd0;  // no packet
-  localparam logic [3:0] StSetup   = 4'd1;  // rays in ray set-up
-  localparam logic [3:0] StFetch   = 4'd2;  // waiting to fetch its current node
-  localparam logic [3:0] StNode    = 4'd3;  // node requested, or in the traversal sub-units
-  localparam logic [3:0] StLeaf    = 4'd4;  // leaf waiting for the list unit
-  localparam logic [3:0] StLeafRun = 4'd5;  // leaf triangles in the list/intersection units
-  localparam logic [3:0] StPop     = 4'd6;  // waiting to pop
-  localparam logic [3:0] StPopping = 4'd7;  // chosen to pop: stack read, entry culled
-  localparam logic [3:0] StDone    = 4'd8;  // traced, waiting for shading
-  localparam logic [3:0] StShade   = 4'd9;  // rays in shading / framebuffer writes
+  // Thread states (one per thread; exactly one unit owns a thread at a time): the enum
+  // rc_pkg::thread_state_e, generated from docs/spec.toml [thread_state].
+  localparam logic [3:0] StFree    = rc_pkg::StFree;     // no packet
+  localparam logic [3:0] StSetup   = rc_pkg::StSetup;    // rays in ray set-up
+  localparam logic [3:0] StFetch   = rc_pkg::StFetch;    // waiting to fetch its current node
+  localparam logic [3:0] StNode    = rc_pkg::StNode;     // node requested, or in the sub-units
+  localparam logic [3:0] StLeaf    = rc_pkg::StLeaf;     // leaf waiting for the list unit
+  localparam logic [3:0] StLeafRun = rc_pkg::StLeafRun;  // leaf triangles in the list/isect units
+  localparam logic [3:0] StPop     = rc_pkg::StPop;      // waiting to pop
+  localparam logic [3:0] StPopping = rc_pkg::StPopping;  // chosen to pop: stack read, entry culled
+  localparam logic [3:0] StDone    = rc_pkg::StDone;     // traced, waiting for shading
+  localparam logic [3:0] StShade   = rc_pkg::StShade;    // rays in shading / framebuffer writes
 
   localparam logic [W-1:0] FpInf = {1'b0, {ExpW{1'b1}}, {FracW{1'b0}}};
   localparam int unsigned  ErrMalformed = rc_pkg::CoreStatusMalformedNode;
@@ -196,8 +202,8 @@ module rc_core #(
   //////////////////////////
 
   // Control state with reset, as flat vectors (thread t at [t*X +: X]).
-  // st_q is readable from the harness (its watchdog prints every thread's state).
-  logic [Threads*4-1:0]   st_q /* verilator public_flat_rd */;
+  // st_q is also the debug port dbg_thread_state_o (the harness's hang reports print it).
+  logic [Threads*4-1:0]   st_q;
   logic [Threads*4-1:0]   st_d;
   logic [Threads*4-1:0]   mask_q, mask_d;      // active rays of the current entry
   logic [Threads*4-1:0]   vmask_q, vmask_d;    // rays that exist
@@ -2305,6 +2311,7 @@ module rc_core #(
 
   assign idle_o  = idle;
   assign error_o = error_q;
+  assign dbg_thread_state_o = st_q;
 
   ////////////////////////////////////////
   // Performance counters               //

@@ -1,12 +1,11 @@
 // One core model built as a module (model_module.hpp): the harness around the verilated rc_core
 // of another configuration than the default. RC_CORE_MODEL names the model class (Vrc_core_t1,
-// Vrc_core_i1), RC_CORE_MODEL_H and RC_CORE_MODEL_ROOT_H its headers, RC_CORE_MODEL_THREADS its
+// Vrc_core_i1), RC_CORE_MODEL_H its header, RC_CORE_MODEL_THREADS its
 // Threads parameter when it is not the default (tb/harness/CMakeLists.txt). render_rtl()
 // (core_sim.cpp) calls its entry point.
 #include <string>
 
 #include RC_CORE_MODEL_H
-#include RC_CORE_MODEL_ROOT_H
 #include "core_sim_impl.hpp"
 #include "error.hpp"
 #include "model_module.hpp"
@@ -19,7 +18,7 @@ namespace rc::harness {
 
 template <>
 std::string thread_states(const RC_CORE_MODEL& m) {
-  return describe_thread_states(m.rootp->rc_core__DOT__st_q, RC_CORE_MODEL_THREADS);
+  return describe_thread_states(m.dbg_thread_state_o, RC_CORE_MODEL_THREADS);
 }
 
 template class CoreSim<RC_CORE_MODEL>;

@@ -4,7 +4,6 @@
 #include "core_sim.hpp"
 
 #include "Vrc_core.h"
-#include "Vrc_core___024root.h"
 #include "core_sim_impl.hpp"
 #include "error.hpp"
 #include "model_module.hpp"
@@ -13,7 +12,7 @@ namespace rc::harness {
 
 template <>
 std::string thread_states(const Vrc_core& m) {
-  return describe_thread_states(m.rootp->rc_core__DOT__st_q,
+  return describe_thread_states(m.dbg_thread_state_o,
                                 static_cast<uint32_t>(spec::kCoreThreads));
 }
 

@@ -83,16 +83,17 @@ std::string thread_states(const Model&) {
   return "";
 }
 
-// The state names of rc_core st_q (4 bits per thread; docs/debugging.md).
+// Every thread's state from rc_core's dbg_thread_state_o (rc_pkg::thread_state_e per thread;
+// the names are docs/spec.toml [thread_state]'s, docs/debugging.md).
 template <class Word>
 std::string describe_thread_states(const Word& st, uint32_t threads) {
-  static const char* const kNames[] = {"Free",    "Setup", "Fetch",   "Node", "Leaf",
-                                       "LeafRun", "Pop",   "Popping", "Done", "Shade"};
+  constexpr auto kBits = static_cast<unsigned>(spec::kThreadStateBits);
   std::ostringstream s;
   s << "  threads:";
   for (uint32_t t = 0; t < threads; ++t) {
-    const uint32_t v = static_cast<uint32_t>(detail::get_field(st, 4 * t, 4));
-    s << " " << t << ":" << (v < 10 ? kNames[v] : "?");
+    const uint64_t v = detail::get_field(st, kBits * t, kBits);
+    s << " " << t << ":"
+      << (v < static_cast<uint64_t>(spec::kThreadStateCount) ? spec::kThreadStateNames[v] : "?");
   }
   s << "\n";
   return s.str();

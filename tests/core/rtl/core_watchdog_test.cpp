@@ -14,7 +14,6 @@
 #include <string>
 
 #include "Vrc_core_wd.h"
-#include "Vrc_core_wd___024root.h"
 #include "compare.hpp"
 #include "core_sim_impl.hpp"
 #include "cornell_input.hpp"
@@ -24,7 +23,7 @@
 namespace rc::harness {
 template <>
 std::string thread_states(const Vrc_core_wd& m) {
-  return describe_thread_states(m.rootp->rc_core__DOT__st_q, 1u);
+  return describe_thread_states(m.dbg_thread_state_o, 1u);
 }
 template class CoreSim<Vrc_core_wd>;
 }  // namespace rc::harness
@@ -79,6 +78,8 @@ TEST(CoreWatchdog, FiresAfterItsCount) {
       EXPECT_NE(msg.find(want), std::string::npos) << "want \"" << want << "\" in:\n" << msg;
       EXPECT_NE(msg.find("error_o 0x8"), std::string::npos) << "only the watchdog bit:\n" << msg;
       EXPECT_NE(msg.find("nodes port: 1 outstanding"), std::string::npos) << msg;
+      // The report names the thread's state from the core's debug port: waiting for its node.
+      EXPECT_NE(msg.find("threads: 0:Node\n"), std::string::npos) << msg;
     }
   }
 }
