@@ -31,6 +31,8 @@
 // - Parameters: Width record bits, Depth records (>= 1), IdxW index bits, TagW tag bits.
 // - Illegal input: none (every index is answered; out-of-range ones with an error).
 // - Reset: rst_ni (active low, asynchronous) clears rsp_valid_o; contents are not reset.
+// - Debug: tests/board/rc_board_rom_tb.sv reads a0_free, s1_free and adv (hierarchically);
+//   renaming them breaks that test bench.
 module rc_board_rom #(
   parameter int unsigned Width    = 32,
   parameter int unsigned Depth    = 1,

@@ -1,6 +1,7 @@
-// The board's ROM (rtl/board/rc_board_rom.sv) alone, verilated at Width 40, Depth 100, IdxW 12,
-// TagW 6 and loaded from a hex file this test writes (+rom=<file>). A model of the memory-port
-// protocol drives it with random request gaps and random response stalls (fixed seeds) and checks:
+// The board's ROM (rtl/board/rc_board_rom.sv) alone, in its test bench wrapper, verilated at Width
+// 40, Depth 100, IdxW 12, TagW 6 and loaded from a hex file this test writes (+rom=<file>). A model
+// of the memory-port protocol drives it with random request gaps and random response stalls (fixed
+// seeds) and checks:
 //  - every response, in request order: its tag, the record's data, the error bit for an index out
 //    of range (indices up to 4095 are asked for; the ROM has 100 records);
 //  - a response held back holds, unchanged, until taken;
@@ -8,8 +9,8 @@
 //    req_valid_i, the index or the tag change;
 //  - the address and read stages do not follow the consumer: within a cycle, their enables
 //    (`a0_free`, `s1_free`: the read's) and the read stage's move on (`adv`, also the clock
-//    enable of the FIFO entry it writes), read through the model's public signals, do not move
-//    when rsp_ready_i changes;
+//    enable of the FIFO entry it writes), read through the debug ports of the test bench wrapper
+//    (rc_board_rom_tb.sv), do not move when rsp_ready_i changes;
 //  - six requests are accepted while the consumer stalls (the skid buffer, the address stage,
 //    the read stage, the FIFO's two entries and the output register), and no more;
 //  - one response per cycle when the consumer never stalls, and no request is lost or hangs.
@@ -24,8 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "Vrc_board_rom.h"
-#include "Vrc_board_rom___024root.h"
+#include "Vrc_board_rom_tb.h"
 #include "verilated.h"
 
 namespace {
@@ -60,7 +60,7 @@ class Bench {
     const std::string arg = "+rom=" + file_;
     const char* argv[] = {"board_rom_test", arg.c_str()};
     ctx_->commandArgs(2, argv);
-    m_ = std::make_unique<Vrc_board_rom>(ctx_.get(), "rom");
+    m_ = std::make_unique<Vrc_board_rom_tb>(ctx_.get(), "rom");
     m_->clk_i = 0;
     m_->rst_ni = 0;
     m_->req_valid_i = 0;
@@ -131,15 +131,15 @@ class Bench {
     EXPECT_EQ(bool(m_->req_ready_o), req_ready)
         << "req_ready_o changed with this cycle's inputs at cycle " << cycles_;
     drive(req_valid_, req_index_, req_tag_, rsp_ready);
-    const bool a0_free = root().rc_board_rom__DOT__a0_free;
-    const bool s1_free = root().rc_board_rom__DOT__s1_free;
-    const bool adv = root().rc_board_rom__DOT__adv;
+    const bool a0_free = m_->dbg_a0_free_o;
+    const bool s1_free = m_->dbg_s1_free_o;
+    const bool adv = m_->dbg_adv_o;
     drive(req_valid_, req_index_, req_tag_, !rsp_ready);
-    EXPECT_EQ(bool(root().rc_board_rom__DOT__a0_free), a0_free)
+    EXPECT_EQ(bool(m_->dbg_a0_free_o), a0_free)
         << "the address stage's enable changed with rsp_ready_i at cycle " << cycles_;
-    EXPECT_EQ(bool(root().rc_board_rom__DOT__s1_free), s1_free)
+    EXPECT_EQ(bool(m_->dbg_s1_free_o), s1_free)
         << "the read enable changed with rsp_ready_i at cycle " << cycles_;
-    EXPECT_EQ(bool(root().rc_board_rom__DOT__adv), adv)
+    EXPECT_EQ(bool(m_->dbg_adv_o), adv)
         << "the read stage's advance changed with rsp_ready_i at cycle " << cycles_;
     drive(req_valid_, req_index_, req_tag_, rsp_ready);
 
@@ -188,8 +188,6 @@ class Bench {
     m_->eval();
   }
 
-  Vrc_board_rom___024root& root() { return *m_->rootp; }
-
   void edge() {
     m_->clk_i = 1;
     m_->eval();
@@ -201,7 +199,7 @@ class Bench {
   std::vector<uint64_t> rom_;
   std::string file_;
   std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<Vrc_board_rom> m_;
+  std::unique_ptr<Vrc_board_rom_tb> m_;
   bool req_valid_ = false;
   uint32_t req_index_ = 0, req_tag_ = 0;
   std::deque<Expect> expect_;
