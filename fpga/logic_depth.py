@@ -25,9 +25,9 @@ import sys
 NET_NS = 0.55  # one general routed net
 FF_CLK_TO_Q_NS = 0.3
 # A block RAM's registered read data (DP16KD DO*): nextpnr's clock-to-out for the LFE5U-85F, speed
-# grade 6 (5.83 ns in run 13's routed critical path, docs/fpga.md), far above a flip-flop's. Yosys
-# merges a register behind an asynchronously read memory into the block RAM's read port, so a
-# register the RTL places after a memory can start its paths 5.8 ns late.
+# grade 6 (5.83 ns in run 13's routed critical path, docs/history.md), far above a flip-flop's.
+# Yosys merges a register behind an asynchronously read memory into the block RAM's read port, so
+# a register the RTL places after a memory can start its paths 5.8 ns late.
 BRAM_CLK_TO_Q_NS = 5.8
 FF_SETUP_NS = 0.1
 # Per cell type: (input port pattern, output port pattern, delay in ns). A pattern matches the

@@ -36,7 +36,7 @@
 // - Parameters: ExpW (>= 2), FracW (>= 1): the format; TagW (>= 1): width of the tag carried
 //   alongside; MulStages, AddStages, DivStages, CmpStages (>= 1): latencies of the rc_fp_*
 //   instances; SharedXform: 1 (default) = one transform unit for d' then o' (9 multipliers and
-//   9 adders fewer, about 7,000 ECP5 LUT4 sites: docs/fpga.md), 0 = two transform units.
+//   9 adders fewer, about 7,000 ECP5 LUT4 sites: docs/history.md), 0 = two transform units.
 // - Illegal input: none; every bit pattern of every input is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (valid pipelines, FIFO
 //   pointers and counters); data registers have no reset.
