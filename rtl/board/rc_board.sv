@@ -4,19 +4,23 @@
 //
 // Contract
 // - Memory: five ROMs (rc_board_rom), one per rc_core memory port, of NodeDepth, ListDepth,
-//   TriDepth, ShdDepth and MatDepth records, initialised from NodeHex .. MatHex (written by
+//   TriDepth, ShdDepth and MatDepth lines, initialised from NodeHex .. MatHex (written by
 //   `raycore board-image` from the memory image the scene compiler writes; in simulation the
-//   plusargs +nodes= +lists= +tris= +shading= +materials= override them). An index beyond a ROM
-//   gets an error response (the core's bad-address bit).
+//   plusargs +nodes= +lists= +tris= +shading= +materials= override them). A line is what the
+//   core's port answers for its index: one record, except for the node ROM, whose line i is the
+//   pair {record i + 1 (zero for the last node), record i} (rc_pkg::CoreNodeRspRecords records
+//   of 64 bits; NodeDepth = the node count). An index beyond a ROM gets an error response (the
+//   core's bad-address bit).
 // - Register port: reg_we_i writes reg_wdata_i to register reg_addr_i at the clock edge; reg_rdata_o
 //   is register reg_addr_i as it was BoardReadLatency (2) cycles before: the value is sampled in
 //   the cycle the address is given and passes two register levels (a four-way preselection of
 //   the register file and the control registers' multiplexer, then the final choice). A new
 //   address can be given every cycle. Register numbers are
 //   rc_pkg's BoardReg* (docs/spec.toml [board_reg]). Registers 0 .. BoardRegs-1 are the register
-//   file (camera, frame size, background, root box, record counts, shading constants),
-//   initialised from RegsHex (plusarg +regs=); writes to it are ignored while busy_o. Writing bit
-//   0 of BoardRegControl (or a start_i pulse) starts a frame when busy_o is 0: three cycles later
+//   file (camera, frame size, background, root box, record counts, shading constants, the root
+//   node's record: rc_core root_node_i = {BoardRegRoot + 1, BoardRegRoot}), initialised from
+//   RegsHex (plusarg +regs=); writes to it are ignored while busy_o. Writing bit 0 of
+//   BoardRegControl (or a start_i pulse) starts a frame when busy_o is 0: three cycles later
 //   the frame size is checked (width * height <= FbPixels, else status bit size_error and no
 //   frame) and the ray generation unit starts. BoardRegPerfLo/Hi show the core's counter
 //   BoardRegPerfSel through a register (perf_rd_q, loaded every cycle): a read shows the
@@ -93,9 +97,13 @@ module rc_board #(
   localparam int unsigned Regs   = rc_pkg::BoardRegs;
   localparam int unsigned CoordW = rc_pkg::BoardCoordBits;
   localparam int unsigned TagW   = rc_pkg::CoreTagBits;
+  // The node port answers a pair of 64-bit records (rc_core NodeRspW).
+  localparam int unsigned NodeRspW = rc_pkg::CoreNodeRspRecords * 8 * rc_pkg::KdNodeBytes;
 
-  if (Regs < rc_pkg::BoardRegDiffuse + 1 || Regs > rc_pkg::BoardRegControl) begin : g_regs_check
-    $error("rc_board: the register file must hold registers 0 .. BoardRegDiffuse, below control");
+  if (Regs < rc_pkg::BoardRegDiffuse + 1 || Regs < rc_pkg::BoardRegRoot + 2 ||
+      Regs > rc_pkg::BoardRegControl) begin : g_regs_check
+    $error("rc_board: the register file must hold registers 0 .. BoardRegDiffuse and %s",
+           "BoardRegRoot + 1, below control");
   end
 
   ///////////////////
@@ -243,7 +251,7 @@ module rc_board #(
   logic            node_req_valid, node_req_ready, node_rsp_valid, node_rsp_ready, node_rsp_error;
   logic [TagW-1:0] node_req_tag, node_rsp_tag;
   logic [31:0]     node_req_index;
-  logic [63:0]     node_rsp_data;
+  logic [NodeRspW-1:0] node_rsp_data;
   logic            list_req_valid, list_req_ready, list_rsp_valid, list_rsp_ready, list_rsp_error;
   logic [TagW-1:0] list_req_tag, list_rsp_tag;
   logic [31:0]     list_req_index;
@@ -261,7 +269,8 @@ module rc_board #(
   logic [31:0]     mat_req_index;
   logic [95:0]     mat_rsp_data;
 
-  rc_board_rom #(.Width(64), .Depth(NodeDepth), .TagW(TagW), .InitFile(NodeHex), .Name("nodes"))
+  rc_board_rom #(.Width(NodeRspW), .Depth(NodeDepth), .TagW(TagW), .InitFile(NodeHex),
+                 .Name("nodes"))
   u_rom_nodes (
     .clk_i, .rst_ni,
     .req_valid_i(node_req_valid), .req_ready_o(node_req_ready), .req_tag_i(node_req_tag),
@@ -324,6 +333,7 @@ module rc_board #(
     .node_count_i    (regs_q[rc_pkg::BoardRegNodeCount]),
     .list_count_i    (regs_q[rc_pkg::BoardRegListCount]),
     .tri_count_i     (regs_q[rc_pkg::BoardRegTriCount]),
+    .root_node_i     ({regs_q[rc_pkg::BoardRegRoot + 1], regs_q[rc_pkg::BoardRegRoot]}),
     .ambient_i       (regs_q[rc_pkg::BoardRegAmbient][W-1:0]),
     .diffuse_i       (regs_q[rc_pkg::BoardRegDiffuse][W-1:0]),
     .background_i    (regs_q[rc_pkg::BoardRegBackground][23:0]),

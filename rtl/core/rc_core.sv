@@ -3,12 +3,13 @@
 // rc::shade() of tb/golden/trace.hpp), with up to Threads packets in flight.
 //
 // Contract
-// - Configuration inputs (bounds_i, *_count_i, ambient_i, diffuse_i, background_i) are
-//   quasi-static: change them only while idle_o is 1 and no packet is offered.
+// - Configuration inputs (bounds_i, *_count_i, root_node_i, ambient_i, diffuse_i, background_i)
+//   are quasi-static: change them only while idle_o is 1 and no packet is offered.
 //   bounds_i: the header's root box (lo x, y, z, hi x, y, z); node/list/tri_count_i: the record
 //   counts of those sections (the core's malformed-node and bad-address checks use them);
-//   ambient_i/diffuse_i: the format values of ambient and 1 - ambient; background_i: the miss
-//   colour, R [7:0], G [15:8], B [23:16].
+//   root_node_i: node 0's record (zero when the node section is empty; this core fetches node 0
+//   through the node port and does not use it); ambient_i/diffuse_i: the format values of
+//   ambient and 1 - ambient; background_i: the miss colour, R [7:0], G [15:8], B [23:16].
 // - Packet input: valid/ready. pkt_mask_i bit r: ray r exists. Per ray r: origin and direction
 //   component a at [(3r + a)*W +: W], inv_len at [r*W +: W], pixel id at [r*32 +: 32]. A packet
 //   is taken when a thread is free and the ray set-up feeder is idle; its rays then pass ray
@@ -19,7 +20,10 @@
 //   writes the background with no hit for every ray.
 // - Memory ports node_, list_, tri_, shd_, mat_: the protocol of docs/architecture.md ("Memory
 //   ports"): request (index, tag) and response (tag, data, error) handshakes, responses in any
-//   order after any delay. Records: node 64 bits, list entry 32, triangle 12*W, shading record
+//   order after any delay. Records: node NodeRspW (128) bits, a pair: a request for node i
+//   answers record i at [63:0] and record i + 1 at [127:64] (zero when i is the last node;
+//   rc_pkg::CoreNodeRspRecords records of 64 bits), rsp_error only when i itself is outside the
+//   section; this core uses record i only. List entry 32, triangle 12*W, shading record
 //   32 + 4*W, material 96 (the material record's kd field: three 32-bit slots). Tags are
 //   CoreTagBits wide; the core never has two requests with the same tag outstanding on a port.
 // - Debug: dbg_thread_state_o, every thread's state (rc_pkg::thread_state_e, 4 bits per thread).
@@ -56,7 +60,9 @@ module rc_core #(
   // Derived (do not override).
   parameter int unsigned W              = 1 + ExpW + FracW,
   parameter int unsigned TagW           = rc_pkg::CoreTagBits,
-  parameter int unsigned StatusW        = rc_pkg::CoreStatusBits
+  parameter int unsigned StatusW        = rc_pkg::CoreStatusBits,
+  parameter int unsigned NodeRecW       = 8 * rc_pkg::KdNodeBytes,  // one node record
+  parameter int unsigned NodeRspW       = rc_pkg::CoreNodeRspRecords * NodeRecW  // node response
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,
@@ -66,6 +72,7 @@ module rc_core #(
   input  logic [31:0]       node_count_i,
   input  logic [31:0]       list_count_i,
   input  logic [31:0]       tri_count_i,
+  input  logic [NodeRecW-1:0] root_node_i,
   input  logic [W-1:0]      ambient_i,
   input  logic [W-1:0]      diffuse_i,
   input  logic [23:0]       background_i,
@@ -98,7 +105,7 @@ module rc_core #(
   input  logic              node_rsp_valid_i,
   output logic              node_rsp_ready_o,
   input  logic [TagW-1:0]   node_rsp_tag_i,
-  input  logic [63:0]       node_rsp_data_i,
+  input  logic [NodeRspW-1:0] node_rsp_data_i,
   input  logic              node_rsp_error_i,
 
   // Memory port: leaf lists.
@@ -2380,10 +2387,13 @@ module rc_core #(
 
   assign perf_o = (32'(perf_sel_i) < NPerf) ? perf_q[32'(perf_sel_i)*64 +: 64] : 64'd0;
 
-  // Bits the core does not use: tag bits above its own tags, the shading record's unit normal,
-  // the upper byte of each kd slot, the lock-step copies of the traversal tags and valids.
+  // Bits the core does not use: tag bits above its own tags, the node response's second record
+  // (record i + 1) and the root record (this core fetches node 0 through the node port), the
+  // shading record's unit normal, the upper byte of each kd slot, the lock-step copies of the
+  // traversal tags and valids.
   logic unused_bits;
-  assign unused_bits = ^{node_rsp_tag_i, list_rsp_tag_i, tri_rsp_tag_i, shd_rsp_tag_i,
+  assign unused_bits = ^{node_rsp_tag_i, node_rsp_data_i[NodeRspW-1:NodeRecW], root_node_i,
+                         list_rsp_tag_i, tri_rsp_tag_i, shd_rsp_tag_i,
                          shd_rsp_data_i, mat_rsp_tag_i, mat_rsp_data_i, trav_tag_all, pop_cmp_v,
                          hd_lsign, hd_idx};  // the head's fields used after tq only
 

@@ -20,8 +20,10 @@ namespace {
 
 constexpr unsigned kW = fp24::kWidth;
 
-// Record bits per port (rc_core's response data widths).
-constexpr std::array<uint32_t, kCorePorts> kRecordBits = {64, 32, 12 * kW, 32 + 4 * kW, 96};
+// ROM line bits per port: rc_core's response data widths (the node port's is a pair of records).
+constexpr std::array<uint32_t, kCorePorts> kRecordBits = {
+    static_cast<uint32_t>(spec::kCoreNodeRspRecords * spec::kKdNodeBytes * 8), 32, 12 * kW,
+    32 + 4 * kW, 96};
 constexpr std::array<const char*, kCorePorts> kRomNames = {"nodes", "lists", "tris", "shading",
                                                            "materials"};
 
@@ -75,10 +77,11 @@ BoardImage make_board_image(const scene::SceneImage& image, const RenderOptions&
     const MemoryPort& p = *ports[static_cast<size_t>(i)];
     rom.name = kRomNames[static_cast<size_t>(i)];
     rom.width = kRecordBits[static_cast<size_t>(i)];
-    if (p.data_words() * 32 < rom.width || p.record_bytes() * 8 > rom.width)
-      throw std::logic_error("board ROM " + rom.name + ": record of " +
-                             std::to_string(p.record_bytes()) + " bytes, port of " +
+    if (p.data_words() * 32 < rom.width || p.response_bytes() * 8 > rom.width)
+      throw std::logic_error("board ROM " + rom.name + ": response of " +
+                             std::to_string(p.response_bytes()) + " bytes, port of " +
                              std::to_string(rom.width) + " bits");
+    // Line k is the port's response for index k (for the nodes: records k and k + 1).
     rom.records.reserve(p.count());
     for (uint64_t k = 0; k < p.count(); ++k) rom.records.push_back(p.record_words(k));
   }
@@ -105,6 +108,9 @@ BoardImage make_board_image(const scene::SceneImage& image, const RenderOptions&
       image.section(static_cast<uint32_t>(spec::kImageSectionIdTriangles)).count;
   b.regs[spec::kBoardRegAmbient] = shade_ambient<fp24>().bits();
   b.regs[spec::kBoardRegDiffuse] = shade_diffuse<fp24>().bits();
+  const uint64_t root = root_node_record(image);
+  b.regs[spec::kBoardRegRoot] = static_cast<uint32_t>(root);
+  b.regs[spec::kBoardRegRoot + 1] = static_cast<uint32_t>(root >> 32);
   return b;
 }
 

@@ -1,8 +1,10 @@
 // The board build (rtl/board/rc_board.sv, docs/fpga.md) from the C++ side:
-// - BoardImage: a memory image as the board's block RAM contents (one hex file per ROM, one record
-//   per line, exactly the records rc::harness::MemoryPort serves) and its register file (camera
+// - BoardImage: a memory image as the board's block RAM contents (one hex file per ROM, one line
+//   per index, exactly the response rc::harness::MemoryPort gives for it: a record, for the node
+//   ROM the pair {record i + 1 (zero for the last), record i}) and its register file (camera
 //   registers from rc::camera_registers(), frame size, background, root box, record counts,
-//   shading constants). `raycore board-image` writes it for the FPGA flow.
+//   shading constants, the root node's record). `raycore board-image` writes it for the FPGA
+//   flow.
 // - render_board(): the verilated rc_board (model Vrc_board) renders a frame: the harness loads
 //   the ROMs through plusargs, programs the camera and frame registers through the register port
 //   and reads them back, starts the frame, collects the core's framebuffer writes from the
@@ -23,8 +25,8 @@ namespace rc::harness {
 
 struct BoardRom {
   std::string name;    // nodes, lists, tris, shading, materials (the plusarg and file stem)
-  uint32_t width = 0;  // record bits
-  std::vector<std::vector<uint32_t>> records;  // little-endian words per record
+  uint32_t width = 0;  // line bits (the port's response data width)
+  std::vector<std::vector<uint32_t>> records;  // little-endian words per line (index)
   uint32_t depth() const { return records.empty() ? 1u : static_cast<uint32_t>(records.size()); }
 };
 

@@ -55,9 +55,15 @@ inline uint64_t mix_seed(uint64_t x) {
 }
 
 // The core's five memory ports for an image, with the given timing: nodes, lists, triangles and
-// shading by section, and the materials' kd fields (12 bytes of each 128-byte record).
+// shading by section, and the materials' kd fields (12 bytes of each 128-byte record). The node
+// port answers spec::kCoreNodeRspRecords (2) consecutive records per request (record i and
+// i + 1, docs/memory-format.md), the others one record.
 std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
     const scene::SceneImage& image, const std::array<MemoryParams, kCorePorts>& memory);
+
+// The core's root_node_i (and the board's root registers): node 0's record, zero when the node
+// section is empty.
+uint64_t root_node_record(const scene::SceneImage& image);
 
 // The golden model's counters from the core's performance counters (by number) and error_o.
 Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf, uint32_t error_bits);

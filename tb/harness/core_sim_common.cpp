@@ -44,8 +44,11 @@ std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
                            static_cast<uint32_t>(spec::kImageSectionIdLists),
                            static_cast<uint32_t>(spec::kImageSectionIdTriangles),
                            static_cast<uint32_t>(spec::kImageSectionIdShading)};
+  // The node port answers pairs of records (docs/memory-format.md, "kd nodes"), the others one.
   for (int i = 0; i < 4; ++i)
-    ports.push_back(std::make_unique<MemoryPort>(image, ids[i], memory[static_cast<size_t>(i)]));
+    ports.push_back(std::make_unique<MemoryPort>(
+        image, ids[i], memory[static_cast<size_t>(i)],
+        i == kPortNodes ? static_cast<uint32_t>(spec::kCoreNodeRspRecords) : 1u));
   const scene::SectionInfo& mat =
       image.section(static_cast<uint32_t>(spec::kImageSectionIdMaterials));
   const auto kd = static_cast<size_t>(spec::kImageMaterialKd);
@@ -58,6 +61,10 @@ std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
       std::make_unique<MemoryPort>(std::move(bytes), mat.count, static_cast<uint32_t>(stride), 12u,
                                    memory[kPortMaterials], image.name() + ":materials.kd"));
   return ports;
+}
+
+uint64_t root_node_record(const scene::SceneImage& image) {
+  return image.node_count() > 0 ? image.node(0).raw : 0;
 }
 
 Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf_values,

@@ -199,6 +199,7 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   m.node_count_i = s.image.section(static_cast<uint32_t>(spec::kImageSectionIdNodes)).count;
   m.list_count_i = s.image.section(static_cast<uint32_t>(spec::kImageSectionIdLists)).count;
   m.tri_count_i = s.image.section(static_cast<uint32_t>(spec::kImageSectionIdTriangles)).count;
+  m.root_node_i = root_node_record(s.image);
   // The values shade() in tb/golden/trace.hpp uses.
   m.ambient_i = shade_ambient<T>().bits();
   m.diffuse_i = shade_diffuse<T>().bits();

@@ -1,6 +1,7 @@
 // The harness's memory model (see memory_model.hpp).
 #include "memory_model.hpp"
 
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -32,25 +33,30 @@ std::vector<uint8_t> section_bytes(const scene::SceneImage& image, uint32_t id) 
 }  // namespace
 
 MemoryPort::MemoryPort(const scene::SceneImage& image, uint32_t section_id,
-                       const MemoryParams& params)
+                       const MemoryParams& params, uint32_t records_per_response)
     : MemoryPort(section_bytes(image, section_id), image.section(section_id).count,
                  image.section(section_id).stride,
                  delivered_bytes(image, section_id, image.section(section_id).stride), params,
-                 image.name() + ":" + scene::section_name(section_id)) {}
+                 image.name() + ":" + scene::section_name(section_id), records_per_response) {}
 
 MemoryPort::MemoryPort(std::vector<uint8_t> section_bytes, uint64_t count, uint32_t stride,
-                       uint32_t record_bytes, const MemoryParams& params, std::string name)
+                       uint32_t record_bytes, const MemoryParams& params, std::string name,
+                       uint32_t records_per_response)
     : params_(params),
       name_(std::move(name)),
       bytes_(std::move(section_bytes)),
       count_(count),
       stride_(stride),
       record_bytes_(record_bytes),
+      records_(records_per_response),
       rng_(params.seed) {
   check_params();
   if (record_bytes_ == 0 || record_bytes_ > stride_)
     throw std::invalid_argument(name_ + ": record bytes " + std::to_string(record_bytes_) +
                                 " must be in 1 .. stride (" + std::to_string(stride_) + ")");
+  if (records_ == 0 || records_ > std::numeric_limits<uint32_t>::max() / record_bytes_)
+    throw std::invalid_argument(name_ + ": records per response " + std::to_string(records_) +
+                                " must be >= 1, and the response at most 2^32 - 1 bytes");
   if (bytes_.size() / stride_ < count_)
     throw std::invalid_argument(name_ + ": " + std::to_string(bytes_.size()) +
                                 " bytes hold fewer than " + std::to_string(count_) + " records");
@@ -117,7 +123,7 @@ void MemoryPort::tick() {
     if (shown_->error)
       ++stats_.errors;
     else
-      stats_.bytes += record_bytes_;
+      stats_.bytes += response_bytes();
     tags_.erase(shown_->tag);
     --outstanding_;
     shown_.reset();
@@ -174,9 +180,15 @@ void MemoryPort::begin_cycle() {
 std::vector<uint32_t> MemoryPort::record_words(uint64_t index) const {
   std::vector<uint32_t> words(data_words(), 0);
   if (index >= count_) return words;
-  const uint8_t* p = bytes_.data() + index * stride_;
-  for (uint32_t k = 0; k < record_bytes_; ++k)
-    words[k / 4] |= static_cast<uint32_t>(p[k]) << (8 * (k % 4));
+  // Record index + j fills response bytes j x record_bytes on; the records past the section stay
+  // zero.
+  for (uint32_t j = 0; j < records_ && j < count_ - index; ++j) {
+    const uint8_t* p = bytes_.data() + (index + j) * stride_;
+    for (uint32_t b = 0; b < record_bytes_; ++b) {
+      const uint32_t k = j * record_bytes_ + b;
+      words[k / 4] |= static_cast<uint32_t>(p[b]) << (8 * (k % 4));
+    }
+  }
   return words;
 }
 

@@ -3,6 +3,14 @@
 // docs/memory-format.md). It is plain C++, cycle based and independent of the RTL: the harness
 // copies its outputs onto the verilated port's inputs and reports the port's handshakes back.
 //
+// Records per response: a port answers a request for index i with `records_per_response` (n >= 1)
+// consecutive records, i .. i + n - 1, one after the other in the response data (record i + j
+// from byte j x record_bytes on). A record past the end of the section is delivered as zeros;
+// the response is an error (and all zero) exactly when i itself is outside the section. The
+// core's node port reads pairs (n = spec::kCoreNodeRspRecords = 2: record i in bits [63:0],
+// record i + 1 in [127:64], so one read brings both children of an inner node); every other
+// port reads single records (n = 1).
+//
 // One clock cycle, as the harness drives it:
 //
 //   // before evaluating the core: the port's outputs for this cycle
@@ -70,10 +78,13 @@ struct MemoryParams {
 };
 
 struct MemoryStats {
-  uint64_t cycles = 0;           // tick() calls
-  uint64_t requests = 0;         // requests accepted
-  uint64_t responses = 0;        // responses taken (error responses included)
-  uint64_t bytes = 0;            // record bytes delivered (error responses deliver none)
+  uint64_t cycles = 0;     // tick() calls
+  uint64_t requests = 0;   // requests accepted
+  uint64_t responses = 0;  // responses taken (error responses included)
+  // Response bytes delivered: response_bytes() per non-error response taken, the zeros standing
+  // for records past the section included (they are on the port all the same); error responses
+  // deliver none.
+  uint64_t bytes = 0;
   uint64_t refused_cycles = 0;   // cycles in which at least one offered request was refused
   uint64_t refused_offers = 0;   // offer_request() calls that returned false
   uint64_t max_outstanding = 0;  // the most outstanding requests at any time
@@ -84,8 +95,9 @@ struct MemResponse {
   uint32_t tag = 0;
   uint64_t index = 0;  // the request's index (for diagnostics; not a port signal)
   bool error = false;  // index >= count: data is all zero
-  // The record, little-endian: record byte k bit b is data[(8k + b) / 32] bit (8k + b) % 32. The
-  // bits above the record's last byte are zero.
+  // The response's records (record_words(index)), little-endian: response byte k (byte
+  // k % record_bytes of record index + k / record_bytes) bit b is data[(8k + b) / 32] bit
+  // (8k + b) % 32. The bits above the response's last byte are zero.
   std::vector<uint32_t> data;
 };
 
@@ -99,16 +111,19 @@ class ProtocolError : public std::logic_error {
 class MemoryPort {
  public:
   // Serves section `section_id` of `image` (spec::kImageSectionIdNodes, ...Lists, ...Triangles,
-  // ...Shading; any other section of the image works too, a record being its whole stride). The
-  // section's bytes are copied; the image need not outlive the port. Record widths: nodes 8 bytes,
-  // lists 4, triangles 12 x value_bytes, shading 4 + 4 x value_bytes (the stride's zero padding is
-  // not delivered). Throws std::invalid_argument for bad parameters, rc::scene::Error for a
-  // missing section.
-  MemoryPort(const scene::SceneImage& image, uint32_t section_id, const MemoryParams& params = {});
+  // ...Shading; any other section of the image works too, a record being its whole stride),
+  // `records_per_response` records per response (see the top of this file). The section's bytes
+  // are copied; the image need not outlive the port. Record widths: nodes 8 bytes, lists 4,
+  // triangles 12 x value_bytes, shading 4 + 4 x value_bytes (the stride's zero padding is not
+  // delivered). Throws std::invalid_argument for bad parameters (records_per_response 0 too),
+  // rc::scene::Error for a missing section.
+  MemoryPort(const scene::SceneImage& image, uint32_t section_id, const MemoryParams& params = {},
+             uint32_t records_per_response = 1);
   // A section given directly: count records of `stride` bytes, of which the first record_bytes are
   // delivered.
   MemoryPort(std::vector<uint8_t> section_bytes, uint64_t count, uint32_t stride,
-             uint32_t record_bytes, const MemoryParams& params = {}, std::string name = "memory");
+             uint32_t record_bytes, const MemoryParams& params = {}, std::string name = "memory",
+             uint32_t records_per_response = 1);
 
   // ---- One cycle (see the top of this file) ----
 
@@ -140,10 +155,16 @@ class MemoryPort {
 
   const MemoryParams& params() const { return params_; }
   const std::string& name() const { return name_; }
-  uint64_t count() const { return count_; }                      // records in the section
-  uint32_t record_bytes() const { return record_bytes_; }        // bytes delivered per record
-  size_t data_words() const { return (record_bytes_ + 3) / 4; }  // rsp_data words
-  // Record `index` as rsp_data words (all zero when index >= count), without any timing.
+  uint64_t count() const { return count_; }                // records in the section
+  uint32_t record_bytes() const { return record_bytes_; }  // bytes delivered per record
+  uint32_t records_per_response() const { return records_; }
+  // Bytes of one response's data: records_per_response() x record_bytes().
+  uint32_t response_bytes() const { return records_ * record_bytes_; }
+  size_t data_words() const { return (response_bytes() + 3) / 4; }  // rsp_data words
+  // The response data for a request for `index` as rsp_data words, without any timing: records
+  // index .. index + records_per_response() - 1 (zeros past the section), all zero when
+  // index >= count. It is also the line `index` of the board build's ROM for this port
+  // (rc_board_rom).
   std::vector<uint32_t> record_words(uint64_t index) const;
 
  private:
@@ -169,6 +190,7 @@ class MemoryPort {
   uint64_t count_ = 0;
   uint32_t stride_ = 0;
   uint32_t record_bytes_ = 0;
+  uint32_t records_ = 1;  // records per response
   std::mt19937_64 rng_;
 
   uint64_t cycle_ = 0;

@@ -1,12 +1,15 @@
 // The harness's memory model (tb/harness/memory_model.hpp) against the image reader: every record
 // of every section read back bit for bit, the timing parameters (latency, per-cycle and windowed
 // rate limits, outstanding limit), out-of-order returns with every request answered once,
-// reproducibility from the seed, out-of-range indices and the statistics.
+// reproducibility from the seed, out-of-range indices and the statistics; ports answering several
+// consecutive records per request (the core's node port: pairs, make_core_ports()).
 #include "memory_model.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <iostream>
@@ -14,9 +17,11 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compiler.hpp"
+#include "core_sim.hpp"
 #include "image.hpp"
 #include "scene.hpp"
 
@@ -102,12 +107,18 @@ std::vector<uint32_t> to_words(const std::vector<uint8_t>& bytes) {
 
 using Expect = std::function<std::vector<uint32_t>(uint64_t)>;
 
-Expect expect_for(const SceneImage& image, uint32_t id) {
+// The response for index i of a port with `records` records per response: records i ..
+// i + records - 1 one after the other, a record past the section zero, all zero for i >= count.
+Expect expect_for(const SceneImage& image, uint32_t id, uint32_t records = 1) {
   const uint64_t count = image.section(id).count;
-  const size_t words = to_words(expected_bytes(image, id, 0)).size();
-  return [&image, id, count, words](uint64_t i) {
-    if (i >= count) return std::vector<uint32_t>(words, 0);
-    return to_words(expected_bytes(image, id, i));
+  const size_t record = expected_bytes(image, id, 0).size();
+  return [&image, id, count, record, records](uint64_t i) {
+    std::vector<uint8_t> bytes(record * records, 0);
+    for (uint64_t j = 0; j < records && i < count && j < count - i; ++j) {
+      const std::vector<uint8_t> r = expected_bytes(image, id, i + j);
+      std::copy(r.begin(), r.end(), bytes.begin() + static_cast<std::ptrdiff_t>(j * record));
+    }
+    return to_words(bytes);
   };
 }
 
@@ -220,7 +231,7 @@ RunResult run(MemoryPort& port, const std::vector<uint64_t>& indices, const Driv
         if (indices[k] >= port.count())
           ++r.errors;
         else
-          r.bytes += port.record_bytes();
+          r.bytes += port.response_bytes();
         owner[tag] = -1;
         free_tags.push_back(tag);
         --outstanding;
@@ -603,6 +614,131 @@ TEST(MemoryModel, ProtocolAndParameterErrors) {
   EXPECT_THROW(bad([](MemoryParams* p) { p->req_stall_prob = 1.5; })(), std::invalid_argument);
   EXPECT_THROW(bad([](MemoryParams* p) { p->rsp_stall_prob = -0.1; })(), std::invalid_argument);
   EXPECT_THROW(MemoryPort(image, 99, {}), rc::scene::Error);
+  EXPECT_THROW(MemoryPort(image, kSections[0], {}, 0), std::invalid_argument);
+}
+
+// The core's node port (docs/memory-format.md, "kd nodes"): a request for node i answers record i
+// in bits [63:0] and record i + 1 in bits [127:64], zero for the last node; an error exactly when
+// i is outside the section; 16 bytes counted per (non-error) response.
+TEST(MemoryModel, NodePairResponses) {
+  const auto records = static_cast<uint32_t>(rc::spec::kCoreNodeRspRecords);
+  ASSERT_EQ(records, 2u);
+  const uint32_t id = kSections[0];
+  const std::pair<const char*, const SceneImage*> images[] = {{"cornell fp24", &cornell_fp24()},
+                                                              {"cornell fp32", &cornell_fp32()},
+                                                              {"spheres fp24", &spheres_fp24()}};
+  uint64_t cases = 0, mismatches = 0;
+  for (const auto& [name, image] : images) {
+    for (bool stalls : {false, true}) {
+      MemoryPort port(*image, id, stalls ? stalls_on(31) : MemoryParams{}, records);
+      const uint64_t n = port.count();
+      ASSERT_GT(n, 1u);
+      EXPECT_EQ(port.records_per_response(), 2u);
+      EXPECT_EQ(port.record_bytes(), 8u);
+      EXPECT_EQ(port.response_bytes(), 16u);
+      EXPECT_EQ(port.data_words(), 4u);
+      // The functional read, against the reader's node words: low half record i, high half
+      // record i + 1 or zero.
+      for (uint64_t i = 0; i < n; ++i) {
+        const std::vector<uint32_t> w = port.record_words(i);
+        const uint64_t lo = image->node(i).raw, hi = i + 1 < n ? image->node(i + 1).raw : 0;
+        const std::vector<uint32_t> want = {
+            static_cast<uint32_t>(lo), static_cast<uint32_t>(lo >> 32), static_cast<uint32_t>(hi),
+            static_cast<uint32_t>(hi >> 32)};
+        if (w != want) ++mismatches;
+        ++cases;
+      }
+      const std::vector<uint32_t> last = port.record_words(n - 1);
+      EXPECT_EQ(last[2], 0u);
+      EXPECT_EQ(last[3], 0u);
+      EXPECT_NE(last[0] | last[1], 0u) << "a leaf's word has kind 3, never zero";
+      // Through the timing model: every node (the last one twice), then indices outside.
+      std::vector<uint64_t> idx = all_indices(n);
+      idx.push_back(n - 1);
+      const std::vector<uint64_t> outside = {n, n + 1, n + 1000, uint64_t{1} << 32, kNever};
+      idx.insert(idx.end(), outside.begin(), outside.end());
+      DriverConfig cfg;
+      if (stalls) cfg.take_p = 0.6;
+      const RunResult r = run(port, idx, cfg, expect_for(*image, id, records));
+      EXPECT_EQ(r.mismatches(), 0u) << name;
+      mismatches += r.mismatches();
+      cases += idx.size();
+      const rc::harness::MemoryStats& s = port.stats();
+      EXPECT_EQ(s.errors, outside.size()) << name;
+      EXPECT_EQ(r.errors, outside.size()) << name;
+      EXPECT_EQ(s.bytes, 16u * (idx.size() - outside.size())) << name;
+      EXPECT_EQ(s.bytes, r.bytes) << name;
+      for (uint64_t i : outside) {
+        const std::vector<uint32_t> w = port.record_words(i);
+        if (w != std::vector<uint32_t>(4, 0)) ++mismatches;
+      }
+    }
+  }
+  print_cases("memory port node pairs (record i, record i + 1)", cases, mismatches);
+  EXPECT_EQ(mismatches, 0u);
+}
+
+// The model is general: any number of records per response, records of any byte count packed
+// one after the other across the 32-bit words (here 3 records of 3 bytes: 9 bytes, 3 words).
+TEST(MemoryModel, SeveralRecordsPerResponsePackTheirBytes) {
+  constexpr uint64_t kCount = 5;
+  constexpr uint32_t kStride = 4, kRecord = 3, kRecords = 3;
+  std::vector<uint8_t> bytes(kCount * kStride);
+  for (size_t k = 0; k < bytes.size(); ++k) bytes[k] = static_cast<uint8_t>(0x11 * (k + 1));
+  const Expect expect = [&bytes](uint64_t i) {
+    std::vector<uint8_t> b(kRecord * kRecords, 0);
+    for (uint64_t j = 0; j < kRecords; ++j)
+      for (uint32_t k = 0; k < kRecord; ++k)
+        if (i < kCount && i + j < kCount) b[j * kRecord + k] = bytes[(i + j) * kStride + k];
+    return to_words(b);
+  };
+  uint64_t cases = 0, mismatches = 0;
+  for (bool stalls : {false, true}) {
+    MemoryPort port(bytes, kCount, kStride, kRecord, stalls ? stalls_on(41) : MemoryParams{},
+                    "packed", kRecords);
+    EXPECT_EQ(port.response_bytes(), 9u);
+    EXPECT_EQ(port.data_words(), 3u);
+    for (uint64_t i = 0; i < kCount + 3; ++i) {
+      if (port.record_words(i) != expect(i)) ++mismatches;
+      ++cases;
+    }
+    // The last record's followers are past the end: zero.
+    EXPECT_EQ(port.record_words(kCount - 1)[1], 0u);
+    const std::vector<uint64_t> idx = random_indices(kCount, 400, 0.1, 7);
+    DriverConfig cfg;
+    if (stalls) cfg.take_p = 0.5;
+    const RunResult r = run(port, idx, cfg, expect);
+    mismatches += r.mismatches();
+    cases += idx.size();
+    EXPECT_EQ(port.stats().bytes, 9u * (idx.size() - r.errors));
+    EXPECT_GT(r.errors, 0u);
+  }
+  print_cases("memory port, 3 records of 3 bytes per response", cases, mismatches);
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_THROW(MemoryPort(bytes, kCount, kStride, kRecord, {}, "none", 0), std::invalid_argument);
+}
+
+// The core's five ports: the node port answers pairs, the others single records.
+TEST(MemoryModel, CorePortsServeNodePairs) {
+  const SceneImage& image = cornell_fp24();
+  const auto ports =
+      rc::harness::make_core_ports(image, std::array<MemoryParams, rc::harness::kCorePorts>{});
+  ASSERT_EQ(ports.size(), static_cast<size_t>(rc::harness::kCorePorts));
+  for (int i = 0; i < rc::harness::kCorePorts; ++i) {
+    const MemoryPort& p = *ports[static_cast<size_t>(i)];
+    const uint32_t want =
+        i == rc::harness::kPortNodes ? static_cast<uint32_t>(rc::spec::kCoreNodeRspRecords) : 1u;
+    EXPECT_EQ(p.records_per_response(), want) << rc::harness::core_port_name(i);
+  }
+  const MemoryPort& nodes = *ports[rc::harness::kPortNodes];
+  EXPECT_EQ(nodes.response_bytes(), 16u);
+  const uint64_t n = nodes.count();
+  uint64_t mismatches = 0;
+  for (uint64_t i = 0; i < n; ++i)
+    if (nodes.record_words(i) != expect_for(image, kSections[0], 2)(i)) ++mismatches;
+  EXPECT_EQ(mismatches, 0u);
+  // The root record the core gets as configuration is node 0's.
+  EXPECT_EQ(rc::harness::root_node_record(image), image.node(0).raw);
 }
 
 }  // namespace

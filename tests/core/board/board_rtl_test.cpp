@@ -2,11 +2,13 @@
 // scenes rendered from block RAM with the on-chip ray generation, against the golden model with
 // the same ray source (RaySource::kRayGen), bit for bit: every pixel's rgb and exact hit record,
 // the counters read through the register port, the framebuffer read back through its port and the
-// register file read back. Corrupted images must give the golden model's error bits.
+// register file read back. Corrupted images must give the golden model's error bits. The board
+// image's node ROM (pairs of records) and root registers.
 #include <gtest/gtest.h>
 
 #include <cctype>
 #include <cstdio>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -117,6 +119,55 @@ TEST(BoardRtlErrors, FrameLargerThanTheFramebuffer) {
   opt.height = 1024;
   EXPECT_THROW(harness::render_board(in.image, opt, {}), scene::Error);
   EXPECT_THROW(harness::make_board_image(in.image, opt, 12288), scene::Error);
+}
+
+// The node ROM answers pairs (docs/memory-format.md, "kd nodes"): line i = {record i + 1 (zero
+// for the last node), record i}, 128 bits, in nodes.hex as 32 hex digits (record i + 1 first);
+// the root registers hold node 0's record, low word first, in regs.hex too.
+TEST(BoardImage, NodeRomPairsAndRootRegisters) {
+  const RenderInput in =
+      load_render_input("builtin:cornell", scene::LoadOptions{}, scene::NumberFormat::fp24());
+  RenderOptions opt = input_options(in);
+  opt.width = 16;
+  opt.height = 12;
+  const harness::BoardImage b = harness::make_board_image(in.image, opt, 12288);
+  const harness::BoardRom& rom = b.roms[harness::kPortNodes];
+  EXPECT_EQ(rom.name, "nodes");
+  EXPECT_EQ(rom.width, 128u);
+  const size_t n = in.image.node_count();
+  ASSERT_EQ(rom.records.size(), n);
+  const std::string dir = testing::TempDir() + "/board_image_pairs";
+  harness::write_board_image(b, dir, "builtin:cornell");
+  std::ifstream hex(dir + "/nodes.hex");
+  uint64_t mismatches = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const uint64_t lo = in.image.node(i).raw, hi = i + 1 < n ? in.image.node(i + 1).raw : 0;
+    const std::vector<uint32_t> want = {static_cast<uint32_t>(lo), static_cast<uint32_t>(lo >> 32),
+                                        static_cast<uint32_t>(hi), static_cast<uint32_t>(hi >> 32)};
+    if (rom.records[i] != want) ++mismatches;
+    char line[40];
+    std::snprintf(line, sizeof line, "%016llx%016llx", static_cast<unsigned long long>(hi),
+                  static_cast<unsigned long long>(lo));
+    std::string got;
+    if (!std::getline(hex, got) || got != line) ++mismatches;
+  }
+  std::string extra;
+  EXPECT_FALSE(std::getline(hex, extra)) << "nodes.hex has more lines than nodes";
+  EXPECT_EQ(rom.records[n - 1][2] | rom.records[n - 1][3], 0u) << "the last node pairs with zero";
+  std::printf("[cases] board node ROM lines (pairs) and nodes.hex: %zu cases, %llu mismatches\n", n,
+              static_cast<unsigned long long>(mismatches));
+  EXPECT_EQ(mismatches, 0u);
+
+  const uint64_t root = in.image.node(0).raw;
+  EXPECT_EQ(b.regs[spec::kBoardRegRoot], static_cast<uint32_t>(root));
+  EXPECT_EQ(b.regs[spec::kBoardRegRoot + 1], static_cast<uint32_t>(root >> 32));
+  std::ifstream regs(dir + "/regs.hex");
+  std::vector<uint32_t> words;
+  for (std::string line; std::getline(regs, line);)
+    words.push_back(static_cast<uint32_t>(std::stoul(line, nullptr, 16)));
+  ASSERT_EQ(words.size(), static_cast<size_t>(spec::kBoardRegs));
+  EXPECT_EQ(words[spec::kBoardRegRoot], static_cast<uint32_t>(root));
+  EXPECT_EQ(words[spec::kBoardRegRoot + 1], static_cast<uint32_t>(root >> 32));
 }
 
 }  // namespace

@@ -27,7 +27,10 @@ using harness::CoreSimResult;
 
 // What the fake core writes for pixel p (see rc_fake_core.sv).
 HitRecord expected_hit(const scene::SceneImage& img, uint32_t p, std::array<uint8_t, 3>& rgb) {
-  const uint64_t node = img.node(p % img.node_count()).raw;
+  // The node port's pair (record i, record i + 1 or zero) and the root record (root_node_i).
+  const size_t i = p % img.node_count();
+  const uint64_t node = img.node(i).raw, next = i + 1 < img.node_count() ? img.node(i + 1).raw : 0;
+  const uint64_t root = harness::root_node_record(img);
   const uint32_t l = img.list_entry(p % img.list_size());
   const scene::ShadingRecord sh = img.shading(l);
   const scene::MaterialRecord mat = img.material(sh.material & 0xffffu);
@@ -36,7 +39,7 @@ HitRecord expected_hit(const scene::SceneImage& img, uint32_t p, std::array<uint
   h.tri = static_cast<int32_t>(l);
   h.t = img.triangle_bits(l, 11);
   h.u = sh.normal_bits[0];
-  h.v = static_cast<uint32_t>(node >> 40);
+  h.v = static_cast<uint32_t>((node ^ next ^ root) >> 40);
   return h;
 }
 
@@ -67,6 +70,7 @@ void check_frame(const CoreSimResult& r, const scene::SceneImage& img, uint32_t 
     EXPECT_EQ(m.requests, static_cast<uint64_t>(w) * h);
     EXPECT_EQ(m.responses, m.requests);
   }
+  EXPECT_EQ(r.memory[harness::kPortNodes].bytes, 16u * w * h);  // pairs of node records
   EXPECT_EQ(r.memory[harness::kPortMaterials].bytes, 12u * w * h);
   EXPECT_EQ(r.memory[harness::kPortTriangles].bytes, 36u * w * h);
 }

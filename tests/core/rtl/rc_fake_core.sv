@@ -1,9 +1,11 @@
 // A stand-in with rc_core's ports, for testing the harness (tb/harness/core_sim_impl.hpp) on its
 // own: it takes one packet at a time and, for each existing ray in turn, reads one record from
 // each memory port and writes a framebuffer entry made from those records' bits:
-//   p = pixel id; node = nodes[p % node_count]; l = lists[p % list_count];
+//   p = pixel id; node = nodes[p % node_count] (the port's pair: record i at [63:0], record
+//   i + 1 at [127:64]); l = lists[p % list_count];
 //   tri = triangles[l]; shd = shading[l]; kd = materials[shd.material & 0xffff];
-//   fb: hit 1, tri l, t = tri value 11, u = shd value 0 (normal x), v = node[63:40],
+//   fb: hit 1, tri l, t = tri value 11, u = shd value 0 (normal x),
+//       v = node[63:40] ^ node[127:104] ^ root_node_i[63:40] (both records and the root),
 //       rgb = kd slot 0, 1, 2 low bytes.
 // An error response sets error_o bit 1. Hang = 1: it never takes a node response (the harness's
 // watchdog test). perf_o: 0 cycles, 2 packets, 3 rays, 26 fb writes, else 0.
@@ -21,6 +23,7 @@ module rc_fake_core #(
   input  logic [31:0]       node_count_i,
   input  logic [31:0]       list_count_i,
   input  logic [31:0]       tri_count_i,
+  input  logic [63:0]       root_node_i,
   input  logic [W-1:0]      ambient_i,
   input  logic [W-1:0]      diffuse_i,
   input  logic [23:0]       background_i,
@@ -47,7 +50,7 @@ module rc_fake_core #(
   input  logic              node_rsp_valid_i,
   output logic              node_rsp_ready_o,
   input  logic [TagW-1:0]   node_rsp_tag_i,
-  input  logic [63:0]       node_rsp_data_i,
+  input  logic [127:0]      node_rsp_data_i,
   input  logic              node_rsp_error_i,
   output logic              list_req_valid_o,
   input  logic              list_req_ready_i,
@@ -185,7 +188,7 @@ module rc_fake_core #(
         end
         NodeReq: if (node_req_ready_i) state_q <= NodeRsp;
         NodeRsp: if (node_rsp_valid_i && node_rsp_ready_o) begin
-          v_q <= node_rsp_data_i[63:64-W];
+          v_q <= node_rsp_data_i[63:64-W] ^ node_rsp_data_i[127:128-W] ^ root_node_i[63:64-W];
           err_q[1] <= err_q[1] | node_rsp_error_i;
           state_q <= ListReq;
         end
