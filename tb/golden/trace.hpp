@@ -67,7 +67,7 @@ struct Hit {
 struct Counters {
   uint64_t packets = 0;
   uint64_t rays = 0;
-  uint64_t nodes_fetched = 0;    // node reads (inner + leaf), one per node visit of a packet
+  uint64_t nodes_fetched = 0;    // node-port reads: one per inner-node visit (its two children)
   uint64_t inner_visits = 0;     // inner nodes visited by packets
   uint64_t traversal_steps = 0;  // inner node visits x active rays (one sub-unit step each)
   uint64_t leaf_visits = 0;      // leaves visited by packets
@@ -222,7 +222,6 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
     if (cur.mask != 0) {
       if (cur.node >= g.nodes.size()) return fail(kErrMalformedNode);
       const Node n = decode_node(g.nodes[cur.node]);
-      ++c.nodes_fetched;
       if (n.kind < 3) {
         // Inner node.
         const T split = T::from_bits(n.upper);
@@ -232,6 +231,7 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
             static_cast<uint64_t>(n.index) + 1 >= g.nodes.size())
           return fail(kErrMalformedNode);
         ++c.inner_visits;
+        ++c.nodes_fetched;  // the read of its two children (the root comes with the configuration)
         // The packet's order: the near child of the lowest-numbered active ray comes first.
         int lead = 0;
         while (!(cur.mask >> lead & 1)) ++lead;

@@ -1,0 +1,114 @@
+// rc_core_status: rc_core's status bits, hardware watchdog and performance counters
+// (docs/architecture.md, "Status and counters").
+//
+// Contract
+// - error_o (sticky until reset): bits 0..2 (rc_pkg::CoreStatus*) are ORed from err_i, the error
+//   bits raised in each cycle by any unit; bit CoreStatusWatchdog is set when the core holds work
+//   (idle_i low) and no handshake (wd_ev_i, any bit) completes for WatchdogCycles cycles. The
+//   events reach the count through two register levels (each event registered on its own, then
+//   ORed in four groups), so error_o shows the bit from the edge WatchdogCycles + 2 after the last
+//   handshake's.
+// - Counters: counter k counts perf_inc_i[3k +: 3] per cycle (registered first: a counter lags
+//   its events by a cycle); counter CorePerfMaxStack instead keeps the largest perf_depth_i seen
+//   with perf_inc_i's CorePerfStackPushes field non-zero. perf_o = counter perf_sel_i (64 bits,
+//   zero for numbers >= CorePerfCount), combinational from registers.
+// - Parameters: WatchdogCycles (>= 2), EvW (watchdog events, >= 4).
+// - Reset: rst_ni (active low, asynchronous) clears the counters, the count and the status.
+module rc_core_status #(
+  parameter int unsigned WatchdogCycles = rc_pkg::CoreWatchdogCycles,
+  parameter int unsigned EvW            = 16,
+  // Derived (do not override).
+  parameter int unsigned NPerf          = rc_pkg::CorePerfCount,
+  parameter int unsigned StatusW        = rc_pkg::CoreStatusBits,
+  parameter int unsigned SpW            = rc_pkg::CoreSpBits
+) (
+  input  logic                 clk_i,
+  input  logic                 rst_ni,
+  input  logic                 idle_i,
+  input  logic [EvW-1:0]       wd_ev_i,
+  input  logic [2:0]           err_i,
+  input  logic [3*NPerf-1:0]   perf_inc_i,
+  input  logic [SpW-1:0]       perf_depth_i,
+  input  logic [7:0]           perf_sel_i,
+  output logic [StatusW-1:0]   error_o,
+  output logic [63:0]          perf_o
+);
+
+  if (WatchdogCycles < 2 || EvW < 4 || StatusW != 4) begin : g_param_check
+    $error("rc_core_status: need WatchdogCycles >= 2, EvW >= 4 and four status bits");
+  end
+
+  localparam int unsigned G = (EvW + 3) / 4;   // events per group
+
+  //////////////
+  // Watchdog //
+  //////////////
+
+  logic [EvW-1:0]     wd_ev_q;
+  logic [3:0]         wd_grp_q;
+  logic [31:0]        wd_q;
+  logic               wd_clr, wd_fire;
+  logic [StatusW-1:0] error_q;
+
+  assign wd_clr  = |wd_grp_q;
+  assign wd_fire = (wd_q == 32'(WatchdogCycles - 1)) & ~wd_clr;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      wd_q     <= '0;
+      wd_ev_q  <= EvW'(1);
+      wd_grp_q <= 4'd1;
+      error_q  <= '0;
+    end else begin
+      wd_ev_q <= {wd_ev_i[EvW-1:1], wd_ev_i[0] | idle_i};
+      for (int unsigned g = 0; g < 4; g++) begin
+        logic any;
+        any = 1'b0;
+        for (int unsigned i = 0; i < G; i++) begin
+          if (g * G + i < EvW) any = any | wd_ev_q[g * G + i];
+        end
+        wd_grp_q[g] <= any;
+      end
+      if (wd_clr) begin
+        wd_q <= '0;
+      end else if (!wd_fire) begin
+        wd_q <= wd_q + 32'd1;
+      end
+      error_q[2:0] <= error_q[2:0] | err_i;
+      if (wd_fire) error_q[rc_pkg::CoreStatusWatchdog] <= 1'b1;
+    end
+  end
+  assign error_o = error_q;
+
+  //////////////
+  // Counters //
+  //////////////
+
+  logic [NPerf*64-1:0] perf_q;
+  logic [3*NPerf-1:0]  perf_inc_q;
+  logic [SpW-1:0]      depth_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      perf_inc_q <= '0;
+      depth_q    <= '0;
+      perf_q     <= '0;
+    end else begin
+      perf_inc_q <= perf_inc_i;
+      depth_q    <= perf_depth_i;
+      for (int unsigned k = 0; k < NPerf; k++) begin
+        if (k == rc_pkg::CorePerfMaxStack) begin
+          if (perf_inc_q[3*rc_pkg::CorePerfStackPushes +: 3] != 3'd0 &&
+              64'(depth_q) > perf_q[k*64 +: 64]) begin
+            perf_q[k*64 +: 64] <= 64'(depth_q);
+          end
+        end else begin
+          perf_q[k*64 +: 64] <= perf_q[k*64 +: 64] + 64'(perf_inc_q[3*k +: 3]);
+        end
+      end
+    end
+  end
+
+  assign perf_o = (32'(perf_sel_i) < NPerf) ? perf_q[32'(perf_sel_i)*64 +: 64] : 64'd0;
+
+endmodule

@@ -1,0 +1,321 @@
+// rc_isect_issue: the intersection unit's front (docs/architecture.md, "Intersection unit"): takes
+// each triangle read for a leaf and tests it against every active ray of the leaf's packet, one
+// ray after the other, in rc_isect_unit.
+//
+// Contract
+// - Triangle port responses (rc_core's tri_rsp_*, tag = the list entry's pool tag): taken through
+//   a one-entry skid buffer (tri_rsp_ready_o is the buffer's emptiness, a flip-flop) into the
+//   issue register, with the tag's thread, rays and triangle index read from the list unit's tag
+//   pool (tp_*); the tag is then freed (free_*). A failed read (error response) raises bad
+//   address for its thread (err_*) and finishes its entry (fin_te_*).
+// - Tests: from the issue register one ray per IsectInterval cycles (the intersection unit's
+//   rate), lowest ray first: the ray's origin and direction (rc_ray_store, per {thread, ray}) and
+//   its best hit (t and triangle, the hit store's copy for this unit) are read from block RAMs, the
+//   ray's hit bit is sampled at the same edge (the best hit is +inf and triangle -1 without it; a
+//   bit and word sampled together are the same commit's, or the word is newer and the bit older,
+//   which only lets through a test the write-back rejects), and two cycles later the test enters
+//   rc_isect_unit, which is then always ready (its results are always taken, and the tests are
+//   spaced by its interval).
+// - Results (res_*): every test's result, one per cycle at most, never refused: {thread, ray, last
+//   (its list entry's last ray), triangle, hit, t, u, v, dz}.
+// - Counters: perf_test_o, a test issued.
+// - Parameters: Threads, IsectInterval (1: two transform units, 2: one used twice).
+// - Reset: rst_ni (active low, asynchronous) clears the valid bits.
+module rc_isect_issue #(
+  parameter int unsigned Threads       = rc_pkg::CoreThreads,
+  parameter int unsigned ListTags      = rc_pkg::CoreListTags,
+  parameter int unsigned IsectInterval = rc_pkg::CoreIsectInterval,
+  // Derived (do not override).
+  parameter int unsigned W             = rc_pkg::CoreFpW,
+  parameter int unsigned ThrW          = (Threads > 1) ? $clog2(Threads) : 1,
+  parameter int unsigned LtW           = (ListTags > 1) ? $clog2(ListTags) : 1,
+  parameter int unsigned TagW          = rc_pkg::CoreTagBits
+) (
+  input  logic                clk_i,
+  input  logic                rst_ni,
+
+  // Triangle port responses.
+  input  logic                tri_rsp_valid_i,
+  output logic                tri_rsp_ready_o,
+  input  logic [TagW-1:0]     tri_rsp_tag_i,
+  input  logic [12*W-1:0]     tri_rsp_data_i,
+  input  logic                tri_rsp_error_i,
+
+  // The list unit's tag pool.
+  output logic [LtW-1:0]      tp_tag_o,
+  input  logic [ThrW-1:0]     tp_thr_i,
+  input  logic [3:0]          tp_mask_i,
+  input  logic [2:0]          tp_first_i,
+  input  logic [31:0]         tp_tri_i,
+  output logic                free_valid_o,
+  output logic [LtW-1:0]      free_tag_o,
+
+  // The rays' origins and directions (rc_ray_store, per {thread, ray}; 2 cycles).
+  output logic                ray_re_o,
+  output logic [ThrW-1:0]     ray_thr_o,
+  output logic [1:0]          ray_ray_o,
+  input  logic [6*W-1:0]      ray_orgdir_i,   // org x, y, z, dir x, y, z
+  // The best hits (the hit store's copy, per {thread, ray}; 2 cycles) and the hit bits.
+  input  logic [W+31:0]       best_i,         // {tri, t}
+  input  logic [Threads*4-1:0] hit_i,
+
+  // Results.
+  output logic                res_valid_o,
+  output rc_pkg::isect_res_t  res_o,
+
+  // A failed triangle read.
+  output logic                err_valid_o,
+  output logic [ThrW-1:0]     err_thr_o,
+  output logic [2:0]          err_bits_o,
+  output logic                fin_te_valid_o,
+  output logic [ThrW-1:0]     fin_te_thr_o,
+
+  // Debug and counter events.
+  output logic                load_valid_o,   // a response entered the issue register
+  output logic [ThrW-1:0]     load_thr_o,
+  output logic                perf_test_o,
+  output logic                wd_rsp_o
+);
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  localparam logic [W-1:0] FpInf = {1'b0, {rc_pkg::Fp24ExpW{1'b1}}, {rc_pkg::Fp24FracW{1'b0}}};
+  localparam int unsigned  IuTagW = ThrW + 3;
+
+  if (Threads < 1 || IsectInterval < 1 || IsectInterval > 2 || LtW > TagW) begin : g_param_check
+    $error("rc_isect_issue: need IsectInterval 1 or 2");
+  end
+
+  function automatic logic [1:0] lowest4(input logic [3:0] m);
+    if (m[0]) begin
+      lowest4 = 2'd0;
+    end else if (m[1]) begin
+      lowest4 = 2'd1;
+    end else if (m[2]) begin
+      lowest4 = 2'd2;
+    end else begin
+      lowest4 = m[3] ? 2'd3 : 2'd0;
+    end
+  endfunction
+
+  ///////////////////////////////
+  // Skid buffer and issue reg //
+  ///////////////////////////////
+
+  logic            is_take, ti_err_take, ti_free, ti_load, ti_v_q, ti_err_q, ti_last_q;
+  logic            tk_v_q, tk_err_q, src_v, src_err, rsp_take;
+  logic [LtW-1:0]  tk_tag_q, src_tag;
+  logic [12*W-1:0] tk_data_q, src_data, ti_m_q;
+  logic [ThrW-1:0] ti_thr_q;
+  logic [31:0]     ti_tri_q;
+  logic [3:0]      ti_rem_q, ti_rem_next;
+  logic [1:0]      ti_r;
+
+  assign tri_rsp_ready_o = ~tk_v_q;
+  assign rsp_take        = tri_rsp_valid_i & ~tk_v_q;
+  assign src_v           = tk_v_q | tri_rsp_valid_i;
+  assign src_tag         = tk_v_q ? tk_tag_q : tri_rsp_tag_i[LtW-1:0];
+  assign src_err         = tk_v_q ? tk_err_q : tri_rsp_error_i;
+  assign src_data        = tk_v_q ? tk_data_q : tri_rsp_data_i;
+  assign tp_tag_o        = src_tag;
+  // The register takes the next response in the cycle its last ray goes (or its error does).
+  assign ti_free         = ~ti_v_q | ti_err_q | (is_take & ti_last_q);
+  assign ti_load         = src_v & ti_free;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      tk_v_q   <= 1'b0;
+      ti_v_q   <= 1'b0;
+      ti_err_q <= 1'b0;
+    end else begin
+      tk_v_q <= tk_v_q ? ~ti_free : (rsp_take & ~ti_free);
+      if (ti_free) begin
+        ti_v_q   <= src_v;
+        ti_err_q <= src_v & src_err;
+      end
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (rsp_take) begin
+      tk_tag_q  <= tri_rsp_tag_i[LtW-1:0];
+      tk_err_q  <= tri_rsp_error_i;
+      tk_data_q <= tri_rsp_data_i;
+    end
+    if (ti_load) begin
+      ti_thr_q <= tp_thr_i;
+      ti_tri_q <= tp_tri_i;
+      ti_m_q   <= src_data;
+    end
+  end
+
+  // The rays still to test (lowest first) and whether the current one is the last are registers,
+  // loaded with the triangle (from the pool's {one ray only, lowest ray}) and updated at each
+  // test.
+  assign ti_rem_next = ti_rem_q & (ti_rem_q - 4'd1);
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ti_rem_q  <= '0;
+      ti_last_q <= 1'b0;
+      ti_r      <= '0;
+    end else if (ti_load) begin
+      ti_rem_q  <= tp_mask_i;
+      ti_last_q <= tp_first_i[2];
+      ti_r      <= tp_first_i[1:0];
+    end else if (is_take) begin
+      ti_rem_q  <= ti_rem_next;
+      ti_last_q <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
+      ti_r      <= lowest4(ti_rem_next);
+    end
+  end
+
+  // One test every IsectInterval cycles: pace_q counts the cycles since the last one.
+  logic pace_ok;
+  if (IsectInterval == 1) begin : g_pace1
+    assign pace_ok = 1'b1;
+  end else begin : g_pace2
+    logic pace_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        pace_q <= 1'b1;
+      end else begin
+        pace_q <= ~is_take;
+      end
+    end
+    assign pace_ok = pace_q;
+  end
+  assign is_take     = ti_v_q & ~ti_err_q & pace_ok;
+  assign ti_err_take = ti_v_q & ti_err_q;
+
+  //////////////////////////////
+  // Reads and the unit input //
+  //////////////////////////////
+
+  // The ray's words and best hit are read at is_take (block RAMs with a fabric register), the hit
+  // bit sampled at the same edge; the test's own values travel beside them (i1, i2).
+  logic              i1_v_q, i2_v_q, i1_hit_q, i2_hit_q, i1_last_q, i2_last_q;
+  logic [ThrW-1:0]   i1_thr_q, i2_thr_q;
+  logic [1:0]        i1_r_q, i2_r_q;
+  logic [31:0]       i1_tri_q, i2_tri_q;
+  logic [12*W-1:0]   i1_m_q, i2_m_q;
+  logic [3:0]        ti_hits;
+
+  always_comb begin
+    ti_hits = '0;
+    for (int unsigned t = 0; t < Threads; t++) begin
+      if (ti_thr_q == ThrW'(t)) ti_hits = hit_i[t*4 +: 4];
+    end
+  end
+
+  assign ray_re_o  = is_take;
+  assign ray_thr_o = ti_thr_q;
+  assign ray_ray_o = ti_r;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      i1_v_q <= 1'b0;
+      i2_v_q <= 1'b0;
+    end else begin
+      i1_v_q <= is_take;
+      i2_v_q <= i1_v_q;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    i1_thr_q  <= ti_thr_q;
+    i1_r_q    <= ti_r;
+    i1_last_q <= ti_last_q;
+    i1_tri_q  <= ti_tri_q;
+    i1_m_q    <= ti_m_q;
+    i1_hit_q  <= ti_hits[ti_r];
+    i2_thr_q  <= i1_thr_q;
+    i2_r_q    <= i1_r_q;
+    i2_last_q <= i1_last_q;
+    i2_tri_q  <= i1_tri_q;
+    i2_m_q    <= i1_m_q;
+    i2_hit_q  <= i1_hit_q;
+  end
+
+  logic              iu_ready, ix_v, ix_hit;
+  logic [IuTagW-1:0] ix_tag;
+  logic [31:0]       ix_tri;
+  logic [W-1:0]      ix_t, ix_u, ix_vb, ix_dz;
+
+  rc_isect_unit #(
+    .ExpW       (rc_pkg::Fp24ExpW),
+    .FracW      (rc_pkg::Fp24FracW),
+    .TagW       (IuTagW),
+    .SharedXform(IsectInterval == 2)
+  ) u_isect (
+    .clk_i,
+    .rst_ni,
+    .valid_i   (i2_v_q),
+    .ready_o   (iu_ready),
+    .tag_i     ({i2_last_q, i2_r_q, i2_thr_q}),
+    .tri_i     (i2_tri_q),
+    .m_i       (i2_m_q),
+    .org_i     (ray_orgdir_i[0 +: 3*W]),
+    .dir_i     (ray_orgdir_i[3*W +: 3*W]),
+    .best_t_i  (i2_hit_q ? best_i[W-1:0] : FpInf),
+    .best_tri_i(i2_hit_q ? best_i[W +: 32] : 32'hffff_ffff),
+    .valid_o   (ix_v),
+    .ready_i   (1'b1),
+    .tag_o     (ix_tag),
+    .tri_o     (ix_tri),
+    .hit_o     (ix_hit),
+    .t_o       (ix_t),
+    .u_o       (ix_u),
+    .v_o       (ix_vb),
+    .dz_o      (ix_dz)
+  );
+
+  assign res_valid_o = ix_v;
+  always_comb begin
+    res_o         = '0;
+    res_o.thr     = rc_pkg::CoreThrBits'(ix_tag[ThrW-1:0]);
+    res_o.ray     = ix_tag[ThrW +: 2];
+    res_o.last    = ix_tag[ThrW + 2];
+    res_o.tri_idx = ix_tri;
+    res_o.hit     = ix_hit;
+    res_o.t       = ix_t;
+    res_o.u       = ix_u;
+    res_o.v       = ix_vb;
+    res_o.dz      = ix_dz;
+  end
+
+  assign free_valid_o   = ti_load;
+  assign free_tag_o     = src_tag;
+  assign err_valid_o    = ti_err_take;
+  assign err_thr_o      = ti_thr_q;
+  assign err_bits_o     = 3'd1 << rc_pkg::CoreStatusBadAddress;
+  assign fin_te_valid_o = ti_err_take;
+  assign fin_te_thr_o   = ti_thr_q;
+  assign load_valid_o   = ti_load;
+  assign load_thr_o     = tp_thr_i;
+  assign perf_test_o    = is_take;
+  assign wd_rsp_o       = tri_rsp_valid_i & tri_rsp_ready_o;
+
+  logic unused_bits;
+  assign unused_bits = ^{tri_rsp_tag_i, tp_first_i};
+
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+  // The intersection unit takes every test when it arrives (the tests are spaced by its
+  // interval, and its results are always taken).
+  IsectReady_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 i2_v_q |-> iu_ready);
+  // A triangle has a ray to test.
+  TriHasRay_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                ti_v_q && !ti_err_q |-> ti_rem_q != 4'd0);
+  // The current ray is the lowest ray left, and the last-ray bit says whether one is left.
+  TiRem_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            ti_v_q && !ti_err_q |-> ti_r == lowest4(ti_rem_q) &&
+                            ti_last_q == ((ti_rem_q & (ti_rem_q - 4'd1)) == 4'd0));
+`endif
+
+endmodule

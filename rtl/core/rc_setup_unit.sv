@@ -1,0 +1,461 @@
+// rc_setup_unit: the core's packet intake and ray set-up (docs/architecture.md, "Ray set-up
+// unit"): takes a packet into a free thread, stores its rays, sets each ray up
+// (rc::setup_ray(): 1/d and the root-box clip) and hands the packet's walk to the pop unit as its
+// first walk entry: the root node with the packet's active rays and intervals.
+//
+// Contract
+// - Threads: a thread is free when it holds no packet. It becomes free with free_valid_i or
+//   free0_valid_i (shading: its last framebuffer write, or a packet without rays) and busy when
+//   this unit takes a packet into it. All free at reset.
+// - Packet input (rc_core's pkt_* ports, valid/ready): a packet is taken when a thread is free and
+//   the feeder is idle; pkt_ready_o is a gate of two flip-flops (the free-thread choice is
+//   registered). acc_valid_o/acc_thr_o/acc_vmask_o announce the take in the cycle after it.
+// - Ray stores: the feeder offers the packet's rays 0..3, one per cycle while the set-up units
+//   take them, and writes per ray r, in the cycle it is taken, the ray store's per-ray words
+//   (raywr_*: origin and direction; ilen and pixel id) and, for r = axis a < 3, the per-axis
+//   word of the four rays' origins and direction signs on axis a (axwr_*). After the packet's
+//   last set-up result it writes the four rays' 1/d on each axis (invwr_*, axes x, y, z in
+//   three cycles), then offers the start entry.
+// - Set-up: SetupUnits instances of rc_ray_setup (each one ray per 3 cycles) take the rays in
+//   rotation, so the unit sets up SetupUnits rays per 3 cycles (3: one ray per cycle, a packet
+//   per 4 cycles); results are gathered in the same rotation, so in order.
+// - Start (valid/ready to the pop unit): start_item_o = {thread, sp 0, entry} with entry = the root
+//   (root_node_i, checked: malformed when the node section is empty), the active rays (a ray is
+//   active when it exists and tmin <= tmax) and their intervals. It is offered after the last
+//   1/d word is written and held until taken.
+// - Status: all_free_o = every thread free and nothing in the feeder (the core is idle).
+// - Parameters: Threads, SetupUnits (1 to 3).
+// - Reset: rst_ni (active low, asynchronous) frees every thread and clears control state.
+module rc_setup_unit #(
+  parameter int unsigned Threads    = rc_pkg::CoreThreads,
+  parameter int unsigned SetupUnits = 3,
+  // Derived (do not override).
+  parameter int unsigned W          = rc_pkg::CoreFpW,
+  parameter int unsigned ThrW       = (Threads > 1) ? $clog2(Threads) : 1
+) (
+  input  logic                  clk_i,
+  input  logic                  rst_ni,
+
+  // Configuration (quasi-static).
+  input  logic [6*W-1:0]        bounds_i,
+  input  logic [63:0]           root_node_i,
+  input  logic [31:0]           node_count_i,
+  input  logic [31:0]           list_count_i,
+
+  // Packet input.
+  input  logic                  pkt_valid_i,
+  output logic                  pkt_ready_o,
+  input  logic [3:0]            pkt_mask_i,
+  input  logic [12*W-1:0]       pkt_org_i,
+  input  logic [12*W-1:0]       pkt_dir_i,
+  input  logic [4*W-1:0]        pkt_inv_len_i,
+  input  logic [127:0]          pkt_pixel_i,
+
+  // Threads freed (from shading: by a last write, and a packet without rays).
+  input  logic                  free_valid_i,
+  input  logic [ThrW-1:0]       free_thr_i,
+  input  logic                  free0_valid_i,
+  input  logic [ThrW-1:0]       free0_thr_i,
+
+  // A packet taken (a cycle after the take).
+  output logic                  acc_valid_o,
+  output logic [ThrW-1:0]       acc_thr_o,
+  output logic [3:0]            acc_vmask_o,
+
+  // Ray store writes.
+  output logic                  raywr_valid_o,   // per ray: {thread, ray}
+  output logic [ThrW-1:0]       raywr_thr_o,
+  output logic [1:0]            raywr_ray_o,
+  output logic [6*W-1:0]        raywr_orgdir_o,  // org x, y, z, dir x, y, z
+  output logic [W+31:0]         raywr_lenpix_o,  // {pixel id, inv_len}
+  output logic                  axwr_valid_o,    // per axis: {thread, axis}
+  output logic [ThrW-1:0]       axwr_thr_o,
+  output logic [1:0]            axwr_axis_o,
+  output logic [4*W+3:0]        axwr_data_o,     // {dir sign of rays 3..0, org of rays 3..0}
+  output logic                  invwr_valid_o,   // per axis: {thread, axis}
+  output logic [ThrW-1:0]       invwr_thr_o,
+  output logic [1:0]            invwr_axis_o,
+  output logic [4*W-1:0]        invwr_data_o,    // 1/d of rays 3..0
+
+  // The packet's first walk entry, to the pop unit.
+  output logic                  start_valid_o,
+  input  logic                  start_ready_i,
+  output rc_pkg::walk_item_t    start_item_o,
+
+  // Status and counter events.
+  output logic                  all_free_o,
+  output logic                  perf_packet_o,   // a packet taken (this cycle)
+  output logic [2:0]            perf_rays_o,     // its rays
+  output logic                  perf_setup_o     // a ray taken by a set-up unit
+);
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  localparam int unsigned NU = SetupUnits;
+  localparam int unsigned UW = (NU > 1) ? $clog2(NU) : 1;
+  localparam int unsigned TagW = 1 + ThrW + 2;  // {ray exists, thread, ray}
+
+  if (Threads < 1 || SetupUnits < 1 || SetupUnits > 3 ||
+      ThrW > rc_pkg::CoreThrBits) begin : g_param_check
+    $error("rc_setup_unit: need 1 <= Threads <= CoreMaxThreads and SetupUnits 1 to 3");
+  end
+
+  function automatic logic [3*W-1:0] lane_3w(input logic [12*W-1:0] v, input logic [1:0] i);
+    lane_3w = '0;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_3w = v[r*3*W +: 3*W];
+  endfunction
+  function automatic logic [W-1:0] lane_w(input logic [4*W-1:0] v, input logic [1:0] i);
+    lane_w = '0;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_w = v[r*W +: W];
+  endfunction
+  function automatic logic [31:0] lane_32(input logic [127:0] v, input logic [1:0] i);
+    lane_32 = '0;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_32 = v[r*32 +: 32];
+  endfunction
+  function automatic logic [2:0] popcount4(input logic [3:0] m);
+    popcount4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
+  endfunction
+
+  //////////////////////////
+  // Free threads, intake //
+  //////////////////////////
+
+  logic [Threads-1:0] free_q, g_acc, gacc_c_q, gacc_q;
+  logic               acc_any, acc_take, acc_any_q, acc_v_q;
+  logic [ThrW-1:0]    acc_thr, acc_thr_q;
+  logic               feed_busy_q;
+
+  rc_rr_pick #(
+    .N   (Threads),
+    .IdxW(ThrW)
+  ) u_pick_free (
+    .clk_i,
+    .rst_ni,
+    .req_i  (free_q),
+    .take_i (acc_take),
+    .valid_o(acc_any),
+    .idx_o  (acc_thr),
+    .grant_o(g_acc)
+  );
+
+  // The free-thread choice is registered (acc_any_q, acc_thr_q, gacc_c_q), so pkt_ready_o is a
+  // gate of two flip-flops. A registered choice is still free when it is used: only a take makes
+  // a free thread busy, the choice is withdrawn in the cycle after a take, and the feeder stays
+  // busy for the packet's four rays while the free set catches up (gacc_q clears the bit a cycle
+  // after the take). A thread that becomes free is offered a cycle later than the choice sees it.
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      acc_any_q <= 1'b0;
+      acc_thr_q <= '0;
+      gacc_c_q  <= '0;
+      acc_v_q   <= 1'b0;
+      gacc_q    <= '0;
+      free_q    <= '1;
+    end else begin
+      acc_any_q <= acc_any & ~acc_take;
+      acc_thr_q <= acc_thr;
+      gacc_c_q  <= g_acc;
+      acc_v_q   <= acc_take;
+      gacc_q    <= acc_take ? gacc_c_q : '0;
+      for (int unsigned t = 0; t < Threads; t++) begin
+        if ((free_valid_i && free_thr_i == ThrW'(t)) ||
+            (free0_valid_i && free0_thr_i == ThrW'(t))) begin
+          free_q[t] <= 1'b1;
+        end else if (gacc_q[t]) begin
+          free_q[t] <= 1'b0;
+        end
+      end
+    end
+  end
+  assign pkt_ready_o = acc_any_q & ~feed_busy_q;
+  assign acc_take    = pkt_valid_i & pkt_ready_o;
+
+  ////////////
+  // Feeder //
+  ////////////
+
+  logic [ThrW-1:0] feed_thr_q;
+  logic [1:0]      feed_r_q;
+  logic [12*W-1:0] feed_org_q, feed_dir_q;
+  logic [4*W-1:0]  feed_ilen_q;
+  logic [127:0]    feed_pix_q;
+  logic [3:0]      feed_vmask_q;
+  logic [NU-1:0]   su_ready_all, su_valid_all;
+  logic [UW-1:0]   in_u_q, out_u_q;
+  logic            su_ready, su_take;
+
+  always_comb begin
+    su_ready = 1'b0;
+    for (int unsigned u = 0; u < NU; u++) if (in_u_q == UW'(u)) su_ready = su_ready_all[u];
+  end
+  assign su_take = feed_busy_q & su_ready;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      feed_busy_q <= 1'b0;
+      feed_thr_q  <= '0;
+      feed_r_q    <= '0;
+      in_u_q      <= '0;
+    end else begin
+      if (acc_take) begin
+        feed_busy_q <= 1'b1;
+        feed_thr_q  <= acc_thr_q;
+        feed_r_q    <= '0;
+      end else if (su_take) begin
+        feed_r_q <= feed_r_q + 2'd1;
+        if (feed_r_q == 2'd3) feed_busy_q <= 1'b0;
+      end
+      if (su_take) in_u_q <= (in_u_q == UW'(NU - 1)) ? '0 : in_u_q + UW'(1);
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (acc_take) begin
+      feed_org_q   <= pkt_org_i;
+      feed_dir_q   <= pkt_dir_i;
+      feed_ilen_q  <= pkt_inv_len_i;
+      feed_pix_q   <= pkt_pixel_i;
+      feed_vmask_q <= pkt_mask_i;
+    end
+  end
+
+  assign acc_valid_o = acc_v_q;
+  assign acc_thr_o   = feed_thr_q;
+  assign acc_vmask_o = feed_vmask_q;
+
+  // The ray store's words of the ray being taken.
+  logic [3*W-1:0] feed_org_r, feed_dir_r;
+  assign feed_org_r      = lane_3w(feed_org_q, feed_r_q);
+  assign feed_dir_r      = lane_3w(feed_dir_q, feed_r_q);
+  assign raywr_valid_o   = su_take;
+  assign raywr_thr_o     = feed_thr_q;
+  assign raywr_ray_o     = feed_r_q;
+  assign raywr_orgdir_o  = {feed_dir_r, feed_org_r};
+  assign raywr_lenpix_o  = {lane_32(feed_pix_q, feed_r_q), lane_w(feed_ilen_q, feed_r_q)};
+  assign axwr_valid_o    = su_take & (feed_r_q != 2'd3);
+  assign axwr_thr_o      = feed_thr_q;
+  assign axwr_axis_o     = feed_r_q;
+  always_comb begin
+    for (int unsigned r = 0; r < 4; r++) begin
+      axwr_data_o[r*W +: W] = '0;
+      axwr_data_o[4*W + r]  = 1'b0;
+      for (int unsigned a = 0; a < 3; a++) begin
+        if (feed_r_q == 2'(a)) begin
+          axwr_data_o[r*W +: W] = feed_org_q[(3*r+a)*W +: W];
+          axwr_data_o[4*W + r]  = feed_dir_q[(3*r+a)*W + W-1];
+        end
+      end
+    end
+  end
+
+  ////////////////////
+  // Set-up units   //
+  ////////////////////
+
+  logic [NU*TagW-1:0] su_tag_all;
+  logic [NU*3*W-1:0]  su_inv_all;
+  logic [NU*W-1:0]    su_tmin_all, su_tmax_all;
+  logic [NU-1:0]      su_act_all;
+  logic               out_ready;
+
+  for (genvar u = 0; u < NU; u++) begin : g_setup
+    logic u_ready_i;
+    assign u_ready_i = out_ready && out_u_q == UW'(u);
+    rc_ray_setup #(
+      .ExpW (rc_pkg::Fp24ExpW),
+      .FracW(rc_pkg::Fp24FracW),
+      .TagW (TagW)
+    ) u_setup (
+      .clk_i,
+      .rst_ni,
+      .valid_i (feed_busy_q && in_u_q == UW'(u)),
+      .ready_o (su_ready_all[u]),
+      .tag_i   ({feed_vmask_q[feed_r_q], feed_thr_q, feed_r_q}),
+      .org_i   (feed_org_r),
+      .dir_i   (feed_dir_r),
+      .bounds_i(bounds_i),
+      .valid_o (su_valid_all[u]),
+      .ready_i (u_ready_i),
+      .tag_o   (su_tag_all[u*TagW +: TagW]),
+      .inv_o   (su_inv_all[u*3*W +: 3*W]),
+      .tmin_o  (su_tmin_all[u*W +: W]),
+      .tmax_o  (su_tmax_all[u*W +: W]),
+      .active_o(su_act_all[u])
+    );
+  end
+
+  // The result at the head of the rotation.
+  logic            out_valid, out_take, out_active, out_exists;
+  logic [TagW-1:0] out_tag;
+  logic [3*W-1:0]  out_inv;
+  logic [W-1:0]    out_tmin, out_tmax;
+  logic [ThrW-1:0] out_thr;
+  logic [1:0]      out_r;
+  always_comb begin
+    out_valid  = 1'b0;
+    out_tag    = '0;
+    out_inv    = '0;
+    out_tmin   = '0;
+    out_tmax   = '0;
+    out_active = 1'b0;
+    for (int unsigned u = 0; u < NU; u++) begin
+      if (out_u_q == UW'(u)) begin
+        out_valid  = su_valid_all[u];
+        out_tag    = su_tag_all[u*TagW +: TagW];
+        out_inv    = su_inv_all[u*3*W +: 3*W];
+        out_tmin   = su_tmin_all[u*W +: W];
+        out_tmax   = su_tmax_all[u*W +: W];
+        out_active = su_act_all[u];
+      end
+    end
+  end
+  assign {out_exists, out_thr, out_r} = out_tag;
+
+  ////////////
+  // Gather //
+  ////////////
+
+  // A packet's results gather here in ray order (ga_*_q); with its ray 3 they move to the
+  // write-out registers (wo_*_q), which write the three 1/d words and then offer the start entry.
+  // Ray 3 of the next packet waits while the write-out is busy.
+  logic            wo_busy_q, wo_start_q;
+  logic [1:0]      wo_a_q;
+  logic [ThrW-1:0] wo_thr_q;
+  logic [3:0]      wo_mask_q, ga_mask_q, ga_mask_new;
+  logic [12*W-1:0] wo_inv_q;
+  logic [9*W-1:0]  ga_inv_q;                 // rays 0..2 (ray 3 goes straight to wo)
+  logic [4*W-1:0]  wo_tmin_q, wo_tmax_q;
+  logic [3*W-1:0]  ga_tmin_q, ga_tmax_q;
+  logic            start_take;
+
+  assign out_ready = ~((out_r == 2'd3) & wo_busy_q);
+  assign out_take  = out_valid & out_ready;
+  assign start_take = start_valid_o & start_ready_i;
+
+  always_comb begin
+    for (int unsigned r = 0; r < 4; r++) begin
+      ga_mask_new[r] = (out_r == 2'(r)) ? (out_active & out_exists) :
+                       ((out_r == 2'd0) ? 1'b0 : ga_mask_q[r]);
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (out_take) begin
+      ga_mask_q <= ga_mask_new;
+      for (int unsigned r = 0; r < 3; r++) begin
+        if (out_r == 2'(r)) begin
+          ga_inv_q[r*3*W +: 3*W] <= out_inv;
+          ga_tmin_q[r*W +: W]    <= out_tmin;
+          ga_tmax_q[r*W +: W]    <= out_tmax;
+        end
+      end
+    end
+    if (out_take && out_r == 2'd3) begin
+      wo_thr_q  <= out_thr;
+      wo_mask_q <= ga_mask_new;
+      wo_inv_q  <= {out_inv, ga_inv_q};
+      wo_tmin_q <= {out_tmin, ga_tmin_q};
+      wo_tmax_q <= {out_tmax, ga_tmax_q};
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      out_u_q    <= '0;
+      wo_busy_q  <= 1'b0;
+      wo_start_q <= 1'b0;
+      wo_a_q     <= '0;
+    end else begin
+      if (out_take) out_u_q <= (out_u_q == UW'(NU - 1)) ? '0 : out_u_q + UW'(1);
+      if (out_take && out_r == 2'd3) begin
+        wo_busy_q  <= 1'b1;
+        wo_start_q <= 1'b0;
+        wo_a_q     <= '0;
+      end else if (wo_busy_q && !wo_start_q) begin
+        wo_a_q <= wo_a_q + 2'd1;
+        if (wo_a_q == 2'd2) wo_start_q <= 1'b1;
+      end else if (start_take) begin
+        wo_busy_q  <= 1'b0;
+        wo_start_q <= 1'b0;
+      end
+    end
+  end
+
+  assign invwr_valid_o = wo_busy_q & ~wo_start_q;
+  assign invwr_thr_o   = wo_thr_q;
+  assign invwr_axis_o  = wo_a_q;
+  always_comb begin
+    for (int unsigned r = 0; r < 4; r++) begin
+      invwr_data_o[r*W +: W] = '0;
+      for (int unsigned a = 0; a < 3; a++) begin
+        if (wo_a_q == 2'(a)) invwr_data_o[r*W +: W] = wo_inv_q[(3*r+a)*W +: W];
+      end
+    end
+  end
+
+  ///////////
+  // Start //
+  ///////////
+
+  // The root's checks, from the quasi-static configuration (registered): an empty node section
+  // makes the root malformed (rc::trace_packet: the root index is outside the section).
+  logic [1:0] root_chk_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      root_chk_q <= rc_pkg::NodeOk;
+    end else begin
+      root_chk_q <= (node_count_i == 32'd0) ? rc_pkg::NodeMalformed :
+                    rc_pkg::node_check(root_node_i, 30'd0, node_count_i, list_count_i);
+    end
+  end
+
+  assign start_valid_o = wo_start_q;
+  always_comb begin
+    start_item_o                = '0;
+    start_item_o.thr            = rc_pkg::CoreThrBits'(wo_thr_q);
+    start_item_o.sp             = '0;
+    start_item_o.entry.node.rec = root_node_i;
+    start_item_o.entry.node.chk = root_chk_q;
+    start_item_o.entry.mask     = wo_mask_q;
+    for (int unsigned r = 0; r < 4; r++) begin
+      start_item_o.entry.tmin[r] = wo_tmin_q[r*W +: W];
+      start_item_o.entry.tmax[r] = wo_tmax_q[r*W +: W];
+    end
+  end
+
+  ////////////
+  // Status //
+  ////////////
+
+  assign all_free_o    = (&free_q) & ~feed_busy_q;
+  assign perf_packet_o = acc_take;
+  assign perf_rays_o   = acc_take ? popcount4(pkt_mask_i) : 3'd0;
+  assign perf_setup_o  = su_take;
+
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+  // The registered free-thread choice is a free thread when the packet input offers it.
+  AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                    pkt_ready_o |-> free_q[acc_thr_q] &&
+                                    gacc_c_q == (Threads'(1) << acc_thr_q));
+  // Results come back in the rotation's order: ray r of a packet after ray r - 1 of the same one.
+  logic [ThrW-1:0] last_thr_q;
+  logic [1:0]      last_r_q;
+  always_ff @(posedge clk_i) if (out_take) {last_thr_q, last_r_q} <= {out_thr, out_r};
+  SetupOrder_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 out_take && out_r != 2'd0 |->
+                                 out_thr == last_thr_q && out_r == last_r_q + 2'd1);
+  // A thread is freed only while busy.
+  FreeBusy_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               (!free_valid_i || !free_q[free_thr_i]) &&
+                               (!free0_valid_i || !free_q[free0_thr_i]) &&
+                               !(free_valid_i && free0_valid_i && free_thr_i == free0_thr_i));
+`endif
+
+endmodule

@@ -1,0 +1,573 @@
+// rc_shade_seq: the shading sequencer (docs/architecture.md, "Shading"): for each traced packet,
+// every existing ray's shading record and material are read and the ray shaded (rc_shade_unit),
+// or given the background colour, and written to the framebuffer with its hit record; the thread
+// is freed after its last write.
+//
+// Contract
+// - Traced packets: done_valid_i (the pop unit: the walk ended) makes the thread wait for
+//   shading; waiting threads are picked round robin, one packet at a time. At the pick the
+//   thread's rays, hit bits and error bits are sampled (rc_thread_ctrl, through the one-hot
+//   pick) and its rays' triangles read (the hit store's shade copy); a packet that met an error
+//   has no hits (every ray gets the background). A packet without rays is freed at once.
+// - The sequencer then takes the packet's rays 0..3 in turn, one per cycle: a ray with a hit
+//   sends a shading request {tag = {thread, ray}, index = its triangle} (shd_req_*, from a
+//   register), a ray without one goes to the miss register; an absent ray is skipped.
+// - A shading response stores the ray's |n| and whether it failed (per {thread, ray}) and sends
+//   the material request {same tag, the record's material index; 0 after an error response}
+//   (mat_req_*). A material response (taken while the shading input queue has room for every
+//   response in flight: mat_rsp_ready_o, a register) reads the ray's |n|, its hit's d'z (the hit
+//   store's fb copy) and its inv_len (rc_ray_store), two cycles, and queues the shading of kd
+//   (zero after a failed shading or material read: black) for rc_shade_unit.
+// - Framebuffer writes (fb_*, valid/ready from a queue's head register): the shaded rays first,
+//   then the misses. A write's pixel id (rc_ray_store) and hit record (the hit store's fb copy;
+//   zeros for a miss) are read on its way to the queue (two cycles). One write per existing ray;
+//   a thread's last write frees it (free_valid_o).
+// - Errors: a failed shading or material read raises the core's bad-address bit (err_shd_o,
+//   err_mat_o: the packet's own error bits are final by then).
+// - Parameters: Threads.
+// - Reset: rst_ni (active low, asynchronous) clears control state.
+module rc_shade_seq #(
+  parameter int unsigned Threads = rc_pkg::CoreThreads,
+  // Derived (do not override).
+  parameter int unsigned W       = rc_pkg::CoreFpW,
+  parameter int unsigned ThrW    = (Threads > 1) ? $clog2(Threads) : 1,
+  parameter int unsigned TagW    = rc_pkg::CoreTagBits
+) (
+  input  logic                 clk_i,
+  input  logic                 rst_ni,
+
+  // Configuration (quasi-static).
+  input  logic [W-1:0]         ambient_i,
+  input  logic [W-1:0]         diffuse_i,
+  input  logic [23:0]          background_i,
+
+  // Traced packets.
+  input  logic                 done_valid_i,
+  input  logic [ThrW-1:0]      done_thr_i,
+  input  logic [Threads*4-1:0] vmask_i,
+  input  logic [Threads*4-1:0] hit_i,
+  input  logic [Threads*3-1:0] err_i,
+
+  // The hit store's copies (2 cycles).
+  output logic                 tri_re_o,
+  output logic [ThrW-1:0]      tri_thr_o,
+  input  logic [127:0]         tri_i,          // ray r's triangle at [r*32 +: 32]
+  output logic                 rec_re_o,
+  output logic [ThrW-1:0]      rec_thr_o,
+  output logic [1:0]           rec_ray_o,
+  input  logic [3*W+31:0]      rec_i,          // {tri, v, u, t}
+  output logic                 dz_re_o,
+  output logic [ThrW-1:0]      dz_thr_o,
+  output logic [1:0]           dz_ray_o,
+  input  logic [W-1:0]         dz_i,
+  // The ray store (2 cycles).
+  output logic                 ilen_re_o,
+  output logic [ThrW-1:0]      ilen_thr_o,
+  output logic [1:0]           ilen_ray_o,
+  input  logic [W-1:0]         ilen_i,
+  output logic                 pix_re_o,
+  output logic [ThrW-1:0]      pix_thr_o,
+  output logic [1:0]           pix_ray_o,
+  input  logic [31:0]          pix_i,
+
+  // Shading and material ports.
+  output logic                 shd_req_valid_o,
+  input  logic                 shd_req_ready_i,
+  output logic [TagW-1:0]      shd_req_tag_o,
+  output logic [31:0]          shd_req_index_o,
+  input  logic                 shd_rsp_valid_i,
+  output logic                 shd_rsp_ready_o,
+  input  logic [TagW-1:0]      shd_rsp_tag_i,
+  input  logic [32+4*W-1:0]    shd_rsp_data_i,
+  input  logic                 shd_rsp_error_i,
+  output logic                 mat_req_valid_o,
+  input  logic                 mat_req_ready_i,
+  output logic [TagW-1:0]      mat_req_tag_o,
+  output logic [31:0]          mat_req_index_o,
+  input  logic                 mat_rsp_valid_i,
+  output logic                 mat_rsp_ready_o,
+  input  logic [TagW-1:0]      mat_rsp_tag_i,
+  input  logic [95:0]          mat_rsp_data_i,
+  input  logic                 mat_rsp_error_i,
+
+  // Framebuffer write port.
+  output logic                 fb_valid_o,
+  input  logic                 fb_ready_i,
+  output logic [31:0]          fb_pixel_o,
+  output logic [23:0]          fb_rgb_o,
+  output logic                 fb_hit_o,
+  output logic [31:0]          fb_tri_o,
+  output logic [W-1:0]         fb_t_o,
+  output logic [W-1:0]         fb_u_o,
+  output logic [W-1:0]         fb_v_o,
+
+  // Threads freed: by their last write (free_*), or at the pick for a packet without rays
+  // (free0_*).
+  output logic                 free_valid_o,
+  output logic [ThrW-1:0]      free_thr_o,
+  output logic                 free0_valid_o,
+  output logic [ThrW-1:0]      free0_thr_o,
+
+  // Errors, debug and counter events.
+  output logic                 err_shd_o,
+  output logic                 err_mat_o,
+  output logic                 pick_valid_o,   // a packet chosen (the choice register)
+  output logic [ThrW-1:0]      pick_thr_o,
+  output logic                 perf_shade_o,   // a ray into rc_shade_unit
+  output logic                 perf_fb_o,      // a framebuffer write
+  output logic                 wd_o            // a handshake on the shading, material or fb port
+);
+
+  ////////////////
+  // Parameters //
+  ////////////////
+
+  localparam int unsigned RidW    = ThrW + 2;
+  localparam int unsigned NlenLsb = 8 * rc_pkg::ImageShadingFirstValue +
+                                    rc_pkg::ImageShadingNormalLen * W;
+  localparam int unsigned InQD    = 4;   // shading input queue (after the reads)
+  localparam int unsigned OutQD   = 4;   // framebuffer output queue
+
+  if (Threads < 1 || RidW > TagW) begin : g_param_check
+    $error("rc_shade_seq: need {thread, ray} to fit the port tags");
+  end
+
+  function automatic logic [31:0] lane_32(input logic [127:0] v, input logic [1:0] i);
+    lane_32 = '0;
+    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_32 = v[r*32 +: 32];
+  endfunction
+  function automatic logic [2:0] popcount4(input logic [3:0] m);
+    popcount4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
+  endfunction
+
+  ///////////////////////////
+  // Traced packets, pick  //
+  ///////////////////////////
+
+  logic [Threads-1:0] done_q, g_shp, gshp_q;
+  logic               shp_any, shp_room, shp_v_q, st1_v_q, st2_v_q, sh_busy_q;
+  logic [ThrW-1:0]    shp_thr, shp_thr_q, st1_thr_q, st2_thr_q, sh_thr_q;
+  logic [3:0]         st1_vm_q, st1_hm_q, st2_vm_q, st2_hm_q, sh_vm_q, sh_hm_q;
+  logic [1:0]         sh_r_q;
+  logic [127:0]       sh_btri_q;
+
+  rc_rr_pick #(
+    .N   (Threads),
+    .IdxW(ThrW)
+  ) u_pick_done (
+    .clk_i,
+    .rst_ni,
+    .req_i  (done_q),
+    .take_i (shp_room),
+    .valid_o(shp_any),
+    .idx_o  (shp_thr),
+    .grant_o(g_shp)
+  );
+
+  // A packet is chosen when the stages before the sequencer are free (shp_room, from flip-flops);
+  // the choice is registered (shp), the rays and hit bits sampled through the one-hot choice, the
+  // triangles read (st1, st2) into the next-packet register (nb), from which the sequencer takes
+  // the packet when it is done with the one before: the next packet is read while the sequencer
+  // works, five cycles a packet at most.
+  logic       nb_v_q, sh_load;
+  logic [ThrW-1:0] nb_thr_q;
+  logic [3:0] nb_vm_q, nb_hm_q;
+  logic [127:0] nb_btri_q;
+  assign shp_room = ~shp_v_q & ~st1_v_q & ~st2_v_q & ~nb_v_q;
+  assign sh_load  = nb_v_q & (~sh_busy_q | (adv & (sh_r_q == 2'd3)));
+
+  logic [3:0] shp_vm, shp_hm;
+  logic [2:0] shp_err;
+  always_comb begin
+    shp_vm  = '0;
+    shp_hm  = '0;
+    shp_err = '0;
+    for (int unsigned t = 0; t < Threads; t++) begin
+      shp_vm  = shp_vm | ({4{gshp_q[t]}} & vmask_i[t*4 +: 4]);
+      shp_hm  = shp_hm | ({4{gshp_q[t]}} & hit_i[t*4 +: 4]);
+      shp_err = shp_err | ({3{gshp_q[t]}} & err_i[t*3 +: 3]);
+    end
+  end
+
+  logic adv, to_shd, to_miss, sreq_free, miss_free, miss_v_q, shd_req_valid_q;
+  logic sh_valid_r, sh_hit_r;
+  logic [RidW-1:0] shd_req_rid_q, miss_rid_q;
+  logic [31:0]     shd_req_index_q;
+  logic            miss_take;
+
+  assign sh_valid_r = sh_vm_q[sh_r_q];
+  assign sh_hit_r   = sh_hm_q[sh_r_q];
+  assign sreq_free  = ~shd_req_valid_q | shd_req_ready_i;
+  assign to_shd     = sh_busy_q & sh_valid_r & sh_hit_r & sreq_free;
+  assign to_miss    = sh_busy_q & sh_valid_r & ~sh_hit_r & miss_free;
+  assign adv        = sh_busy_q & (~sh_valid_r | to_shd | to_miss);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      done_q          <= '0;
+      shp_v_q         <= 1'b0;
+      shp_thr_q       <= '0;
+      gshp_q          <= '0;
+      st1_v_q         <= 1'b0;
+      st2_v_q         <= 1'b0;
+      nb_v_q          <= 1'b0;
+      sh_busy_q       <= 1'b0;
+      sh_thr_q        <= '0;
+      sh_r_q          <= '0;
+      shd_req_valid_q <= 1'b0;
+      shd_req_rid_q   <= '0;
+      shd_req_index_q <= '0;
+      miss_v_q        <= 1'b0;
+      miss_rid_q      <= '0;
+    end else begin
+      for (int unsigned t = 0; t < Threads; t++) begin
+        done_q[t] <= (done_q[t] & ~gshp_q[t]) | (done_valid_i && done_thr_i == ThrW'(t));
+      end
+      shp_v_q   <= shp_any & shp_room;
+      shp_thr_q <= shp_thr;
+      gshp_q    <= (shp_any & shp_room) ? g_shp : '0;
+      // A packet without rays goes no further than st1 (it is freed there).
+      st1_v_q   <= shp_v_q & (shp_vm != 4'd0);
+      st2_v_q   <= st1_v_q;
+      if (st2_v_q) begin
+        nb_v_q <= 1'b1;
+      end else if (sh_load) begin
+        nb_v_q <= 1'b0;
+      end
+      if (adv) begin
+        sh_r_q <= sh_r_q + 2'd1;
+        if (sh_r_q == 2'd3) sh_busy_q <= 1'b0;
+      end
+      if (sh_load) begin
+        sh_busy_q <= 1'b1;
+        sh_thr_q  <= nb_thr_q;
+        sh_r_q    <= '0;
+      end
+      if (shd_req_valid_q && shd_req_ready_i) shd_req_valid_q <= 1'b0;
+      if (to_shd) begin
+        shd_req_valid_q <= 1'b1;
+        shd_req_rid_q   <= {sh_thr_q, sh_r_q};
+        shd_req_index_q <= lane_32(sh_btri_q, sh_r_q);
+      end
+      if (miss_take) miss_v_q <= 1'b0;
+      if (to_miss) begin
+        miss_v_q   <= 1'b1;
+        miss_rid_q <= {sh_thr_q, sh_r_q};
+      end
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    st1_thr_q <= shp_thr_q;
+    st1_vm_q  <= shp_vm;
+    st1_hm_q  <= shp_hm & {4{~(|shp_err)}};
+    st2_thr_q <= st1_thr_q;
+    st2_vm_q  <= st1_vm_q;
+    st2_hm_q  <= st1_hm_q;
+    if (st2_v_q) begin
+      nb_thr_q  <= st2_thr_q;
+      nb_vm_q   <= st2_vm_q;
+      nb_hm_q   <= st2_hm_q;
+      nb_btri_q <= tri_i;
+    end
+    if (sh_load) begin
+      sh_vm_q   <= nb_vm_q;
+      sh_hm_q   <= nb_hm_q;
+      sh_btri_q <= nb_btri_q;
+    end
+  end
+  assign tri_re_o  = shp_v_q;
+  assign tri_thr_o = shp_thr_q;
+
+  assign shd_req_valid_o = shd_req_valid_q;
+  assign shd_req_tag_o   = TagW'(shd_req_rid_q);
+  assign shd_req_index_o = shd_req_index_q;
+
+  ////////////////////////////////////
+  // Shading record -> material     //
+  ////////////////////////////////////
+
+  logic            mat_req_valid_q, sr_take, mreq_free;
+  logic [RidW-1:0] mat_req_rid_q, sr_rid;
+  logic [31:0]     mat_req_index_q;
+
+  assign mreq_free       = ~mat_req_valid_q | mat_req_ready_i;
+  assign shd_rsp_ready_o = mreq_free;
+  assign sr_take         = shd_rsp_valid_i & mreq_free;
+  assign sr_rid          = shd_rsp_tag_i[RidW-1:0];
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      mat_req_valid_q <= 1'b0;
+      mat_req_rid_q   <= '0;
+      mat_req_index_q <= '0;
+    end else begin
+      if (mat_req_valid_q && mat_req_ready_i) mat_req_valid_q <= 1'b0;
+      if (sr_take) begin
+        mat_req_valid_q <= 1'b1;
+        mat_req_rid_q   <= sr_rid;
+        mat_req_index_q <= shd_rsp_error_i ? 32'd0 :
+                           shd_rsp_data_i[8 * rc_pkg::ImageShadingMaterial +: 32];
+      end
+    end
+  end
+  assign mat_req_valid_o = mat_req_valid_q;
+  assign mat_req_tag_o   = TagW'(mat_req_rid_q);
+  assign mat_req_index_o = mat_req_index_q;
+
+  logic            ma_take;
+  logic [RidW-1:0] mr_rid;
+
+  // |n| and whether the shading read failed, per {thread, ray}: written at the shading response,
+  // read at the material response (which comes after its request, so after the write).
+  logic [W:0] nl_rd;
+  rc_ram #(
+    .Width (W + 1),
+    .Depth (4 << ThrW),
+    .OutReg(1'b1)
+  ) u_nlen (
+    .clk_i,
+    .we_i   (sr_take),
+    .waddr_i(sr_rid),
+    .wdata_i({shd_rsp_error_i, shd_rsp_data_i[NlenLsb +: W]}),
+    .re_i   (ma_take),
+    .raddr_i(mr_rid),
+    .rdata_o(nl_rd)
+  );
+
+  //////////////////////////////
+  // Material -> shading unit //
+  //////////////////////////////
+
+  // A material response is taken while the input queue has room for it and every response in
+  // the two read stages (m1, m2): ma_room_q, from the queue's count a cycle ago.
+  logic            ma_room_q, m1_v_q, m2_v_q, m1_bad_q, m2_bad_q;
+  logic [RidW-1:0] m1_rid_q, m2_rid_q;
+  logic [3*W-1:0]  m1_kd_q, m2_kd_q;
+  logic [$clog2(InQD+1)-1:0] iq_cnt;
+  logic            iq_valid, sh_ready;
+  logic [RidW+6*W-1:0] iq_data;
+  logic [RidW-1:0] iq_rid;
+  logic [W-1:0]    iq_dz, iq_nlen, iq_ilen;
+  logic [3*W-1:0]  iq_kd;
+
+  assign mr_rid          = mat_rsp_tag_i[RidW-1:0];
+  assign mat_rsp_ready_o = ma_room_q;
+  assign ma_take         = mat_rsp_valid_i & ma_room_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      m1_v_q    <= 1'b0;
+      m2_v_q    <= 1'b0;
+      ma_room_q <= 1'b1;
+    end else begin
+      m1_v_q    <= ma_take;
+      m2_v_q    <= m1_v_q;
+      // Room for a response taken now: the queue's entries, the two read stages and this one.
+      ma_room_q <= 32'(iq_cnt) + 32'(m1_v_q) + 32'(m2_v_q) + 32'(ma_take) + 1 <= InQD;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    m1_rid_q <= mr_rid;
+    m1_bad_q <= mat_rsp_error_i;
+    m1_kd_q  <= {mat_rsp_data_i[64 +: W], mat_rsp_data_i[32 +: W], mat_rsp_data_i[0 +: W]};
+    m2_rid_q <= m1_rid_q;
+    m2_bad_q <= m1_bad_q;
+    m2_kd_q  <= m1_kd_q;
+  end
+  assign dz_re_o    = ma_take;
+  assign dz_thr_o   = mr_rid[RidW-1:2];
+  assign dz_ray_o   = mr_rid[1:0];
+  assign ilen_re_o  = ma_take;
+  assign ilen_thr_o = mr_rid[RidW-1:2];
+  assign ilen_ray_o = mr_rid[1:0];
+
+  rc_fifo #(
+    .Width(RidW + 6 * W),
+    .Depth(InQD)
+  ) u_in_q (
+    .clk_i,
+    .rst_ni,
+    .push_i (m2_v_q),
+    .data_i ({m2_rid_q, (m2_bad_q | nl_rd[W]) ? {3*W{1'b0}} : m2_kd_q, ilen_i, nl_rd[W-1:0],
+              dz_i}),
+    .valid_o(iq_valid),
+    .ready_i(sh_ready),
+    .data_o (iq_data),
+    .count_o(iq_cnt)
+  );
+  assign {iq_rid, iq_kd, iq_ilen, iq_nlen, iq_dz} = iq_data;
+
+  logic            sho_v, sho_ready;
+  logic [RidW-1:0] sho_rid;
+  logic [23:0]     sho_rgb;
+
+  rc_shade_unit #(
+    .ExpW (rc_pkg::Fp24ExpW),
+    .FracW(rc_pkg::Fp24FracW),
+    .TagW (RidW)
+  ) u_shade (
+    .clk_i,
+    .rst_ni,
+    .valid_i  (iq_valid),
+    .ready_o  (sh_ready),
+    .tag_i    (iq_rid),
+    .dz_i     (iq_dz),
+    .nlen_i   (iq_nlen),
+    .inv_len_i(iq_ilen),
+    .kd_i     (iq_kd),
+    .ambient_i(ambient_i),
+    .diffuse_i(diffuse_i),
+    .valid_o  (sho_v),
+    .ready_i  (sho_ready),
+    .tag_o    (sho_rid),
+    .rgb_o    (sho_rgb)
+  );
+
+  ////////////////////////
+  // Framebuffer writes //
+  ////////////////////////
+
+  // A write (a shaded ray first, else a miss) is taken while the output queue has room for it and
+  // the two read stages (f1, f2); its pixel id and hit record are read on the way.
+  logic            f_take, f_hit, f_room_q, f1_v_q, f2_v_q, f1_hit_q, f2_hit_q;
+  logic [RidW-1:0] f_rid, f1_rid_q, f2_rid_q;
+  logic [23:0]     f_rgb, f1_rgb_q, f2_rgb_q;
+  logic [$clog2(OutQD+1)-1:0] oq_cnt;
+  logic [ThrW+32+24+1+32+3*W-1:0] oq_data;
+  logic            fb_take;
+  logic [W-1:0]    rec_t, rec_u, rec_v;
+  logic [31:0]     rec_tri;
+
+  assign f_take    = (sho_v | miss_v_q) & f_room_q;
+  assign f_hit     = sho_v;
+  assign f_rid     = sho_v ? sho_rid : miss_rid_q;
+  assign f_rgb     = sho_v ? sho_rgb : background_i;
+  assign sho_ready = f_room_q;
+  assign miss_take = miss_v_q & f_room_q & ~sho_v;
+  assign miss_free = ~miss_v_q | miss_take;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      f1_v_q   <= 1'b0;
+      f2_v_q   <= 1'b0;
+      f_room_q <= 1'b1;
+    end else begin
+      f1_v_q   <= f_take;
+      f2_v_q   <= f1_v_q;
+      f_room_q <= 32'(oq_cnt) + 32'(f1_v_q) + 32'(f2_v_q) + 32'(f_take) + 1 <= OutQD;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    f1_rid_q <= f_rid;
+    f1_hit_q <= f_hit;
+    f1_rgb_q <= f_rgb;
+    f2_rid_q <= f1_rid_q;
+    f2_hit_q <= f1_hit_q;
+    f2_rgb_q <= f1_rgb_q;
+  end
+  assign rec_re_o  = f_take;
+  assign rec_thr_o = f_rid[RidW-1:2];
+  assign rec_ray_o = f_rid[1:0];
+  assign pix_re_o  = f_take;
+  assign pix_thr_o = f_rid[RidW-1:2];
+  assign pix_ray_o = f_rid[1:0];
+  assign {rec_tri, rec_v, rec_u, rec_t} = rec_i;
+
+  logic [ThrW-1:0] oq_thr;
+  rc_fifo #(
+    .Width(ThrW + 32 + 24 + 1 + 32 + 3 * W),
+    .Depth(OutQD)
+  ) u_out_q (
+    .clk_i,
+    .rst_ni,
+    .push_i (f2_v_q),
+    .data_i ({f2_rid_q[RidW-1:2], pix_i, f2_rgb_q, f2_hit_q, f2_hit_q ? rec_tri : 32'd0,
+              f2_hit_q ? rec_t : {W{1'b0}}, f2_hit_q ? rec_u : {W{1'b0}},
+              f2_hit_q ? rec_v : {W{1'b0}}}),
+    .valid_o(fb_valid_o),
+    .ready_i(fb_ready_i),
+    .data_o (oq_data),
+    .count_o(oq_cnt)
+  );
+  assign {oq_thr, fb_pixel_o, fb_rgb_o, fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o} = oq_data;
+  assign fb_take = fb_valid_o & fb_ready_i;
+
+  // Writes still due per thread: set as shading takes the packet (st1), counted down by writes;
+  // the last one frees the thread (a packet without rays is freed at st1).
+  logic [Threads*3-1:0] fbw_q;
+  logic                 free_v, free0_v;
+  logic [ThrW-1:0]      free_thr, free0_thr;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      fbw_q <= '0;
+    end else begin
+      for (int unsigned t = 0; t < Threads; t++) begin
+        if (shp_v_q && shp_thr_q == ThrW'(t)) begin
+          fbw_q[t*3 +: 3] <= popcount4(shp_vm);
+        end else if (fb_take && oq_thr == ThrW'(t)) begin
+          fbw_q[t*3 +: 3] <= fbw_q[t*3 +: 3] - 3'd1;
+        end
+      end
+    end
+  end
+  logic [2:0] fb_cnt;
+  always_comb begin
+    fb_cnt = '0;
+    for (int unsigned t = 0; t < Threads; t++) begin
+      if (oq_thr == ThrW'(t)) fb_cnt = fbw_q[t*3 +: 3];
+    end
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      free_v    <= 1'b0;
+      free_thr  <= '0;
+      free0_v   <= 1'b0;
+      free0_thr <= '0;
+    end else begin
+      free_v    <= fb_take && fb_cnt == 3'd1;
+      free_thr  <= oq_thr;
+      free0_v   <= shp_v_q && shp_vm == 4'd0;
+      free0_thr <= shp_thr_q;
+    end
+  end
+  assign free_valid_o  = free_v;
+  assign free_thr_o    = free_thr;
+  assign free0_valid_o = free0_v;
+  assign free0_thr_o   = free0_thr;
+
+  assign err_shd_o    = sr_take & shd_rsp_error_i;
+  assign err_mat_o    = ma_take & mat_rsp_error_i;
+  assign pick_valid_o = shp_v_q;
+  assign pick_thr_o   = shp_thr_q;
+  assign perf_shade_o = iq_valid & sh_ready;
+  assign perf_fb_o    = fb_take;
+  assign wd_o         = (shd_req_valid_q & shd_req_ready_i) | sr_take |
+                        (mat_req_valid_q & mat_req_ready_i) | ma_take | fb_take;
+
+  logic unused_bits;
+  assign unused_bits = ^{shd_rsp_tag_i, shd_rsp_data_i, mat_rsp_tag_i, mat_rsp_data_i,
+                         f2_rid_q};
+
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+  // A thread waits for shading once.
+  DoneOnce_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               done_valid_i |-> !done_q[done_thr_i] || gshp_q[done_thr_i]);
+  // The next-packet register is free when a packet's read completes (one packet between the
+  // choice and the sequencer).
+  NextFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               st2_v_q |-> !nb_v_q);
+  // The pick's one-hot grant is its thread.
+  ShadeGrant_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 shp_v_q |-> gshp_q == (Threads'(1) << shp_thr_q));
+  // A write belongs to a thread with writes due.
+  FbDue_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            fb_take |-> fb_cnt != 3'd0);
+`endif
+
+endmodule
