@@ -16,6 +16,7 @@
 #   make fpga-vivado  Vivado bitstream for the Nexys Video (fpga/xilinx/; needs Vivado on PATH and
 #                     VIVADO_SCENE=<directory written by `raycore board-image`>)
 #   make deps         installs the Debian/PyPI packages the project needs when they are missing
+#   make bench-core   the core's benchmark: scenes x memory latency x threads, bit for bit
 #   make fuzz         libFuzzer targets for the OBJ/MTL, scene JSON and image readers
 #                     (FUZZ_SECONDS each, default 60; tests/fuzz/fuzz.mk; not part of CI)
 # Every target that needs a dependency calls `deps` first, so a fresh machine needs no extra step.
@@ -224,6 +225,17 @@ clean:
 # Fuzzing (libFuzzer with ASan/UBSan) of the OBJ/MTL loader, the scene JSON reader and the image
 # reader and validator: `make fuzz` (FUZZ_SECONDS per target, default 60; not part of CI).
 include tests/fuzz/fuzz.mk
+
+# The core's benchmark: every regression scene through the verilated core at memory latencies 1, 16
+# and 64 and 16, 64 and the default threads, bit for bit: cycles, rays/cycle, efficiency and each
+# unit's utilisation in one table (tests/bench/bench_core.py; build/bench/core.md keeps it).
+MODELS_DIR ?= $(or $(RAYCORE_MODELS_PATH),../shared/models)
+.PHONY: bench-core
+bench-core: raycore
+	cmake --build $(BUILD) -j$(JOBS) --target rc_core_bench_modules
+	@mkdir -p $(BUILD)/bench
+	$(PYTHON) tests/bench/bench_core.py $(BUILD)/tb/app/raycore --models $(MODELS_DIR) \
+	  --jobs $(JOBS) --markdown $(BUILD)/bench/core.md
 
 # Scene compiler benchmark: build time and SAH cost for bunny, Sponza and the conference room.
 .PHONY: bench-scene

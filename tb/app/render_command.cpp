@@ -153,15 +153,17 @@ double share(uint64_t part, uint64_t whole) {
 
 // The verilated core model that --threads-rtl and --isect-interval-rtl name.
 harness::CoreModel rtl_model(const RenderArgs& a) {
-  if (a.threads_rtl != "1" && a.threads_rtl != "default")
-    throw Error("--threads-rtl: expected 1 or default, got '" + a.threads_rtl + "'");
+  if (a.threads_rtl != "1" && a.threads_rtl != "16" && a.threads_rtl != "64" &&
+      a.threads_rtl != "default")
+    throw Error("--threads-rtl: expected 1, 16, 64 or default, got '" + a.threads_rtl + "'");
   if (a.isect_interval_rtl != "1" && a.isect_interval_rtl != "default")
     throw Error("--isect-interval-rtl: expected 1 or default, got '" + a.isect_interval_rtl + "'");
-  if (a.threads_rtl == "1" && a.isect_interval_rtl == "1")
-    throw Error(
-        "--threads-rtl 1 and --isect-interval-rtl 1: no core model has both "
-        "(one of them at a time)");
+  if (a.threads_rtl != "default" && a.isect_interval_rtl == "1")
+    throw Error("--threads-rtl " + a.threads_rtl +
+                " and --isect-interval-rtl 1: no core model has both (one of them at a time)");
   if (a.threads_rtl == "1") return harness::CoreModel::kThreads1;
+  if (a.threads_rtl == "16") return harness::CoreModel::kThreads16;
+  if (a.threads_rtl == "64") return harness::CoreModel::kThreads64;
   if (a.isect_interval_rtl == "1") return harness::CoreModel::kIsect1;
   return harness::CoreModel::kDefault;
 }
@@ -178,6 +180,13 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
                          {"isect", share(perf(spec::kCorePerfIsectBusy), r.cycles)},
                          {"shade", share(perf(spec::kCorePerfShadeBusy), r.cycles)},
                          {"core", share(perf(spec::kCorePerfBusyCycles), r.cycles)}};
+  const harness::UnitUtilisation u =
+      harness::unit_utilisation(r.perf, r.cycles, harness::isect_interval(rtl_model(a)));
+  nlohmann::json util = {{"setup", u.setup},
+                         {"trav", u.trav},
+                         {"list", u.list},
+                         {"isect", u.isect},
+                         {"shade", u.shade}};
   nlohmann::json mem = nlohmann::json::object();
   for (int i = 0; i < harness::kCorePorts; ++i) {
     const harness::MemoryStats& m = r.memory[static_cast<size_t>(i)];
@@ -194,6 +203,8 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
           {"rays", c.rays},
           {"rays_per_cycle", share(c.rays, r.cycles)},
           {"busy_share", busy},
+          {"utilisation", util},
+          {"busiest_unit", {{"unit", u.busiest_name}, {"utilisation", u.busiest}}},
           {"traversal_steps", c.traversal_steps},
           {"triangle_tests", c.triangle_tests},
           {"efficiency", eff},
@@ -201,7 +212,7 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
           {"simulated_cycles_per_second", r.cycles_per_second},
           {"wall_seconds", r.seconds},
           {"error_bits", r.error_bits},
-          {"threads", a.threads_rtl},
+          {"threads", harness::model_threads(rtl_model(a))},
           {"isect_interval", harness::isect_interval(rtl_model(a))},
           {"latency", a.latency},
           {"stall_seed", a.stall_seed},
@@ -213,7 +224,15 @@ void print_rtl_summary(const nlohmann::json& j) {
   std::printf("  rtl: %llu cycles, %llu rays, %.4f rays/cycle, efficiency %.3f\n",
               j["cycles"].get<unsigned long long>(), j["rays"].get<unsigned long long>(),
               j["rays_per_cycle"].get<double>(), j["efficiency"].get<double>());
-  std::printf("  busy: setup %.3f, trav %.3f, list %.3f, isect %.3f, shade %.3f\n",
+  const auto& u = j["utilisation"];
+  std::printf(
+      "  utilisation: setup %.3f, trav %.3f, list %.3f, isect %.3f, shade %.3f; busiest: %s "
+      "%.3f\n",
+      u["setup"].get<double>(), u["trav"].get<double>(), u["list"].get<double>(),
+      u["isect"].get<double>(), u["shade"].get<double>(),
+      j["busiest_unit"]["unit"].get<std::string>().c_str(),
+      j["busiest_unit"]["utilisation"].get<double>());
+  std::printf("  operations per cycle: setup %.3f, trav %.3f, list %.3f, isect %.3f, shade %.3f\n",
               b["setup"].get<double>(), b["trav"].get<double>(), b["list"].get<double>(),
               b["isect"].get<double>(), b["shade"].get<double>());
   std::printf("  traversal steps %llu, triangle tests %llu\n",
@@ -624,7 +643,8 @@ void add_render_commands(CLI::App& app, Action* action) {
       ->capture_default_str()
       ->check(kDigits);
   cmd->add_option("--threads-rtl", args->threads_rtl,
-                  "rtl: the core's packet threads: default or 1")
+                  "rtl: the core's packet threads: default (docs/spec.toml [core] threads), 1, 16 "
+                  "or 64 (16 and 64: models `make bench-core` builds)")
       ->capture_default_str();
   cmd->add_option("--isect-interval-rtl", args->isect_interval_rtl,
                   "rtl: cycles per ray-triangle test of the core's intersection unit: default "

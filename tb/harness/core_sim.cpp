@@ -12,8 +12,7 @@ namespace rc::harness {
 
 template <>
 std::string thread_states(const Vrc_core& m) {
-  return describe_thread_states(m.dbg_thread_state_o,
-                                static_cast<uint32_t>(spec::kCoreThreads));
+  return describe_thread_states(m.dbg_thread_state_o, static_cast<uint32_t>(spec::kCoreThreads));
 }
 
 template class CoreSim<Vrc_core>;
@@ -37,6 +36,8 @@ CoreSimResult render_module(const char* module, const scene::SceneImage& image,
 CoreSimResult render_rtl(const scene::SceneImage& image, const RenderOptions& render,
                          const CoreSimOptions& options, CoreModel model) {
   if (model == CoreModel::kThreads1) return render_module("rc_core_t1", image, render, options);
+  if (model == CoreModel::kThreads16) return render_module("rc_core_t16", image, render, options);
+  if (model == CoreModel::kThreads64) return render_module("rc_core_t64", image, render, options);
   if (model == CoreModel::kIsect1) return render_module("rc_core_i1", image, render, options);
   return CoreSim<Vrc_core>(image, options).render(render);
 }

@@ -127,14 +127,37 @@ class CoreSim {
   std::unique_ptr<State> s_;
 };
 
-// Which verilated model render_rtl() runs: the default parameters, Threads = 1, or
-// IsectInterval = 1.
-enum class CoreModel { kDefault, kThreads1, kIsect1 };
+// Which verilated model render_rtl() runs: the default parameters, Threads = 1, 16 or 64 (the
+// default is docs/spec.toml [core] threads), or IsectInterval = 1.
+enum class CoreModel { kDefault, kThreads1, kThreads16, kThreads64, kIsect1 };
 
 // The intersection interval (cycles per ray-triangle test) of a model.
 inline uint32_t isect_interval(CoreModel m) {
   return m == CoreModel::kIsect1 ? 1u : static_cast<uint32_t>(spec::kCoreIsectInterval);
 }
+
+// The packet threads of a model.
+inline uint32_t model_threads(CoreModel m) {
+  switch (m) {
+    case CoreModel::kThreads1: return 1u;
+    case CoreModel::kThreads16: return 16u;
+    case CoreModel::kThreads64: return 64u;
+    default: return static_cast<uint32_t>(spec::kCoreThreads);
+  }
+}
+
+// The utilisation of each of the core's units in a run: the operations it took times the cycles
+// each occupies it, over the run's cycles (docs/architecture.md, "Counters"): ray set-up, rays x
+// 3 / setup_units (each rc_ray_setup takes a ray per 3 cycles); traversal, inner-node visits (a
+// node step of the four sub-units, whatever the number of active rays); list, list requests;
+// intersection, ray-triangle tests x isect_interval; shading, shaded rays. busiest is the largest.
+struct UnitUtilisation {
+  double setup = 0, trav = 0, list = 0, isect = 0, shade = 0;
+  const char* busiest_name = "";
+  double busiest = 0;
+};
+UnitUtilisation unit_utilisation(const std::array<uint64_t, kCorePerfCount>& perf, uint64_t cycles,
+                                 uint32_t isect_interval);
 
 // Renders an fp24 image through the verilated core. Throws scene::Error for an image in another
 // format and CoreSimError for a failed run.

@@ -67,6 +67,32 @@ uint64_t root_node_record(const scene::SceneImage& image) {
   return image.node_count() > 0 ? image.node(0).raw : 0;
 }
 
+UnitUtilisation unit_utilisation(const std::array<uint64_t, kCorePerfCount>& perf, uint64_t cycles,
+                                 uint32_t isect_interval) {
+  const auto share = [cycles](double ops) {
+    return cycles ? ops / static_cast<double>(cycles) : 0.0;
+  };
+  const auto p = [&perf](int64_t k) { return static_cast<double>(perf[static_cast<size_t>(k)]); };
+  UnitUtilisation u;
+  u.setup = share(p(spec::kCorePerfSetupBusy) * 3.0 / static_cast<double>(spec::kCoreSetupUnits));
+  u.trav = share(p(spec::kCorePerfTravBusy));
+  u.list = share(p(spec::kCorePerfListBusy));
+  u.isect = share(p(spec::kCorePerfIsectBusy) * static_cast<double>(isect_interval));
+  u.shade = share(p(spec::kCorePerfShadeBusy));
+  const std::pair<const char*, double> units[] = {{"setup", u.setup},
+                                                  {"trav", u.trav},
+                                                  {"list", u.list},
+                                                  {"isect", u.isect},
+                                                  {"shade", u.shade}};
+  for (const auto& [name, value] : units) {
+    if (value > u.busiest || u.busiest_name[0] == '\0') {
+      u.busiest = value;
+      u.busiest_name = name;
+    }
+  }
+  return u;
+}
+
 Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf_values,
                             uint32_t error_bits) {
   const auto perf = [&perf_values](int64_t k) { return perf_values[static_cast<size_t>(k)]; };

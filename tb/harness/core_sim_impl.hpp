@@ -77,7 +77,7 @@ void clear_words(P& port) {
 }  // namespace detail
 
 // Every thread's state for the hang report; core_sim.cpp specialises it for the real core models
-// (rc_core st_q, public in the RTL). Other models (the harness test's stand-in) have none.
+// (rc_core's debug port dbg_thread_state_o). Other models (the harness test's stand-in) have none.
 template <class Model>
 std::string thread_states(const Model&) {
   return "";

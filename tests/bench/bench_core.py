@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""The core's benchmark (`make bench-core`): renders each scene through the verilated core at
+several memory latencies and thread counts, bit for bit against the golden model, and prints one
+table: cycles, rays per cycle, efficiency (ideal cycles / cycles), the utilisation of each unit
+and of the busiest one (docs/architecture.md, "Counters"), and the simulation's speed. It measures;
+it judges nothing but the bit-exact check (a run that differs from the golden model fails it).
+
+Usage: bench_core.py RAYCORE [--models DIR] [--jobs N] [--markdown FILE] [--quick]
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+# (label, input, size, extra raycore options)
+SCENES = [
+    ("default", "scenes/default.json", "256x192", []),
+    ("conference", "scenes/conference.json", "256x192", []),
+    ("sponza", "scenes/sponza.json", "256x192", []),
+    ("terrain", "scenes/terrain.json", "256x192", []),
+    ("spheres", "scenes/spheres.json", "256x192", []),
+    ("bunny", "{models}/bunny/bunny.obj", "512x384", ["--auto-camera"]),
+]
+LATENCIES = [1, 16, 64]
+THREADS = ["16", "64", "default"]
+
+# SaarCOR's published figures (docs/architecture.md, "Performance"; ../shared/papers): the share
+# of the ideal rate one RTC reached with 16 and 32 threads, in cycle-accurate simulation.
+SAARCOR = "SaarCOR (simulated, 64-ray packets): 16 threads 70-80% of the ideal rate, 32 threads 80-90%"
+
+
+def run(raycore, root, models, scene, latency, threads):
+    label, inp, size, extra = scene
+    inp = inp.format(models=models)
+    with tempfile.TemporaryDirectory() as tmp:
+        stats = os.path.join(tmp, "s.json")
+        cmd = [raycore, "render", inp, "--engine", "rtl", "--check", "--size", size,
+               "--latency", str(latency), "--threads-rtl", threads, "-q",
+               "-o", os.path.join(tmp, "i.png"), "--stats", stats] + extra
+        if models:
+            cmd += ["--models-path", models]
+        start = time.monotonic()
+        p = subprocess.run(cmd, cwd=root, capture_output=True, text=True)
+        wall = time.monotonic() - start
+        if p.returncode != 0 or not os.path.exists(stats):
+            return {"label": label, "latency": latency, "threads": threads, "error":
+                    (p.stderr or p.stdout).strip().splitlines()[-1:] or ["failed"], "wall": wall}
+        with open(stats) as f:
+            d = json.load(f)
+    r = d["rtl"]
+    return {"label": label, "latency": latency, "threads": r["threads"], "size": size,
+            "cycles": r["cycles"], "rays_per_cycle": r["rays_per_cycle"],
+            "efficiency": r["efficiency"], "util": r["utilisation"],
+            "busiest": r["busiest_unit"], "pass": d["check"]["pass"],
+            "speed": r["simulated_cycles_per_second"], "wall": wall}
+
+
+def table(rows):
+    head = ("| scene | size | latency | threads | cycles | rays/cycle | efficiency | busiest unit "
+            "| setup | trav | list | isect | shade | bit-exact | sim cycles/s |")
+    lines = [head, "|" + "---|" * 15]
+    for x in rows:
+        if "error" in x:
+            lines.append(f"| {x['label']} | | {x['latency']} | {x['threads']} | failed: "
+                         f"{' '.join(x['error'])} |" + " |" * 10)
+            continue
+        u = x["util"]
+        lines.append(
+            f"| {x['label']} | {x['size']} | {x['latency']} | {x['threads']} | {x['cycles']:,} | "
+            f"{x['rays_per_cycle']:.3f} | {x['efficiency']:.3f} | {x['busiest']['unit']} "
+            f"{x['busiest']['utilisation']:.3f} | {u['setup']:.2f} | {u['trav']:.2f} | "
+            f"{u['list']:.2f} | {u['isect']:.2f} | {u['shade']:.2f} | "
+            f"{'yes' if x['pass'] else 'NO'} | {x['speed']:,.0f} |")
+    return "\n".join(lines)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("raycore")
+    ap.add_argument("--models", default="", help="the shared test models' directory")
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--markdown", help="also write the table to this file")
+    ap.add_argument("--quick", action="store_true", help="latency 16 and the default threads only")
+    a = ap.parse_args()
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    models = os.path.abspath(a.models) if a.models else ""
+    scenes = [s for s in SCENES if models or "{models}" not in s[1]]
+    if len(scenes) < len(SCENES):
+        print("bench-core: no shared models directory: bunny left out", file=sys.stderr)
+    lats = [16] if a.quick else LATENCIES
+    thrs = ["default"] if a.quick else THREADS
+    jobs = [(s, l, t) for s in scenes for t in thrs for l in lats]
+    start = time.monotonic()
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
+        rows = list(ex.map(lambda j: run(a.raycore, root, models, *j), jobs))
+    text = table(rows)
+    print(text)
+    print()
+    print(SAARCOR)
+    print(f"{len(rows)} runs in {time.monotonic() - start:.0f} s")
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write(text + "\n\n" + SAARCOR + "\n")
+    bad = [x for x in rows if "error" in x or not x["pass"]]
+    for x in bad:
+        print(f"bench-core: {x['label']} latency {x['latency']} threads {x['threads']}: "
+              f"{' '.join(x.get('error', ['not bit-exact']))}", file=sys.stderr)
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
