@@ -1,19 +1,53 @@
-// rc_rr_pick (rtl/core/rc_rr_pick.sv), the core's round-robin thread scheduler, verilated at
-// N = 16 (the default thread count), 5 (not a power of two) and 1, exhaustively: for every pointer
-// value and every request vector, valid_o and idx_o against a plain scan (the first requester at
-// or after the pointer, wrapping around); then seeded random takes, checking after each that the
-// pointer moved to the taken index + 1 (mod N) by the choice it makes next; one take in eight has
-// no request at all, which must return the pointer to 0. grant_o (the choice one-hot) is checked
-// against the same reference in every case.
+// rc_rr_pick (rtl/core/rc_rr_pick.sv), the core's round-robin thread scheduler, in both of its
+// structures.
+//
+// One pointer over all requesters (N <= 32, rc_rr_pick_flat), verilated at N = 16 (the 16-thread
+// core), 5 (not a power of two) and 1, exhaustively: for every pointer value and every request
+// vector, valid_o and idx_o against a plain scan (the first requester at or after the pointer,
+// wrapping around); then seeded random takes, checking after each that the pointer moved to the
+// taken index + 1 (mod N) by the choice it makes next; one take in eight has no request at all,
+// which must return the pointer to 0. grant_o (the choice one-hot) is checked against the same
+// reference in every case.
+//
+// Groups of 16 (N > 32), verilated at N = 128 (the core's default thread count) and 40 (two full
+// groups and a third padded with 8 requesters that never ask), against GroupedRef, a model written
+// from the contract: a pointer per group and one over the groups; the choice is the first group
+// with a request at or after the group pointer, and in it the first requester at or after that
+// group's pointer; a take moves the group pointer past the chosen group and only the chosen
+// group's pointer past the chosen requester; a take without a request returns the group pointer
+// to 0 and moves no group's pointer. Checked every cycle (valid_o, grant_o, and idx_o when valid_o
+// is high):
+// - seeded random: 240,000 cycles in runs of 1..400 cycles, each run one kind of request vector
+//   (dense, half, sparse, a few, a single requester, all requesters, the last group only (the
+//   padded one at 40), one group, one requester in each of some groups, none, requesters that
+//   leave when served and join at random), redrawn every cycle or held, taken with probability
+//   1, 3/4 or 1/4; every requester must be taken at least once, and some takes have no request;
+// - fairness: fixed sets of requesters that keep asking (all, dense, sparse, one per group, a
+//   single one, the last group, a full group and one in every other group), 30 N takes each (one
+//   cycle in eight without a take) after random traffic that scatters the pointers; each served
+//   requester's wait (takes since it asked or was last served, the serving take included) must be
+//   at most N (the contract: served within N takes of asking); the worst wait is printed. The
+//   groups give a bound of 16 x the group count, which is N only when N is a multiple of 16: at
+//   N = 40, with all requesters asking, waits reach 48 and the N = 40 fairness test fails.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <memory>
+#include <ostream>
 #include <random>
+#include <string>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "Vrr_pick_n1.h"
+#include "Vrr_pick_n128.h"
 #include "Vrr_pick_n16.h"
+#include "Vrr_pick_n40.h"
 #include "Vrr_pick_n5.h"
 #include "fp_cases.hpp"
 #include "verilated.h"
@@ -143,6 +177,405 @@ TEST(RrPick, N16Exhaustive) {
 }
 TEST(RrPick, N5Exhaustive) { run<Vrr_pick_n5>(5, "rc_rr_pick N=5 (every pointer, every request)"); }
 TEST(RrPick, N1Exhaustive) { run<Vrr_pick_n1>(1, "rc_rr_pick N=1 (every pointer, every request)"); }
+
+// ---- The grouped picker (N > 32) ----
+
+constexpr int kGroup = 16;  // requesters per group (the contract)
+constexpr int kMaxN = 128;
+
+// A request or grant vector of up to kMaxN bits.
+struct Bits {
+  std::array<uint32_t, kMaxN / 32> w{};
+
+  static std::size_t word(int i) { return static_cast<std::size_t>(i / 32); }
+  bool test(int i) const { return ((w[word(i)] >> (i % 32)) & 1u) != 0u; }
+  void set(int i) { w[word(i)] |= 1u << (i % 32); }
+  void clear(int i) { w[word(i)] &= ~(1u << (i % 32)); }
+  bool any() const { return w[0] != 0u || w[1] != 0u || w[2] != 0u || w[3] != 0u; }
+  bool operator==(const Bits& o) const { return w == o.w; }
+  bool operator!=(const Bits& o) const { return w != o.w; }
+  static Bits one(int i) {
+    Bits b;
+    b.set(i);
+    return b;
+  }
+  // Requesters lo .. hi-1.
+  static Bits range(int lo, int hi) {
+    Bits b;
+    for (int i = lo; i < hi; ++i) b.set(i);
+    return b;
+  }
+};
+
+std::ostream& operator<<(std::ostream& os, const Bits& b) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "0x%08x_%08x_%08x_%08x", b.w[3], b.w[2], b.w[1], b.w[0]);
+  return os << buf;
+}
+
+// The verilated ports: up to 64 bits a QData, wider a VlWide of 32-bit words.
+void put(QData& port, const Bits& b) { port = (static_cast<QData>(b.w[1]) << 32) | b.w[0]; }
+template <std::size_t W>
+void put(VlWide<W>& port, const Bits& b) {
+  static_assert(W <= kMaxN / 32, "port wider than Bits");
+  for (std::size_t i = 0; i < W; ++i) port[i] = b.w[i];
+}
+Bits get(QData port) {
+  Bits b;
+  b.w[0] = static_cast<uint32_t>(port);
+  b.w[1] = static_cast<uint32_t>(port >> 32);
+  return b;
+}
+template <std::size_t W>
+Bits get(const VlWide<W>& port) {
+  static_assert(W <= kMaxN / 32, "port wider than Bits");
+  Bits b;
+  for (std::size_t i = 0; i < W; ++i) b.w[i] = port[i];
+  return b;
+}
+
+// The reference for N > 32, from rc_rr_pick's contract: requesters in groups of 16 (the last
+// padded with requesters that never ask), a round-robin pointer in each group and one over the
+// groups that have a request. All pointers start at 0.
+class GroupedRef {
+ public:
+  explicit GroupedRef(int n)
+      : n_(n), groups_((n + kGroup - 1) / kGroup), gptr_(static_cast<std::size_t>(groups_), 0) {}
+
+  int groups() const { return groups_; }
+  int outer_ptr() const { return optr_; }
+  int group_ptr(int g) const { return gptr_[static_cast<std::size_t>(g)]; }
+
+  // The chosen requester, -1 without a request: the first group with a request at or after the
+  // group pointer (wrapping around), in it the first requester at or after its pointer.
+  int choose(const Bits& req) const {
+    for (int k = 0; k < groups_; ++k) {
+      const int g = (optr_ + k) % groups_;
+      for (int j = 0; j < kGroup; ++j) {
+        const int i = g * kGroup + (group_ptr(g) + j) % kGroup;
+        if (i < n_ && req.test(i)) return i;
+      }
+    }
+    return -1;
+  }
+  // A take: the group pointer moves past the chosen group, the chosen group's pointer past the
+  // chosen requester, no other group's pointer moves; without a request the group pointer
+  // returns to 0. Returns the choice.
+  int take(const Bits& req) {
+    const int c = choose(req);
+    if (c < 0) {
+      optr_ = 0;
+      return c;
+    }
+    const int g = c / kGroup;
+    optr_ = (g + 1) % groups_;
+    gptr_[static_cast<std::size_t>(g)] = (c % kGroup + 1) % kGroup;
+    return c;
+  }
+
+ private:
+  int n_, groups_;
+  int optr_ = 0;
+  std::vector<int> gptr_;
+};
+
+// The verilated grouped picker with the model beside it, compared every cycle.
+template <class V>
+class Checked {
+ public:
+  Checked(int n, const char* what) : n_(n), what_(what), ref_(n) {
+    ctx_ = std::make_unique<VerilatedContext>();
+    ctx_->assertOn(true);
+    m_ = std::make_unique<V>(ctx_.get());
+    m_->clk_i = 0;
+    m_->rst_ni = 0;
+    put(m_->req_i, Bits{});
+    m_->take_i = 0;
+    m_->eval();
+    m_->rst_ni = 1;
+    m_->eval();
+    for (int i = 0; i < 4; ++i) tick();
+  }
+  ~Checked() { m_->final(); }
+  Checked(const Checked&) = delete;
+  Checked& operator=(const Checked&) = delete;
+
+  int n() const { return n_; }
+  uint64_t cases() const { return cases_; }
+  uint64_t bad() const { return bad_; }
+  // A failure found outside cycle() (counted with the mismatches).
+  void fail(const std::string& why) {
+    if (bad_ < 8) ADD_FAILURE() << what_ << ": cycle " << cycle_ << ": " << why;
+    ++bad_;
+  }
+
+  // One cycle: drive req_i and take_i, compare the choice with the model's, clock both. Returns
+  // the picker's choice (-1 when valid_o is low).
+  int cycle(const Bits& req, bool take) {
+    const int want = ref_.choose(req);
+    const Bits want_grant = want < 0 ? Bits{} : Bits::one(want);
+    put(m_->req_i, req);
+    m_->take_i = static_cast<uint8_t>(take);
+    m_->eval();
+    const bool valid = m_->valid_o != 0;
+    const int idx = static_cast<int>(m_->idx_o);
+    const Bits grant = get(m_->grant_o);
+    ++cases_;
+    if (valid != (want >= 0) || (valid && idx != want) || grant != want_grant) {
+      if (bad_ < 8) {
+        std::string ptrs = "group ptr " + std::to_string(ref_.outer_ptr()) + ", in-group ptrs";
+        for (int g = 0; g < ref_.groups(); ++g) ptrs += " " + std::to_string(ref_.group_ptr(g));
+        ADD_FAILURE() << what_ << ": cycle " << cycle_ << " (model " << ptrs << ") req " << req
+                      << ": valid " << valid << " idx " << idx << " grant " << grant << ", want "
+                      << (want >= 0) << " idx " << want << " grant " << want_grant;
+      }
+      ++bad_;
+    }
+    if (take) ref_.take(req);
+    tick();
+    m_->take_i = 0;
+    ++cycle_;
+    return valid ? idx : -1;
+  }
+
+ private:
+  void tick() {
+    m_->clk_i = 1;
+    m_->eval();
+    m_->clk_i = 0;
+    m_->eval();
+  }
+
+  int n_;
+  const char* what_;
+  GroupedRef ref_;
+  uint64_t cases_ = 0, bad_ = 0, cycle_ = 0;
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<V> m_;
+};
+
+// Request vectors over n requesters from a seeded generator.
+class ReqGen {
+ public:
+  ReqGen(int n, uint32_t seed) : n_(n), groups_((n + kGroup - 1) / kGroup), rng_(seed) {}
+
+  uint32_t below(uint32_t k) { return static_cast<uint32_t>(rng_()) % k; }
+  int pick(int k) { return static_cast<int>(below(static_cast<uint32_t>(k))); }
+  // Each requester with probability num / den.
+  Bits density(uint32_t num, uint32_t den) {
+    Bits b;
+    for (int i = 0; i < n_; ++i)
+      if (below(den) < num) b.set(i);
+    return b;
+  }
+  Bits single() { return Bits::one(pick(n_)); }
+  Bits few() {
+    Bits b;
+    for (int k = 1 + pick(3); k > 0; --k) b.set(pick(n_));
+    return b;
+  }
+  // A non-empty random subset of requesters lo .. hi-1.
+  Bits subset(int lo, int hi) {
+    Bits b;
+    for (int i = lo; i < hi; ++i)
+      if (below(2) != 0u) b.set(i);
+    b.set(lo + pick(hi - lo));
+    return b;
+  }
+  Bits last_group() { return subset((groups_ - 1) * kGroup, n_); }
+  Bits one_group() {
+    const int g = pick(groups_);
+    return subset(g * kGroup, std::min(n_, (g + 1) * kGroup));
+  }
+  // One requester in each of a random non-empty set of groups.
+  Bits per_group() {
+    Bits b;
+    const int must = pick(groups_);
+    for (int g = 0; g < groups_; ++g) {
+      if (g != must && below(2) == 0u) continue;
+      const int lo = g * kGroup, hi = std::min(n_, (g + 1) * kGroup);
+      b.set(lo + pick(hi - lo));
+    }
+    return b;
+  }
+
+ private:
+  int n_, groups_;
+  std::mt19937 rng_;
+};
+
+enum Kind {
+  kDense,
+  kHalf,
+  kSparse,
+  kFew,
+  kSingle,
+  kAll,
+  kLastGroup,
+  kOneGroup,
+  kPerGroup,
+  kNone,
+  kLeave,
+  kKinds
+};
+
+Bits draw(ReqGen& gen, Kind kind, int n) {
+  switch (kind) {
+    case kDense: return gen.density(gen.below(2) != 0u ? 6 : 7, 8);
+    case kHalf: return gen.density(1, 2);
+    case kSparse: return gen.density(1, 32);
+    case kFew: return gen.few();
+    case kSingle: return gen.single();
+    case kAll: return Bits::range(0, n);
+    case kLastGroup: return gen.last_group();
+    case kOneGroup: return gen.one_group();
+    case kPerGroup: return gen.per_group();
+    case kNone: return Bits{};
+    case kLeave: return gen.density(3, 4);
+    case kKinds: break;
+  }
+  return Bits{};
+}
+
+template <class V>
+void run_grouped_random(int n, const char* what) {
+  constexpr uint64_t kCycles = 240000;
+  Checked<V> ck(n, what);
+  ReqGen gen(n, 0x9e0b0000u + static_cast<uint32_t>(n));
+  std::vector<uint64_t> taken(static_cast<std::size_t>(n), 0);
+  std::array<uint64_t, kKinds> kind_cycles{};
+  uint64_t cycles = 0, takes = 0, empty_takes = 0;
+  while (cycles < kCycles) {
+    const Kind kind = static_cast<Kind>(gen.pick(kKinds));
+    const int len = 1 + gen.pick(400);
+    const uint32_t take_in_8 = std::array<uint32_t, 3>{8, 6, 2}[gen.below(3)];
+    // kLeave keeps its vector and changes it itself; a single requester is held so that it is
+    // taken repeatedly.
+    const bool hold = kind == kLeave || gen.below(2) != 0u;
+    Bits req = draw(gen, kind, n);
+    for (int k = 0; k < len; ++k, ++cycles) {
+      if (!hold && k > 0) req = draw(gen, kind, n);
+      const bool take = gen.below(8) < take_in_8;
+      const int got = ck.cycle(req, take);
+      ++kind_cycles[static_cast<std::size_t>(kind)];
+      if (!take) continue;
+      ++takes;
+      if (got < 0) {
+        ++empty_takes;
+        continue;
+      }
+      ++taken[static_cast<std::size_t>(got)];
+      if (kind == kLeave) req.clear(got);
+      if (kind == kLeave && gen.below(4) == 0u) req.set(gen.pick(n));
+    }
+  }
+  int never = 0;
+  for (int i = 0; i < n; ++i)
+    if (taken[static_cast<std::size_t>(i)] == 0u) {
+      if (never++ < 4) ck.fail("requester " + std::to_string(i) + " never taken");
+    }
+  if (empty_takes == 0u) ck.fail("no take without a request");
+  for (int k = 0; k < kKinds; ++k)
+    if (kind_cycles[static_cast<std::size_t>(k)] == 0u)
+      ck.fail("request kind " + std::to_string(k) + " never drawn");
+  const std::string line = std::string(what) + ": " + std::to_string(cycles) + " cycles, " +
+                           std::to_string(takes) + " takes (" + std::to_string(empty_takes) +
+                           " without a request), " +
+                           (never == 0 ? std::string("every requester taken")
+                                       : std::to_string(never) + " requesters never taken");
+  report_cases(line.c_str(), ck.cases(), ck.bad());
+  EXPECT_EQ(ck.bad(), 0u);
+}
+
+// Fairness: fixed sets of requesters that keep asking; each must be served within N takes.
+template <class V>
+void run_grouped_fairness(int n, const char* what) {
+  Checked<V> ck(n, what);
+  ReqGen gen(n, 0xfa170000u + static_cast<uint32_t>(n));
+  const int groups = (n + kGroup - 1) / kGroup;
+  std::vector<std::pair<std::string, Bits>> sets;
+  sets.emplace_back("all", Bits::range(0, n));
+  sets.emplace_back("dense", gen.density(3, 4));
+  Bits sparse = gen.density(1, 8);
+  sparse.set(gen.pick(n));
+  sets.emplace_back("sparse", sparse);
+  Bits per_group;
+  for (int g = 0; g < groups; ++g) {
+    const int lo = g * kGroup, hi = std::min(n, (g + 1) * kGroup);
+    per_group.set(lo + gen.pick(hi - lo));
+  }
+  sets.emplace_back("one per group", per_group);
+  sets.emplace_back("single", gen.single());
+  sets.emplace_back("last group", Bits::range((groups - 1) * kGroup, n));
+  Bits full_and_ones = Bits::range(0, kGroup);
+  for (int g = 1; g < groups; ++g)
+    full_and_ones.set(g * kGroup + gen.pick(std::min(n - g * kGroup, kGroup)));
+  sets.emplace_back("group 0 full + one per other group", full_and_ones);
+
+  const int takes_per_set = 30 * n;
+  int worst = 0, over = 0;
+  std::string worst_set, per_set;
+  for (const auto& [name, set] : sets) {
+    // Scatter the pointers with random traffic first.
+    for (int k = 0; k < 500; ++k) ck.cycle(gen.density(1, 4), gen.below(4) != 0u);
+    std::vector<int> pending(static_cast<std::size_t>(n), 0);
+    int set_worst = 0;
+    for (int takes = 0; takes < takes_per_set;) {
+      const bool take = gen.below(8) != 0u;
+      const int got = ck.cycle(set, take);
+      if (!take) continue;
+      ++takes;
+      if (got < 0 || !set.test(got)) {
+        ck.fail(name + ": take " + std::to_string(takes) + " chose " + std::to_string(got));
+        continue;
+      }
+      for (int i = 0; i < n; ++i)
+        if (set.test(i)) ++pending[static_cast<std::size_t>(i)];
+      const int wait = pending[static_cast<std::size_t>(got)];
+      pending[static_cast<std::size_t>(got)] = 0;
+      set_worst = std::max(set_worst, wait);
+      if (wait > n) {
+        ++over;
+        ck.fail(name + ": requester " + std::to_string(got) + " served after " +
+                std::to_string(wait) + " takes (more than N = " + std::to_string(n) + ")");
+      }
+    }
+    // Anyone still waiting at the end must not have waited longer either.
+    for (int i = 0; i < n; ++i) {
+      const int wait = pending[static_cast<std::size_t>(i)];
+      if (!set.test(i) || wait <= n) continue;
+      set_worst = std::max(set_worst, wait);
+      ++over;
+      ck.fail(name + ": requester " + std::to_string(i) + " still waiting after " +
+              std::to_string(wait) + " takes");
+    }
+    if (set_worst > worst) {
+      worst = set_worst;
+      worst_set = name;
+    }
+    per_set += (per_set.empty() ? "" : ", ") + name + " " + std::to_string(set_worst);
+  }
+  const std::string line = std::string(what) + " (" + std::to_string(sets.size()) + " sets x " +
+                           std::to_string(takes_per_set) + " takes; worst wait " +
+                           std::to_string(worst) + " takes (" + worst_set +
+                           "), bound N = " + std::to_string(n) + ", " + std::to_string(over) +
+                           " waits over it; " + per_set + ")";
+  report_cases(line.c_str(), ck.cases(), ck.bad());
+  EXPECT_EQ(ck.bad(), 0u);
+}
+
+TEST(RrPick, N128GroupedRandom) {
+  run_grouped_random<Vrr_pick_n128>(128, "rc_rr_pick N=128 grouped (random vs the model)");
+}
+TEST(RrPick, N40GroupedRandom) {
+  run_grouped_random<Vrr_pick_n40>(40, "rc_rr_pick N=40 grouped (random vs the model)");
+}
+TEST(RrPick, N128GroupedFairness) {
+  run_grouped_fairness<Vrr_pick_n128>(128, "rc_rr_pick N=128 grouped fairness");
+}
+TEST(RrPick, N40GroupedFairness) {
+  run_grouped_fairness<Vrr_pick_n40>(40, "rc_rr_pick N=40 grouped fairness");
+}
 
 }  // namespace
 }  // namespace rc::test
