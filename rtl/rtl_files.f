@@ -14,7 +14,9 @@ rtl/core/rc_ray_setup.sv
 rtl/core/rc_shade_unit.sv
 rtl/core/rc_xform_unit.sv
 rtl/core/rc_isect_unit.sv
+rtl/core/rc_rr_pick_flat.sv
 rtl/core/rc_rr_pick.sv
+rtl/core/rc_onehot.sv
 rtl/core/rc_ram.sv
 rtl/core/rc_fifo.sv
 rtl/core/rc_thread_ctrl.sv

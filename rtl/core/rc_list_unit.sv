@@ -375,16 +375,23 @@ module rc_list_unit #(
   logic [Threads*LfW-1:0] lf_q, lf_d;
   logic [Threads*3-1:0]   lf_small_q, lf_small_d;
   logic [2*Threads-1:0]   pend_dec_q, pend_dec_d;
-  logic [Threads-1:0]     lf_inc_q, lf_inc_d, pend_zero;
+  logic [Threads-1:0]     lf_inc_q, lf_inc_d, pend_zero, h_lu, h_lb, h_te, h_io;
+  // The events' threads one-hot (rc_onehot).
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_lu (.valid_i(lu_busy_q), .idx_i(lu_thr_q),
+                                                 .hot_o(h_lu));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_lb (.valid_i(lb_v_q), .idx_i(lb_thr_q),
+                                                 .hot_o(h_lb));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_te (.valid_i(fin_te_valid_i), .idx_i(fin_te_thr_i),
+                                                 .hot_o(h_te));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_io (.valid_i(fin_io_valid_i), .idx_i(fin_io_thr_i),
+                                                 .hot_o(h_io));
   always_comb begin
     for (int unsigned t = 0; t < Threads; t++) begin
       logic issuing;
       logic [1:0] dec;
-      lf_inc_d[t] = li_take && lu_thr_q == ThrW'(t);
-      issuing = (lu_busy_q && lu_thr_q == ThrW'(t)) || lf_inc_q[t];
-      pend_dec_d[2*t +: 2] = 2'(lb_v_q && lb_thr_q == ThrW'(t)) +
-                             2'(fin_te_valid_i && fin_te_thr_i == ThrW'(t)) +
-                             2'(fin_io_valid_i && fin_io_thr_i == ThrW'(t));
+      lf_inc_d[t] = li_take & h_lu[t];
+      issuing = h_lu[t] || lf_inc_q[t];
+      pend_dec_d[2*t +: 2] = 2'(h_lb[t]) + 2'(h_te[t]) + 2'(h_io[t]);
       dec = pend_dec_q[2*t +: 2];
       lf_d[t*LfW +: LfW] = lf_q[t*LfW +: LfW] + LfW'(lf_inc_q[t]) - LfW'(dec);
       for (int unsigned k = 1; k <= 3; k++) begin

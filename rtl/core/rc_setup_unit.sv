@@ -159,17 +159,15 @@ module rc_setup_unit #(
       gacc_c_q  <= g_acc;
       acc_v_q   <= acc_take;
       gacc_q    <= acc_take ? gacc_c_q : '0;
-      for (int unsigned t = 0; t < Threads; t++) begin
-        if ((free_valid_i && free_thr_i == ThrW'(t)) ||
-            (free0_valid_i && free0_thr_i == ThrW'(t))) begin
-          free_q[t] <= 1'b1;
-        end else if (gacc_q[t]) begin
-          free_q[t] <= 1'b0;
-        end
-      end
+      free_q    <= (free_q & ~gacc_q) | h_free | h_free0;
     end
   end
   assign pkt_ready_o = acc_any_q & ~feed_busy_q;
+  logic [Threads-1:0] h_free, h_free0;
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_free (.valid_i(free_valid_i), .idx_i(free_thr_i),
+                                                   .hot_o(h_free));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_free0 (.valid_i(free0_valid_i), .idx_i(free0_thr_i),
+                                                    .hot_o(h_free0));
   assign acc_take    = pkt_valid_i & pkt_ready_o;
 
   ////////////

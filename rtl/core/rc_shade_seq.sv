@@ -220,9 +220,7 @@ module rc_shade_seq #(
       miss_v_q        <= 1'b0;
       miss_rid_q      <= '0;
     end else begin
-      for (int unsigned t = 0; t < Threads; t++) begin
-        done_q[t] <= (done_q[t] & ~gshp_q[t]) | (done_valid_i && done_thr_i == ThrW'(t));
-      end
+      done_q    <= (done_q & ~gshp_q) | h_done;
       shp_v_q   <= shp_any & shp_room;
       shp_thr_q <= shp_thr;
       gshp_q    <= (shp_any & shp_room) ? g_shp : '0;
@@ -495,6 +493,10 @@ module rc_shade_seq #(
   // Writes still due per thread: set as shading takes the packet (st1), counted down by writes;
   // the last one frees the thread (a packet without rays is freed at st1).
   logic [Threads*3-1:0] fbw_q;
+  logic [Threads-1:0]   h_done, h_fb;
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_done (.valid_i(done_valid_i), .idx_i(done_thr_i),
+                                                   .hot_o(h_done));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_fb (.valid_i(1'b1), .idx_i(oq_thr), .hot_o(h_fb));
   logic                 free_v, free0_v;
   logic [ThrW-1:0]      free_thr, free0_thr;
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -502,9 +504,9 @@ module rc_shade_seq #(
       fbw_q <= '0;
     end else begin
       for (int unsigned t = 0; t < Threads; t++) begin
-        if (shp_v_q && shp_thr_q == ThrW'(t)) begin
+        if (gshp_q[t]) begin
           fbw_q[t*3 +: 3] <= popcount4(shp_vm);
-        end else if (fb_take && oq_thr == ThrW'(t)) begin
+        end else if (fb_take && h_fb[t]) begin
           fbw_q[t*3 +: 3] <= fbw_q[t*3 +: 3] - 3'd1;
         end
       end
@@ -514,7 +516,7 @@ module rc_shade_seq #(
   always_comb begin
     fb_cnt = '0;
     for (int unsigned t = 0; t < Threads; t++) begin
-      if (oq_thr == ThrW'(t)) fb_cnt = fbw_q[t*3 +: 3];
+      fb_cnt = fb_cnt | ({3{h_fb[t]}} & fbw_q[t*3 +: 3]);
     end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin

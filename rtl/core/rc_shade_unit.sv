@@ -237,8 +237,9 @@ module rc_shade_unit #(
   /////////////////////////////
 
   rc_credit_fifo #(
-    .Width(OutW),
-    .Depth(FifoDepth)
+    .Width   (OutW),
+    .Depth   (FifoDepth),
+    .MemArray(1'b1)   // distributed RAM: a flat register file of this depth costs ~3,000 LUT4s
   ) u_fifo (
     .clk_i,
     .rst_ni,

@@ -149,16 +149,16 @@ module rc_stack_unit #(
   // were a cycle ago: pick_room_q) and no start waits for the routing stage.
   assign pp_take = pp_any & pick_room_q & ~start_valid_i;
 
+  logic [Threads-1:0] h_tr, h_nr;
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_tr (.valid_i(req_tr_valid_i), .idx_i(req_tr_thr_i),
+                                                 .hot_o(h_tr));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_nr (.valid_i(req_nr_valid_i), .idx_i(req_nr_thr_i),
+                                                 .hot_o(h_nr));
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       popq_q <= '0;
     end else begin
-      for (int unsigned t = 0; t < Threads; t++) begin
-        popq_q[t] <= (popq_q[t] & ~gpp_q[t]) |
-                     (req_tr_valid_i && req_tr_thr_i == ThrW'(t)) |
-                     (req_nr_valid_i && req_nr_thr_i == ThrW'(t)) |
-                     req_lf_i[t] | own_req[t];
-      end
+      popq_q <= (popq_q & ~gpp_q) | h_tr | h_nr | req_lf_i | own_req;
     end
   end
   assign popq_o = popq_q;
@@ -358,9 +358,8 @@ module rc_stack_unit #(
     lq_item_q.first <= rt_entry_q.node.rec[rc_pkg::KdNodeIndexLsb +: 30];
     lq_item_q.count <= rt_entry_q.node.rec[rc_pkg::KdNodeValueLsb +: 32];
   end
-  for (genvar t = 0; t < Threads; t++) begin : g_own
-    assign own_req[t] = own_v_q && own_thr_q == ThrW'(t);
-  end
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_own (.valid_i(own_v_q), .idx_i(own_thr_q),
+                                                  .hot_o(own_req));
   assign err_valid_o = err_v_q;
   assign err_thr_o   = own_thr_q;
   assign err_bits_o  = err_bits_q;
@@ -429,10 +428,8 @@ module rc_stack_unit #(
   // A pop request is for a thread not already waiting (each thread is in one unit's hands).
   for (genvar t = 0; t < Threads; t++) begin : g_req_checks
     ReqOnce_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                $onehot0({popq_q[t] & ~gpp_q[t],
-                                          req_tr_valid_i && req_tr_thr_i == ThrW'(t),
-                                          req_nr_valid_i && req_nr_thr_i == ThrW'(t),
-                                          req_lf_i[t], own_req[t]}));
+                                $onehot0({popq_q[t] & ~gpp_q[t], h_tr[t], h_nr[t], req_lf_i[t],
+                                          own_req[t]}));
   end
   // The one-hot grant is the picked thread.
   PopGrant_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)

@@ -79,10 +79,24 @@ module rc_thread_ctrl #(
   logic [Threads*SpW-1:0] sp_q;
   logic [Threads*4-1:0]   vmask_q, hit_q;
 
-  function automatic logic is(input logic v, input logic [ThrW-1:0] thr,
-                              input logic [ThrW-1:0] t);
-    is = v && thr == t;
-  endfunction
+  // Each event's thread one-hot (rc_onehot: shared predecoders, not a compare per thread).
+  logic [Threads-1:0] h_acc, h_e0, h_e1, h_e2, h_e3, h_e4, h_sp, h_hit;
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_acc (.valid_i(acc_valid_i),   .idx_i(acc_thr_i),
+                                                  .hot_o(h_acc));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e0  (.valid_i(err0_valid_i),  .idx_i(err0_thr_i),
+                                                  .hot_o(h_e0));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e1  (.valid_i(err1_valid_i),  .idx_i(err1_thr_i),
+                                                  .hot_o(h_e1));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e2  (.valid_i(err2_valid_i),  .idx_i(err2_thr_i),
+                                                  .hot_o(h_e2));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e3  (.valid_i(err3_valid_i),  .idx_i(err3_thr_i),
+                                                  .hot_o(h_e3));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e4  (.valid_i(err4_valid_i),  .idx_i(err4_thr_i),
+                                                  .hot_o(h_e4));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_sp  (.valid_i(sp_tr_valid_i), .idx_i(sp_tr_thr_i),
+                                                  .hot_o(h_sp));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_hit (.valid_i(hit_valid_i),   .idx_i(hit_thr_i),
+                                                  .hot_o(h_hit));
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -92,27 +106,23 @@ module rc_thread_ctrl #(
       hit_q   <= '0;
     end else begin
       for (int unsigned t = 0; t < Threads; t++) begin
-        logic acc;
         logic [2:0] err_or;
-        acc = is(acc_valid_i, acc_thr_i, ThrW'(t));
-        err_or = ({3{is(err0_valid_i, err0_thr_i, ThrW'(t))}} & err0_bits_i) |
-                 ({3{is(err1_valid_i, err1_thr_i, ThrW'(t))}} & err1_bits_i) |
-                 ({3{is(err2_valid_i, err2_thr_i, ThrW'(t))}} & err2_bits_i) |
-                 ({3{is(err3_valid_i, err3_thr_i, ThrW'(t))}} & err3_bits_i) |
-                 ({3{is(err4_valid_i, err4_thr_i, ThrW'(t))}} & err4_bits_i);
-        err_q[t*3 +: 3] <= acc ? 3'd0 : (err_q[t*3 +: 3] | err_or);
-        if (acc) begin
+        err_or = ({3{h_e0[t]}} & err0_bits_i) | ({3{h_e1[t]}} & err1_bits_i) |
+                 ({3{h_e2[t]}} & err2_bits_i) | ({3{h_e3[t]}} & err3_bits_i) |
+                 ({3{h_e4[t]}} & err4_bits_i);
+        err_q[t*3 +: 3] <= h_acc[t] ? 3'd0 : (err_q[t*3 +: 3] | err_or);
+        if (h_acc[t]) begin
           sp_q[t*SpW +: SpW] <= '0;
-        end else if (is(sp_tr_valid_i, sp_tr_thr_i, ThrW'(t))) begin
+        end else if (h_sp[t]) begin
           sp_q[t*SpW +: SpW] <= sp_tr_sp_i;
         end else if (sp_pop_hot_i[t]) begin
           sp_q[t*SpW +: SpW] <= sp_pop_sp_i;
         end
-        if (acc) vmask_q[t*4 +: 4] <= acc_vmask_i;
+        if (h_acc[t]) vmask_q[t*4 +: 4] <= acc_vmask_i;
         for (int unsigned r = 0; r < 4; r++) begin
-          if (acc) begin
+          if (h_acc[t]) begin
             hit_q[t*4 + r] <= 1'b0;
-          end else if (is(hit_valid_i, hit_thr_i, ThrW'(t)) && hit_ray_i == 2'(r)) begin
+          end else if (h_hit[t] && hit_ray_i == 2'(r)) begin
             hit_q[t*4 + r] <= 1'b1;
           end
         end
@@ -139,16 +149,10 @@ module rc_thread_ctrl #(
   // the pop unit, never both), and a new packet's thread has no other event.
   for (genvar t = 0; t < Threads; t++) begin : g_checks
     SpWriters_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                  $onehot0({is(acc_valid_i, acc_thr_i, ThrW'(t)),
-                                            is(sp_tr_valid_i, sp_tr_thr_i, ThrW'(t)), sp_pop_hot_i[t]}));
+                                  $onehot0({h_acc[t], h_sp[t], sp_pop_hot_i[t]}));
     AccAlone_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                 is(acc_valid_i, acc_thr_i, ThrW'(t)) |->
-                                 !is(err0_valid_i, err0_thr_i, ThrW'(t)) &&
-                                 !is(err1_valid_i, err1_thr_i, ThrW'(t)) &&
-                                 !is(err2_valid_i, err2_thr_i, ThrW'(t)) &&
-                                 !is(err3_valid_i, err3_thr_i, ThrW'(t)) &&
-                                 !is(err4_valid_i, err4_thr_i, ThrW'(t)) &&
-                                 !is(hit_valid_i, hit_thr_i, ThrW'(t)));
+                                 h_acc[t] |-> !(h_e0[t] | h_e1[t] | h_e2[t] | h_e3[t] | h_e4[t] |
+                                                h_hit[t]));
   end
 `endif
 

@@ -276,21 +276,31 @@ module rc_trav_unit #(
   ///////////////
 
   logic [3:0]          trav_ready_all, trav_v_all;
-  logic [4*TrTagW-1:0] trav_tag_all;
+  logic [ComW-1:0]     trav_com_out;
+  logic [8*W-1:0]      trav_iv;      // {tmax, tmin} of ray r at [r*2W +: 2W]
   logic [4*W-1:0]      trav_t;
   logic [7:0]          trav_case;
 
+  // Sub-unit 0 carries the common part (thread, rays, children, stack depth) beside its ray's
+  // interval; the others carry their ray's interval only.
   for (genvar r = 0; r < 4; r++) begin : g_trav
+    localparam int unsigned TagR = (r == 0) ? TrTagW : 2 * W;
+    logic [TagR-1:0] tag_in, tag_out;
+    if (r == 0) begin : g_com
+      assign tag_in = {w_entry.tmax[r], w_entry.tmin[r], w_com};
+    end else begin : g_iv
+      assign tag_in = {w_entry.tmax[r], w_entry.tmin[r]};
+    end
     rc_trav_step #(
       .ExpW (rc_pkg::Fp24ExpW),
       .FracW(rc_pkg::Fp24FracW),
-      .TagW (TrTagW)
+      .TagW (TagR)
     ) u_step (
       .clk_i,
       .rst_ni,
       .valid_i(step_v),
       .ready_o(trav_ready_all[r]),
-      .tag_i  ({w_entry.tmax[r], w_entry.tmin[r], w_com}),
+      .tag_i  (tag_in),
       .split_i(w_split),
       .org_i  (ax_org_i[r*W +: W]),
       .inv_i  (ax_inv_i[r*W +: W]),
@@ -298,10 +308,14 @@ module rc_trav_unit #(
       .tmax_i (w_entry.tmax[r]),
       .valid_o(trav_v_all[r]),
       .ready_i(1'b1),
-      .tag_o  (trav_tag_all[r*TrTagW +: TrTagW]),
+      .tag_o  (tag_out),
       .t_o    (trav_t[r*W +: W]),
       .case_o (trav_case[r*2 +: 2])
     );
+    if (r == 0) begin : g_com_out
+      assign trav_com_out = tag_out[0 +: ComW];
+    end
+    assign trav_iv[r*2*W +: 2*W] = tag_out[TagR-1 -: 2*W];
   end
 
   //////////////
@@ -318,7 +332,7 @@ module rc_trav_unit #(
   logic [7:0]        tq_case_q;
 
   assign hd_v   = trav_v_all[0];
-  assign hd_com = trav_tag_all[0 +: ComW];
+  assign hd_com = trav_com_out;
   always_comb begin
     for (int unsigned r = 0; r < 4; r++) begin
       logic [1:0] c;
@@ -340,9 +354,7 @@ module rc_trav_unit #(
   end
   always_ff @(posedge clk_i) begin
     tq_com_q <= hd_com;
-    for (int unsigned r = 0; r < 4; r++) begin
-      tq_iv_q[r*2*W +: 2*W] <= trav_tag_all[r*TrTagW + ComW +: 2*W];
-    end
+    tq_iv_q     <= trav_iv;
     tq_t_q      <= trav_t;
     tq_case_q   <= trav_case;
     tq_a_mask_q <= hd_a_mask;
@@ -470,7 +482,7 @@ module rc_trav_unit #(
   assign perf_empty_o      = perf_empty_q;
 
   logic unused_bits;
-  assign unused_bits = ^{trav_tag_all, trav_v_all[3:1], trav_ready_all, rq_cnt, hd_com.lsign,
+  assign unused_bits = ^{trav_v_all[3:1], trav_ready_all, rq_cnt, hd_com.lsign,
                          hd_com.kid_l, hd_com.kid_r, hd_com.thr, node_rsp_tag_i, tq_com_q.mask};
 
 `ifndef SYNTHESIS
