@@ -288,17 +288,16 @@ module rc_core #(
   );
 
   logic                   trav_err_valid, trav_reqnr_valid, stk_err_valid, list_err_valid;
-  logic                   isect_err_valid, trav_sp_valid, hits_hit_valid;
+  logic                   isect_err_valid, trav_sp_valid, hits_hit_valid, stk_sp_valid;
   logic [ThrW-1:0]        trav_err_thr, trav_reqnr_thr, stk_err_thr, list_err_thr;
-  logic [ThrW-1:0]        isect_err_thr, trav_sp_thr, hits_hit_thr;
+  logic [ThrW-1:0]        isect_err_thr, trav_sp_thr, hits_hit_thr, stk_sp_thr;
+  logic [ThrW-1:0]        stk_sp_rd_thr, shd_vm_rd_thr;
   logic [2:0]             trav_err_bits, stk_err_bits, list_err_bits, isect_err_bits;
-  logic [SpW-1:0]         trav_sp_sp, stk_sp_sp;
-  logic [Threads-1:0]     stk_sp_hot;
+  logic [SpW-1:0]         trav_sp_sp, stk_sp_sp, thr_sp_rd;
   logic [1:0]             hits_hit_ray;
-  logic [Threads*3-1:0]   thr_err;
-  logic [Threads*SpW-1:0] thr_sp;
-  logic [Threads*4-1:0]   thr_vmask, thr_hit;
-  logic [Threads-1:0]     thr_pop_end;
+  logic [Threads-1:0]     thr_err;
+  logic [Threads*4-1:0]   thr_hit;
+  logic [3:0]             thr_vm_rd;
 
   rc_thread_ctrl #(
     .Threads(Threads)
@@ -310,32 +309,29 @@ module rc_core #(
     .acc_vmask_i   (acc_vmask),
     .err0_valid_i  (trav_err_valid),
     .err0_thr_i    (trav_err_thr),
-    .err0_bits_i   (trav_err_bits),
     .err1_valid_i  (trav_reqnr_valid),
     .err1_thr_i    (trav_reqnr_thr),
-    .err1_bits_i   (3'd1 << rc_pkg::CoreStatusBadAddress),
     .err2_valid_i  (stk_err_valid),
     .err2_thr_i    (stk_err_thr),
-    .err2_bits_i   (stk_err_bits),
     .err3_valid_i  (list_err_valid),
     .err3_thr_i    (list_err_thr),
-    .err3_bits_i   (list_err_bits),
     .err4_valid_i  (isect_err_valid),
     .err4_thr_i    (isect_err_thr),
-    .err4_bits_i   (isect_err_bits),
     .sp_tr_valid_i (trav_sp_valid),
     .sp_tr_thr_i   (trav_sp_thr),
     .sp_tr_sp_i    (trav_sp_sp),
-    .sp_pop_hot_i  (stk_sp_hot),
+    .sp_pop_valid_i(stk_sp_valid),
+    .sp_pop_thr_i  (stk_sp_thr),
     .sp_pop_sp_i   (stk_sp_sp),
     .hit_valid_i   (hits_hit_valid),
     .hit_thr_i     (hits_hit_thr),
     .hit_ray_i     (hits_hit_ray),
     .err_o         (thr_err),
-    .sp_o          (thr_sp),
-    .vmask_o       (thr_vmask),
     .hit_o         (thr_hit),
-    .pop_end_o     (thr_pop_end)
+    .sp_rd_thr_i   (stk_sp_rd_thr),
+    .sp_rd_o       (thr_sp_rd),
+    .vm_rd_thr_i   (shd_vm_rd_thr),
+    .vm_rd_o       (thr_vm_rd)
   );
 
   //////////////////////
@@ -443,10 +439,11 @@ module rc_core #(
     .req_nr_thr_i  (trav_reqnr_thr),
     .req_lf_i      (list_leaf_end),
     .err_i         (thr_err),
-    .sp_i          (thr_sp),
     .hit_i         (thr_hit),
-    .pop_end_i     (thr_pop_end),
-    .sp_pop_hot_o  (stk_sp_hot),
+    .sp_rd_thr_o   (stk_sp_rd_thr),
+    .sp_rd_i       (thr_sp_rd),
+    .sp_pop_valid_o(stk_sp_valid),
+    .sp_pop_thr_o  (stk_sp_thr),
     .sp_pop_sp_o   (stk_sp_sp),
     .err_valid_o   (stk_err_valid),
     .err_thr_o     (stk_err_thr),
@@ -642,7 +639,8 @@ module rc_core #(
     .background_i,
     .done_valid_i   (stk_done_valid),
     .done_thr_i     (stk_done_thr),
-    .vmask_i        (thr_vmask),
+    .vm_rd_thr_o    (shd_vm_rd_thr),
+    .vm_rd_i        (thr_vm_rd),
     .hit_i          (thr_hit),
     .err_i          (thr_err),
     .tri_re_o       (shd_tri_re),

@@ -244,8 +244,9 @@ module rc_isect_issue #(
   rc_isect_unit #(
     .ExpW       (rc_pkg::Fp24ExpW),
     .FracW      (rc_pkg::Fp24FracW),
-    .TagW       (IuTagW),
-    .SharedXform(IsectInterval == 2)
+    .TagW        (IuTagW),
+    .SharedXform (IsectInterval == 2),
+    .Backpressure(1'b0)   // the write-back takes every result at once
   ) u_isect (
     .clk_i,
     .rst_ni,

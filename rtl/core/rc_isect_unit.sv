@@ -36,7 +36,9 @@
 // - Parameters: ExpW (>= 2), FracW (>= 1): the format; TagW (>= 1): width of the tag carried
 //   alongside; MulStages, AddStages, DivStages, CmpStages (>= 1): latencies of the rc_fp_*
 //   instances; SharedXform: 1 (default) = one transform unit for d' then o' (9 multipliers and
-//   9 adders fewer, about 7,000 ECP5 LUT4 sites: docs/history.md), 0 = two transform units.
+//   9 adders fewer, about 7,000 ECP5 LUT4 sites: docs/history.md), 0 = two transform units;
+//   Backpressure: 1 (default) = the output FIFO and credits above, 0 = ready_i is always 1 (a
+//   consumer that takes every result at once): one output register, the same latency.
 // - Illegal input: none; every bit pattern of every input is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (valid pipelines, FIFO
 //   pointers and counters); data registers have no reset.
@@ -62,7 +64,11 @@ module rc_isect_unit #(
   parameter int unsigned AddStages   = rc_pkg::FpStagesAdd,
   parameter int unsigned DivStages   = rc_pkg::FpStagesDiv,
   parameter int unsigned CmpStages   = rc_pkg::FpStagesCmp,
-  parameter bit          SharedXform = 1'b1
+  parameter bit          SharedXform = 1'b1,
+  // 1: the output FIFO and credits above; 0: ready_i must always be 1 (a consumer that takes every
+  // result at once, as rc_core's write-back does): the FIFO is one output register, the same
+  // latency, and ready_o follows only the shared transform's pass.
+  parameter bit          Backpressure = 1'b1
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -440,13 +446,36 @@ module rc_isect_unit #(
   // ray-triangle pair per cycle (more than the shared transform's one per two cycles needs, but
   // a shallower one saves nothing: the deep, wide FIFO, 50 x 137 bits at the defaults, is a
   // memory array (MemArray) that synthesis maps to RAM).
-  logic credit;
-  assign ready_o = credit & ~issue_busy;
-  rc_credit_fifo #(.Width(TagW + 32 + 1 + 4 * W), .Depth(PipeLat + 2), .MemArray(1'b1)) u_fifo (
-    .clk_i, .rst_ni, .take_i(in_fire), .credit_o(credit), .wr_valid_i(pipe_valid),
-    .wr_data_i({pipe_tag, pipe_tri, pipe_hit, pipe_dz, pipe_t, pipe_v, pipe_u}),
-    .valid_o, .ready_i, .data_o({tag_o, tri_o, hit_o, dz_o, t_o, v_o, u_o})
-  );
+  if (Backpressure) begin : g_fifo
+    logic credit;
+    assign ready_o = credit & ~issue_busy;
+    rc_credit_fifo #(.Width(TagW + 32 + 1 + 4 * W), .Depth(PipeLat + 2), .MemArray(1'b1)) u_fifo (
+      .clk_i, .rst_ni, .take_i(in_fire), .credit_o(credit), .wr_valid_i(pipe_valid),
+      .wr_data_i({pipe_tag, pipe_tri, pipe_hit, pipe_dz, pipe_t, pipe_v, pipe_u}),
+      .valid_o, .ready_i, .data_o({tag_o, tri_o, hit_o, dz_o, t_o, v_o, u_o})
+    );
+  end else begin : g_out_reg
+    // Every result is taken as it appears (ready_i is 1), so one output register replaces the
+    // FIFO: the same latency, no credits.
+    logic out_v_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        out_v_q <= 1'b0;
+      end else begin
+        out_v_q <= pipe_valid;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (pipe_valid) {tag_o, tri_o, hit_o, dz_o, t_o, v_o, u_o} <=
+                      {pipe_tag, pipe_tri, pipe_hit, pipe_dz, pipe_t, pipe_v, pipe_u};
+    end
+    assign valid_o = out_v_q;
+    assign ready_o = ~issue_busy;
+`ifndef SYNTHESIS
+    NoBackpressure_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                       valid_o |-> ready_i);
+`endif
+  end
 
   ////////////////
   // Assertions //

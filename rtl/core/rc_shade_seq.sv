@@ -44,9 +44,10 @@ module rc_shade_seq #(
   // Traced packets.
   input  logic                 done_valid_i,
   input  logic [ThrW-1:0]      done_thr_i,
-  input  logic [Threads*4-1:0] vmask_i,
+  output logic [ThrW-1:0]      vm_rd_thr_o,     // the picked thread's rays, read (rc_thread_ctrl)
+  input  logic [3:0]           vm_rd_i,
   input  logic [Threads*4-1:0] hit_i,
-  input  logic [Threads*3-1:0] err_i,
+  input  logic [Threads-1:0]   err_i,
 
   // The hit store's copies (2 cycles).
   output logic                 tri_re_o,
@@ -125,8 +126,10 @@ module rc_shade_seq #(
   localparam int unsigned RidW    = ThrW + 2;
   localparam int unsigned NlenLsb = 8 * rc_pkg::ImageShadingFirstValue +
                                     rc_pkg::ImageShadingNormalLen * W;
-  localparam int unsigned InQD    = 4;   // shading input queue (after the reads)
-  localparam int unsigned OutQD   = 4;   // framebuffer output queue
+  // The two queues: 8 entries each (Yosys maps a distributed-RAM FIFO of 5 or fewer entries into
+  // LUTs, several times the cells of 8).
+  localparam int unsigned InQD    = 8;   // shading input queue (after the reads)
+  localparam int unsigned OutQD   = 8;   // framebuffer output queue
 
   if (Threads < 1 || RidW > TagW) begin : g_param_check
     $error("rc_shade_seq: need {thread, ray} to fit the port tags");
@@ -177,17 +180,16 @@ module rc_shade_seq #(
   assign sh_load  = nb_v_q & (~sh_busy_q | (adv & (sh_r_q == 2'd3)));
 
   logic [3:0] shp_vm, shp_hm;
-  logic [2:0] shp_err;
+  logic       shp_err;
   always_comb begin
-    shp_vm  = '0;
-    shp_hm  = '0;
-    shp_err = '0;
+    shp_hm = '0;
     for (int unsigned t = 0; t < Threads; t++) begin
-      shp_vm  = shp_vm | ({4{gshp_q[t]}} & vmask_i[t*4 +: 4]);
-      shp_hm  = shp_hm | ({4{gshp_q[t]}} & hit_i[t*4 +: 4]);
-      shp_err = shp_err | ({3{gshp_q[t]}} & err_i[t*3 +: 3]);
+      shp_hm = shp_hm | ({4{gshp_q[t]}} & hit_i[t*4 +: 4]);
     end
   end
+  assign shp_err     = |(gshp_q & err_i);
+  assign vm_rd_thr_o = shp_thr_q;
+  assign shp_vm      = vm_rd_i;
 
   logic adv, to_shd, to_miss, sreq_free, miss_free, miss_v_q, shd_req_valid_q;
   logic sh_valid_r, sh_hit_r;
@@ -257,7 +259,7 @@ module rc_shade_seq #(
   always_ff @(posedge clk_i) begin
     st1_thr_q <= shp_thr_q;
     st1_vm_q  <= shp_vm;
-    st1_hm_q  <= shp_hm & {4{~(|shp_err)}};
+    st1_hm_q  <= shp_hm & {4{~shp_err}};
     st2_thr_q <= st1_thr_q;
     st2_vm_q  <= st1_vm_q;
     st2_hm_q  <= st1_hm_q;

@@ -13,12 +13,12 @@
 //   re-pops (below). Every request is for a thread in no other unit's hands, at most one each.
 // - A pop: the waiting threads are picked round robin (rc_rr_pick), one a cycle while the two
 //   output queues have room for every pop in flight and no start waits. In the next cycle the
-//   thread's error bits and stack depth (rc_thread_ctrl, through the one-hot pick) decide: an
-//   error or an empty stack ends its walk (done_valid_o, to shading); otherwise the depth goes
-//   down by one (sp_pop_*), the top entry and the thread's best t (bt_*, the hit store's per-thread
-//   copy, gated with the hit bits sampled at the same edge) are read, and each ray r of the entry
-//   stays active only if le(tmin_r, best_t_r) (the format's compare). An entry left with no ray
-//   is a culled pop: the thread asks to pop again.
+//   thread's error flag (through the one-hot pick) and stack depth (read by its number: sp_rd_*)
+//   decide: an error or an empty stack ends its walk (done_valid_o, to shading); otherwise the
+//   depth goes down by one (sp_pop_*), the top entry and the thread's best t (bt_*, the hit
+//   store's per-thread copy, gated with the hit bits sampled at the same edge) are read, and
+//   each ray r of the entry stays active only if le(tmin_r, best_t_r) (the format's compare). An
+//   entry left with no ray is a culled pop: the thread asks to pop again.
 // - Start (valid/ready, from ray set-up): a packet's first entry. It takes the routing stage when
 //   no pop result does and the output queues have room (start_ready_o, from registers: the cull
 //   compare's valid and the room flag); while one waits, no pop is picked, so it waits at most
@@ -37,8 +37,8 @@
 module rc_stack_unit #(
   parameter int unsigned Threads     = rc_pkg::CoreThreads,
   parameter int unsigned StackDepth  = rc_pkg::KdtreeStackDepth,
-  parameter int unsigned TravQDepth  = 24,
-  parameter int unsigned LeafQDepth  = 24,
+  parameter int unsigned TravQDepth  = 16,
+  parameter int unsigned LeafQDepth  = 16,
   // Derived (do not override).
   parameter int unsigned W           = rc_pkg::CoreFpW,
   parameter int unsigned ThrW        = (Threads > 1) ? $clog2(Threads) : 1,
@@ -61,12 +61,13 @@ module rc_stack_unit #(
   input  logic [Threads-1:0]         req_lf_i,
 
   // The threads' control state (rc_thread_ctrl).
-  input  logic [Threads*3-1:0]       err_i,
-  input  logic [Threads*SpW-1:0]     sp_i,
+  input  logic [Threads-1:0]         err_i,
   input  logic [Threads*4-1:0]       hit_i,
-  input  logic [Threads-1:0]         pop_end_i,
-  output logic [Threads-1:0]         sp_pop_hot_o,   // the popping thread, one-hot
-  output logic [SpW-1:0]             sp_pop_sp_o,    // its new depth
+  output logic [ThrW-1:0]            sp_rd_thr_o,    // the picked thread's depth, read
+  input  logic [SpW-1:0]             sp_rd_i,
+  output logic                       sp_pop_valid_o, // a pop: the thread's new depth
+  output logic [ThrW-1:0]            sp_pop_thr_o,
+  output logic [SpW-1:0]             sp_pop_sp_o,
   output logic                       err_valid_o,
   output logic [ThrW-1:0]            err_thr_o,
   output logic [2:0]                 err_bits_o,
@@ -169,7 +170,7 @@ module rc_stack_unit #(
 
   logic               pp_end, pop0_v_q, pop1_v_q, pop2_v;
   logic [SpW-1:0]     pp_sp;
-  logic [2:0]         pp_err;
+  logic               pp_err;
   logic [3:0]         pp_hit;
   logic [ThrW-1:0]    pop0_thr_q, pop1_thr_q, pop2_thr_q;
   logic [SpW-1:0]     pop0_sp_q, pop1_sp_q, pop2_sp_q;
@@ -193,21 +194,22 @@ module rc_stack_unit #(
     end
   end
 
-  // The picked thread's depth, error bits and hit bits through its one-hot grant.
+  // The picked thread's error flag and hit bits through its one-hot grant, its depth read by its
+  // number (rc_thread_ctrl's distributed RAMs); an error or an empty stack ends the walk.
   always_comb begin
-    pp_sp  = '0;
-    pp_err = '0;
     pp_hit = '0;
     for (int unsigned t = 0; t < Threads; t++) begin
-      pp_sp  = pp_sp | ({SpW{gpp_q[t]}} & sp_i[t*SpW +: SpW]);
-      pp_err = pp_err | ({3{gpp_q[t]}} & err_i[t*3 +: 3]);
       pp_hit = pp_hit | ({4{gpp_q[t]}} & hit_i[t*4 +: 4]);
     end
   end
-  assign pp_end = |(gpp_q & pop_end_i);
+  assign pp_err      = |(gpp_q & err_i);
+  assign sp_rd_thr_o = pp_thr_q;
+  assign pp_sp       = sp_rd_i;
+  assign pp_end      = pp_err | (pp_sp == '0);
 
-  assign sp_pop_hot_o = pp_end ? '0 : gpp_q;
-  assign sp_pop_sp_o  = pp_sp - SpW'(1);
+  assign sp_pop_valid_o = pp_v_q & ~pp_end;
+  assign sp_pop_thr_o   = pp_thr_q;
+  assign sp_pop_sp_o    = pp_sp - SpW'(1);
   assign done_valid_o = pp_v_q & pp_end;
   assign done_thr_o   = pp_thr_q;
 
@@ -341,7 +343,7 @@ module rc_stack_unit #(
       err_v_q       <= rt_v_q && rt_err != 3'd0;
       perf_pop_q    <= pp_v_q & ~pp_end;
       perf_culled_q <= rt_v_q & rt_culled_q;
-      perf_failed_q <= pp_v_q & pp_end & (|pp_err);
+      perf_failed_q <= pp_v_q & pp_end & pp_err;
       perf_leaf_q   <= rt_v_q && rt_entry_q.mask != 4'd0 && rt_leaf_kind;
       perf_empty_q  <= rt_v_q && rt_entry_q.mask != 4'd0 && rt_leaf_kind &&
                        rt_entry_q.node.rec[rc_pkg::KdNodeValueLsb +: 32] == 32'd0;
@@ -416,7 +418,7 @@ module rc_stack_unit #(
   assign perf_empty_o  = perf_empty_q;
 
   logic unused_bits;
-  assign unused_bits = ^{pop_cmp_v[3:1], pp_err, push_sp_i, start_item_i.thr};
+  assign unused_bits = ^{pop_cmp_v[3:1], push_sp_i, start_item_i.thr};
 
 `ifndef SYNTHESIS
   logic checks_on;

@@ -1,25 +1,27 @@
-// rc_thread_ctrl: the control state that every packet thread of rc_core keeps in flip-flops and
-// several units read or change: its error bits, its stack depth, which of its rays exist and
-// which have a hit (docs/architecture.md, "Thread control").
+// rc_thread_ctrl: the control state that every packet thread of rc_core keeps and several units
+// read or change: whether it met an error, its stack depth, which of its rays exist and which
+// have a best hit (docs/architecture.md, "Thread control").
 //
 // Contract
-// - State per thread t: err_o[3t +: 3] (rc_pkg::CoreStatus* bits 0..2, sticky for the packet),
-//   sp_o[CoreSpBits t +: CoreSpBits] (stack entries), vmask_o[4t +: 4] (rays that exist),
-//   hit_o[4t +: 4] (rays with a best hit: the best-hit stores' words count only where this bit
-//   is set), pop_end_o[t] = (err != 0 || sp == 0): a pop of the thread ends its walk. All are
-//   flip-flops, read by the units through their own selects.
-// - Events (each names its thread; every event is for a thread in the unit's hands, so two events
-//   that write the same field of one thread never come in one cycle, which assertions check):
-//     intake (acc_*): a new packet: err, sp, hit cleared, vmask = acc_vmask_i;
-//     error bits (errN_*): ORed into err (the traversal decision, the node port's error response,
-//       the pop unit's routing, a failed list entry, a failed triangle read);
-//     stack depth (sp_*): the traversal decision's push writes sp + 1 (sp_tr_*), a pop writes
-//       sp - 1 (sp_pop_*, through the pop's one-hot grant);
-//     hit (hit_*): the best-hit write-back's commit sets the ray's bit.
-// - Timing: every event changes the state at the clock edge that ends its cycle; reads see it from
-//   the next cycle on.
+// - err_o[t]: thread t's packet met an error (the error bits themselves go straight to the core's
+//   status, rc_core_status); set by any of five units' events (errN_*), cleared when a packet is
+//   taken into the thread (acc_*). A flip-flop per thread.
+// - hit_o[4t + r]: ray r of thread t has a best hit (the best-hit stores' words count only where
+//   this bit is set); set by the write-back's commit (hit_*), cleared at acc_*. Flip-flops.
+// - Stack depth: 0 after acc_*; the traversal decision's push writes sp + 1 (sp_tr_*), a pop
+//   writes sp - 1 (sp_pop_*). Read port sp_rd_thr_i -> sp_rd_o (asynchronous, from distributed
+//   RAM). The depths live in two distributed RAMs, one per writer, and a flip-flop pair per
+//   thread says which holds its depth or that it is 0 (a live-value table): two writers without a
+//   second write port.
+// - Rays that exist: written at acc_*; read port vm_rd_thr_i -> vm_rd_o (asynchronous, from
+//   distributed RAM).
+// - Every event is for a thread in its unit's hands: the two depth writers never meet on one
+//   thread, and a new packet's thread has no other event (assertions).
+// - Timing: an event changes the state at the clock edge that ends its cycle; reads see it from the
+//   next cycle on.
 // - Parameters: Threads (>= 1).
-// - Reset: rst_ni (active low, asynchronous) clears every field.
+// - Reset: rst_ni (active low, asynchronous) clears the flip-flops (all depths read 0); the
+//   distributed RAMs have no reset (a depth or ray mask is read only after it is written).
 module rc_thread_ctrl #(
   parameter int unsigned Threads = rc_pkg::CoreThreads,
   // Derived (do not override).
@@ -34,28 +36,24 @@ module rc_thread_ctrl #(
   input  logic [ThrW-1:0]      acc_thr_i,
   input  logic [3:0]           acc_vmask_i,
 
-  // Error bits raised, from five units.
+  // Errors met, from five units.
   input  logic                 err0_valid_i,    // the traversal decision
   input  logic [ThrW-1:0]      err0_thr_i,
-  input  logic [2:0]           err0_bits_i,
   input  logic                 err1_valid_i,    // the node port's error response
   input  logic [ThrW-1:0]      err1_thr_i,
-  input  logic [2:0]           err1_bits_i,
   input  logic                 err2_valid_i,    // the pop unit's routing
   input  logic [ThrW-1:0]      err2_thr_i,
-  input  logic [2:0]           err2_bits_i,
   input  logic                 err3_valid_i,    // a failed list entry
   input  logic [ThrW-1:0]      err3_thr_i,
-  input  logic [2:0]           err3_bits_i,
   input  logic                 err4_valid_i,    // a failed triangle read
   input  logic [ThrW-1:0]      err4_thr_i,
-  input  logic [2:0]           err4_bits_i,
 
   // Stack depth writes.
   input  logic                 sp_tr_valid_i,   // the traversal decision (a push)
   input  logic [ThrW-1:0]      sp_tr_thr_i,
   input  logic [SpW-1:0]       sp_tr_sp_i,
-  input  logic [Threads-1:0]   sp_pop_hot_i,    // a pop: one-hot thread (zero: none)
+  input  logic                 sp_pop_valid_i,  // a pop
+  input  logic [ThrW-1:0]      sp_pop_thr_i,
   input  logic [SpW-1:0]       sp_pop_sp_i,
 
   // A new best hit of ray hit_ray_i of thread hit_thr_i.
@@ -64,79 +62,111 @@ module rc_thread_ctrl #(
   input  logic [1:0]           hit_ray_i,
 
   // The state.
-  output logic [Threads*3-1:0]   err_o,
-  output logic [Threads*SpW-1:0] sp_o,
-  output logic [Threads*4-1:0]   vmask_o,
-  output logic [Threads*4-1:0]   hit_o,
-  output logic [Threads-1:0]     pop_end_o
+  output logic [Threads-1:0]   err_o,
+  output logic [Threads*4-1:0] hit_o,
+  input  logic [ThrW-1:0]      sp_rd_thr_i,
+  output logic [SpW-1:0]       sp_rd_o,
+  input  logic [ThrW-1:0]      vm_rd_thr_i,
+  output logic [3:0]           vm_rd_o
 );
 
   if (Threads < 1 || (1 << ThrW) < Threads) begin : g_param_check
     $error("rc_thread_ctrl: need Threads >= 1");
   end
 
-  logic [Threads*3-1:0]   err_q;
-  logic [Threads*SpW-1:0] sp_q;
-  logic [Threads*4-1:0]   vmask_q, hit_q;
+  localparam int unsigned Depth = 1 << ThrW;
+  localparam logic [1:0]  SpZero = 2'd0, SpFromTr = 2'd1, SpFromPop = 2'd2;
 
   // Each event's thread one-hot (rc_onehot: shared predecoders, not a compare per thread).
-  logic [Threads-1:0] h_acc, h_e0, h_e1, h_e2, h_e3, h_e4, h_sp, h_hit;
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_acc (.valid_i(acc_valid_i),   .idx_i(acc_thr_i),
+  logic [Threads-1:0] h_acc, h_e0, h_e1, h_e2, h_e3, h_e4, h_sp, h_pop, h_hit;
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_acc (.valid_i(acc_valid_i),    .idx_i(acc_thr_i),
                                                   .hot_o(h_acc));
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e0  (.valid_i(err0_valid_i),  .idx_i(err0_thr_i),
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e0  (.valid_i(err0_valid_i),   .idx_i(err0_thr_i),
                                                   .hot_o(h_e0));
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e1  (.valid_i(err1_valid_i),  .idx_i(err1_thr_i),
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e1  (.valid_i(err1_valid_i),   .idx_i(err1_thr_i),
                                                   .hot_o(h_e1));
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e2  (.valid_i(err2_valid_i),  .idx_i(err2_thr_i),
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e2  (.valid_i(err2_valid_i),   .idx_i(err2_thr_i),
                                                   .hot_o(h_e2));
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e3  (.valid_i(err3_valid_i),  .idx_i(err3_thr_i),
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e3  (.valid_i(err3_valid_i),   .idx_i(err3_thr_i),
                                                   .hot_o(h_e3));
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e4  (.valid_i(err4_valid_i),  .idx_i(err4_thr_i),
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e4  (.valid_i(err4_valid_i),   .idx_i(err4_thr_i),
                                                   .hot_o(h_e4));
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_sp  (.valid_i(sp_tr_valid_i), .idx_i(sp_tr_thr_i),
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_sp  (.valid_i(sp_tr_valid_i),  .idx_i(sp_tr_thr_i),
                                                   .hot_o(h_sp));
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_hit (.valid_i(hit_valid_i),   .idx_i(hit_thr_i),
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_pop (.valid_i(sp_pop_valid_i), .idx_i(sp_pop_thr_i),
+                                                  .hot_o(h_pop));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_hit (.valid_i(hit_valid_i),    .idx_i(hit_thr_i),
                                                   .hot_o(h_hit));
+
+  ////////////////////////////////
+  // Error flags and hit bits   //
+  ////////////////////////////////
+
+  logic [Threads-1:0]   err_q;
+  logic [Threads*4-1:0] hit_q;
+  logic [3:0]           ray_hot;
+  assign ray_hot = 4'd1 << hit_ray_i;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      err_q   <= '0;
-      sp_q    <= '0;
-      vmask_q <= '0;
-      hit_q   <= '0;
+      err_q <= '0;
+      hit_q <= '0;
+    end else begin
+      err_q <= (err_q & ~h_acc) | h_e0 | h_e1 | h_e2 | h_e3 | h_e4;
+      for (int unsigned t = 0; t < Threads; t++) begin
+        hit_q[t*4 +: 4] <= h_acc[t] ? 4'd0 : (hit_q[t*4 +: 4] | ({4{h_hit[t]}} & ray_hot));
+      end
+    end
+  end
+  assign err_o = err_q;
+  assign hit_o = hit_q;
+
+  /////////////////
+  // Stack depth //
+  /////////////////
+
+  // Two distributed RAMs (one per writer) and which holds the depth, per thread.
+  logic [SpW-1:0]       sp_tr_m  [0:Depth-1];
+  logic [SpW-1:0]       sp_pop_m [0:Depth-1];
+  logic [2*Threads-1:0] sp_sel_q;
+  always_ff @(posedge clk_i) begin
+    if (sp_tr_valid_i) sp_tr_m[sp_tr_thr_i] <= sp_tr_sp_i;
+    if (sp_pop_valid_i) sp_pop_m[sp_pop_thr_i] <= sp_pop_sp_i;
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      sp_sel_q <= '0;
     end else begin
       for (int unsigned t = 0; t < Threads; t++) begin
-        logic [2:0] err_or;
-        err_or = ({3{h_e0[t]}} & err0_bits_i) | ({3{h_e1[t]}} & err1_bits_i) |
-                 ({3{h_e2[t]}} & err2_bits_i) | ({3{h_e3[t]}} & err3_bits_i) |
-                 ({3{h_e4[t]}} & err4_bits_i);
-        err_q[t*3 +: 3] <= h_acc[t] ? 3'd0 : (err_q[t*3 +: 3] | err_or);
         if (h_acc[t]) begin
-          sp_q[t*SpW +: SpW] <= '0;
+          sp_sel_q[2*t +: 2] <= SpZero;
         end else if (h_sp[t]) begin
-          sp_q[t*SpW +: SpW] <= sp_tr_sp_i;
-        end else if (sp_pop_hot_i[t]) begin
-          sp_q[t*SpW +: SpW] <= sp_pop_sp_i;
-        end
-        if (h_acc[t]) vmask_q[t*4 +: 4] <= acc_vmask_i;
-        for (int unsigned r = 0; r < 4; r++) begin
-          if (h_acc[t]) begin
-            hit_q[t*4 + r] <= 1'b0;
-          end else if (h_hit[t] && hit_ray_i == 2'(r)) begin
-            hit_q[t*4 + r] <= 1'b1;
-          end
+          sp_sel_q[2*t +: 2] <= SpFromTr;
+        end else if (h_pop[t]) begin
+          sp_sel_q[2*t +: 2] <= SpFromPop;
         end
       end
     end
   end
-
-  assign err_o   = err_q;
-  assign sp_o    = sp_q;
-  assign vmask_o = vmask_q;
-  assign hit_o   = hit_q;
-  for (genvar t = 0; t < Threads; t++) begin : g_pop_end
-    assign pop_end_o[t] = (|err_q[t*3 +: 3]) | (sp_q[t*SpW +: SpW] == '0);
+  logic [1:0] sp_rd_sel;
+  always_comb begin
+    sp_rd_sel = SpZero;
+    for (int unsigned t = 0; t < Threads; t++) begin
+      if (sp_rd_thr_i == ThrW'(t)) sp_rd_sel = sp_sel_q[2*t +: 2];
+    end
   end
+  assign sp_rd_o = (sp_rd_sel == SpFromTr)  ? sp_tr_m[sp_rd_thr_i] :
+                   (sp_rd_sel == SpFromPop) ? sp_pop_m[sp_rd_thr_i] : '0;
+
+  //////////////////////
+  // Rays that exist  //
+  //////////////////////
+
+  logic [3:0] vm_m [0:Depth-1];
+  always_ff @(posedge clk_i) begin
+    if (acc_valid_i) vm_m[acc_thr_i] <= acc_vmask_i;
+  end
+  assign vm_rd_o = vm_m[vm_rd_thr_i];
 
 `ifndef SYNTHESIS
   logic checks_on;
@@ -145,11 +175,9 @@ module rc_thread_ctrl #(
     .rst_ni,
     .on_o (checks_on)
   );
-  // The two stack-depth writers never meet on one thread (a thread is in the traversal unit or in
-  // the pop unit, never both), and a new packet's thread has no other event.
   for (genvar t = 0; t < Threads; t++) begin : g_checks
     SpWriters_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                  $onehot0({h_acc[t], h_sp[t], sp_pop_hot_i[t]}));
+                                  $onehot0({h_acc[t], h_sp[t], h_pop[t]}));
     AccAlone_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  h_acc[t] |-> !(h_e0[t] | h_e1[t] | h_e2[t] | h_e3[t] | h_e4[t] |
                                                 h_hit[t]));

@@ -19,14 +19,19 @@
 // - Throughput: one operation per cycle while ready_i is 1 (the FIFO holds Latency + 1 entries,
 //   enough credits for every operation in flight). With ready_i low the unit accepts until the
 //   credits run out, then holds ready_o low.
-// - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1).
+// - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1);
+//   Backpressure (below): 0 for a consumer that takes every result at once (no FIFO).
 // - Illegal input: none; every bit pattern of the data inputs is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (valid chains, FIFO
 //   pointers and credit count); data registers have no reset.
 module rc_trav_step #(
   parameter int unsigned ExpW  = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW = rc_pkg::Fp24FracW,
-  parameter int unsigned TagW  = 8
+  parameter int unsigned TagW  = 8,
+  // 1: the output FIFO and credits above; 0: ready_i must always be 1 (rc_core's traversal unit
+  // takes every result at once): one output register instead of the FIFO, the same latency,
+  // ready_o always 1.
+  parameter bit          Backpressure = 1'b1
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
@@ -214,22 +219,40 @@ module rc_trav_step #(
   // Output FIFO and credits //
   /////////////////////////////
 
-  // Storage as a memory array (distributed RAM): the core's tags make the entries wide.
-  rc_credit_fifo #(
-    .Width   (OutW),
-    .Depth   (FifoDepth),
-    .MemArray(1'b1)
-  ) u_fifo (
-    .clk_i,
-    .rst_ni,
-    .take_i    (take),
-    .credit_o  (ready_o),
-    .wr_valid_i(cmp_valid),
-    .wr_data_i ({tag_c, t_c, case_c}),
-    .valid_o,
-    .ready_i,
-    .data_o    ({tag_o, t_o, case_o})
-  );
+  if (Backpressure) begin : g_fifo
+    // Storage as a memory array (distributed RAM): the core's tags make the entries wide.
+    rc_credit_fifo #(
+      .Width   (OutW),
+      .Depth   (FifoDepth),
+      .MemArray(1'b1)
+    ) u_fifo (
+      .clk_i,
+      .rst_ni,
+      .take_i    (take),
+      .credit_o  (ready_o),
+      .wr_valid_i(cmp_valid),
+      .wr_data_i ({tag_c, t_c, case_c}),
+      .valid_o,
+      .ready_i,
+      .data_o    ({tag_o, t_o, case_o})
+    );
+  end else begin : g_out_reg
+    logic out_v_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        out_v_q <= 1'b0;
+      end else begin
+        out_v_q <= cmp_valid;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (cmp_valid) {tag_o, t_o, case_o} <= {tag_c, t_c, case_c};
+    end
+    assign valid_o = out_v_q;
+    assign ready_o = 1'b1;
+    logic unused_ready;
+    assign unused_ready = ready_i;
+  end
 
   ////////////////
   // Assertions //

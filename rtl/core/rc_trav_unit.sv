@@ -292,9 +292,10 @@ module rc_trav_unit #(
       assign tag_in = {w_entry.tmax[r], w_entry.tmin[r]};
     end
     rc_trav_step #(
-      .ExpW (rc_pkg::Fp24ExpW),
-      .FracW(rc_pkg::Fp24FracW),
-      .TagW (TagR)
+      .ExpW        (rc_pkg::Fp24ExpW),
+      .FracW       (rc_pkg::Fp24FracW),
+      .TagW        (TagR),
+      .Backpressure(1'b0)   // the decision takes every result at once
     ) u_step (
       .clk_i,
       .rst_ni,
