@@ -844,7 +844,8 @@ module rc_core #(
         if (e_leaf_tr || e_leaf_stk) st_q[t] <= rc_pkg::StLeaf;
         if (e_take) st_q[t] <= rc_pkg::StLeafRun;
         if (e_req_tr || e_req_nr || e_lend || e_own) st_q[t] <= rc_pkg::StPop;
-        if (e_pick) st_q[t] <= e_done ? rc_pkg::StDone : rc_pkg::StPopping;
+        if (e_pick) st_q[t] <= rc_pkg::StPopping;
+        if (e_done) st_q[t] <= rc_pkg::StDone;
         if (e_spick) st_q[t] <= rc_pkg::StShade;
         if (e_free) st_q[t] <= rc_pkg::StFree;
       end
@@ -854,7 +855,7 @@ module rc_core #(
     EventsExclusive_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                         $onehot0({e_acc, e_tq, e_iss, e_leaf_tr | e_leaf_stk,
                                                   e_take, e_req_tr | e_req_nr | e_lend | e_own,
-                                                  e_pick, e_spick, e_free}));
+                                                  e_pick, e_done, e_spick, e_free}));
     EventState_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                    (!e_acc || st == rc_pkg::StFree) &&
                                    (!e_tq || st == rc_pkg::StSetup || st == rc_pkg::StPopping) &&
@@ -870,6 +871,7 @@ module rc_core #(
                                    (!e_own || st == rc_pkg::StSetup ||
                                     st == rc_pkg::StPopping) &&
                                    (!e_pick || st == rc_pkg::StPop) &&
+                                   (!e_done || st == rc_pkg::StPopping) &&
                                    (!e_spick || st == rc_pkg::StDone) &&
                                    (!e_free || st == rc_pkg::StShade));
   end

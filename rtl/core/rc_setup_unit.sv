@@ -124,7 +124,7 @@ module rc_setup_unit #(
 
   logic [Threads-1:0] free_q, g_acc, gacc_c_q, gacc_q;
   logic               acc_any, acc_take, acc_any_q, acc_v_q;
-  logic [ThrW-1:0]    acc_thr, acc_thr_q;
+  logic [ThrW-1:0]    unused_pick_idx, acc_thr_q;
   logic               feed_busy_q;
 
   rc_rr_pick #(
@@ -136,26 +136,25 @@ module rc_setup_unit #(
     .req_i  (free_q),
     .take_i (acc_take),
     .valid_o(acc_any),
-    .idx_o  (acc_thr),
+    .idx_o  (unused_pick_idx),
     .grant_o(g_acc)
   );
+  rc_onehot_idx #(.N(Threads), .IdxW(ThrW)) u_acc_idx (.hot_i(gacc_c_q), .idx_o(acc_thr_q));
 
-  // The free-thread choice is registered (acc_any_q, acc_thr_q, gacc_c_q), so pkt_ready_o is a
-  // gate of two flip-flops. A registered choice is still free when it is used: only a take makes
+  // The free-thread choice is registered (acc_any_q and the one-hot gacc_c_q, whose thread number
+  // acc_thr_q is encoded from it), so pkt_ready_o is a gate of two flip-flops. A registered choice is still free when it is used: only a take makes
   // a free thread busy, the choice is withdrawn in the cycle after a take, and the feeder stays
   // busy for the packet's four rays while the free set catches up (gacc_q clears the bit a cycle
   // after the take). A thread that becomes free is offered a cycle later than the choice sees it.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       acc_any_q <= 1'b0;
-      acc_thr_q <= '0;
       gacc_c_q  <= '0;
       acc_v_q   <= 1'b0;
       gacc_q    <= '0;
       free_q    <= '1;
     end else begin
       acc_any_q <= acc_any & ~acc_take;
-      acc_thr_q <= acc_thr;
       gacc_c_q  <= g_acc;
       acc_v_q   <= acc_take;
       gacc_q    <= acc_take ? gacc_c_q : '0;
@@ -430,6 +429,8 @@ module rc_setup_unit #(
   assign perf_packet_o = acc_take;
   assign perf_rays_o   = acc_take ? popcount4(pkt_mask_i) : 3'd0;
   assign perf_setup_o  = su_take;
+  logic unused_bits;
+  assign unused_bits = ^unused_pick_idx;
 
 `ifndef SYNTHESIS
   logic checks_on;

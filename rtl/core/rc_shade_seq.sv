@@ -149,7 +149,7 @@ module rc_shade_seq #(
 
   logic [Threads-1:0] done_q, g_shp, gshp_q;
   logic               shp_any, shp_room, shp_v_q, st1_v_q, st2_v_q, sh_busy_q;
-  logic [ThrW-1:0]    shp_thr, shp_thr_q, st1_thr_q, st2_thr_q, sh_thr_q;
+  logic [ThrW-1:0]    unused_pick_idx, shp_thr_q, st1_thr_q, st2_thr_q, sh_thr_q;
   logic [3:0]         st1_vm_q, st1_hm_q, st2_vm_q, st2_hm_q, sh_vm_q, sh_hm_q;
   logic [1:0]         sh_r_q;
   logic [127:0]       sh_btri_q;
@@ -163,9 +163,12 @@ module rc_shade_seq #(
     .req_i  (done_q),
     .take_i (shp_room),
     .valid_o(shp_any),
-    .idx_o  (shp_thr),
+    .idx_o  (unused_pick_idx),
     .grant_o(g_shp)
   );
+  // The choice is registered one-hot (gshp_q) and its thread number encoded from that register
+  // (the choice's carry chains end at flip-flops).
+  rc_onehot_idx #(.N(Threads), .IdxW(ThrW)) u_shp_idx (.hot_i(gshp_q), .idx_o(shp_thr_q));
 
   // A packet is chosen when the stages before the sequencer are free (shp_room, from flip-flops);
   // the choice is registered (shp), the rays and hit bits sampled through the one-hot choice, the
@@ -208,7 +211,6 @@ module rc_shade_seq #(
     if (!rst_ni) begin
       done_q          <= '0;
       shp_v_q         <= 1'b0;
-      shp_thr_q       <= '0;
       gshp_q          <= '0;
       st1_v_q         <= 1'b0;
       st2_v_q         <= 1'b0;
@@ -224,7 +226,6 @@ module rc_shade_seq #(
     end else begin
       done_q    <= (done_q & ~gshp_q) | h_done;
       shp_v_q   <= shp_any & shp_room;
-      shp_thr_q <= shp_thr;
       gshp_q    <= (shp_any & shp_room) ? g_shp : '0;
       // A packet without rays goes no further than st1 (it is freed there).
       st1_v_q   <= shp_v_q & (shp_vm != 4'd0);
@@ -550,7 +551,7 @@ module rc_shade_seq #(
 
   logic unused_bits;
   assign unused_bits = ^{shd_rsp_tag_i, shd_rsp_data_i, mat_rsp_tag_i, mat_rsp_data_i,
-                         f2_rid_q};
+                         f2_rid_q, unused_pick_idx};
 
 `ifndef SYNTHESIS
   logic checks_on;

@@ -28,8 +28,8 @@
 //   queue of TravQDepth); a leaf with triangles into the leaf queue (leaf_*, LeafQDepth); an
 //   empty leaf to a pop again; a node whose checks fail raises its error bits (err_*) and asks to
 //   pop (which then ends the walk).
-// - Latency: pick to routing 5 cycles (choice register, block RAM read, fabric register, cull
-//   compare, routing register), routing to queue 1.
+// - Latency: pick to routing 6 cycles (choice register, its index, block RAM read, fabric
+//   register, cull compare, routing register), routing to queue 1.
 // - Counters (perf_*): pops, culled pops, failed packets (a walk that ends with an error), leaf
 //   visits and empty leaves of the routed entries.
 // - Parameters: Threads, StackDepth (a power of two, at most rc_pkg::KdtreeStackDepth).
@@ -113,11 +113,11 @@ module rc_stack_unit #(
   localparam int unsigned StkAW  = ThrW + SpIdxW;
   localparam int unsigned TqCntW = $clog2(TravQDepth + 1);
   localparam int unsigned LqCntW = $clog2(LeafQDepth + 1);
-  // Entries that may reach a queue after the count the room flag saw: a pick writes its queue 6
-  // cycles later (choice register, block RAM read, fabric register, compare, routing register,
-  // queue write) and the count shows a write a cycle after it, and the flag is a cycle older: so
-  // the picks of 8 cycles, and a start.
-  localparam int unsigned InFlight = 9;
+  // Entries that may reach a queue after the count the room flag saw: a pick writes its queue 7
+  // cycles later (choice register, its index, block RAM read, fabric register, compare, routing
+  // register, queue write) and the count shows a write a cycle after it, and the flag is a cycle
+  // older: so the picks of 9 cycles, and a start.
+  localparam int unsigned InFlight = 10;
   localparam logic [W-1:0] FpInf = {1'b0, {rc_pkg::Fp24ExpW{1'b1}}, {rc_pkg::Fp24FracW{1'b0}}};
 
   if (Threads < 1 || StackDepth < 1 || (1 << SpIdxW) != StackDepth ||
@@ -130,22 +130,26 @@ module rc_stack_unit #(
   // Pop requests  //
   ///////////////////
 
-  logic [Threads-1:0] popq_q, g_pp, gpp_q, own_req;
-  logic               pp_any, pp_take, pp_v_q, pick_room_q;
-  logic [ThrW-1:0]    pp_thr, pp_thr_q;
+  logic [Threads-1:0] popq_q, g_pp, pk_hot_q, gpp_q, own_req;
+  logic               pp_any, pp_take, pk_v_q, pp_v_q, pick_room_q;
+  logic [ThrW-1:0]    pp_thr_q, pk_thr, unused_pick_idx;
 
+  // The pick's one-hot grant is registered (pk), its thread number encoded from that register in
+  // the next cycle (pp): the choice's carry chains end at flip-flops, the index's OR trees start
+  // at them.
   rc_rr_pick #(
     .N   (Threads),
     .IdxW(ThrW)
   ) u_pick_pop (
     .clk_i,
     .rst_ni,
-    .req_i  (popq_q & ~gpp_q),
+    .req_i  (popq_q & ~pk_hot_q),
     .take_i (pp_take),
     .valid_o(pp_any),
-    .idx_o  (pp_thr),
+    .idx_o  (unused_pick_idx),
     .grant_o(g_pp)
   );
+  rc_onehot_idx #(.N(Threads), .IdxW(ThrW)) u_pk_idx (.hot_i(pk_hot_q), .idx_o(pk_thr));
   // A thread is picked while both queues have room for every pop in flight (their counts as they
   // were a cycle ago: pick_room_q) and no start waits for the routing stage.
   assign pp_take = pp_any & pick_room_q & ~start_valid_i;
@@ -159,7 +163,7 @@ module rc_stack_unit #(
     if (!rst_ni) begin
       popq_q <= '0;
     end else begin
-      popq_q <= (popq_q & ~gpp_q) | h_tr | h_nr | req_lf_i | own_req;
+      popq_q <= (popq_q & ~pk_hot_q) | h_tr | h_nr | req_lf_i | own_req;
     end
   end
   assign popq_o = popq_q;
@@ -180,15 +184,19 @@ module rc_stack_unit #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      pk_v_q   <= 1'b0;
+      pk_hot_q <= '0;
       pp_v_q   <= 1'b0;
       pp_thr_q <= '0;
       gpp_q    <= '0;
       pop0_v_q <= 1'b0;
       pop1_v_q <= 1'b0;
     end else begin
-      pp_v_q   <= pp_take;
-      pp_thr_q <= pp_thr;
-      gpp_q    <= pp_take ? g_pp : '0;
+      pk_v_q   <= pp_take;
+      pk_hot_q <= pp_take ? g_pp : '0;
+      pp_v_q   <= pk_v_q;
+      pp_thr_q <= pk_thr;
+      gpp_q    <= pk_hot_q;
       pop0_v_q <= pp_v_q & ~pp_end;
       pop1_v_q <= pop0_v_q;
     end
@@ -207,11 +215,29 @@ module rc_stack_unit #(
   assign pp_sp       = sp_rd_i;
   assign pp_end      = pp_err | (pp_sp == '0);
 
-  assign sp_pop_valid_o = pp_v_q & ~pp_end;
-  assign sp_pop_thr_o   = pp_thr_q;
-  assign sp_pop_sp_o    = pp_sp - SpW'(1);
-  assign done_valid_o = pp_v_q & pp_end;
-  assign done_thr_o   = pp_thr_q;
+  // The new depth and an ended walk leave through registers (the thread's next pop, or its shading,
+  // comes many cycles later).
+  logic            sp_pop_v_q, done_v_q;
+  logic [ThrW-1:0] sp_pop_thr_q;
+  logic [SpW-1:0]  sp_pop_sp_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      sp_pop_v_q <= 1'b0;
+      done_v_q   <= 1'b0;
+    end else begin
+      sp_pop_v_q <= pp_v_q & ~pp_end;
+      done_v_q   <= pp_v_q & pp_end;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    sp_pop_thr_q <= pp_thr_q;
+    sp_pop_sp_q  <= pp_sp - SpW'(1);
+  end
+  assign sp_pop_valid_o = sp_pop_v_q;
+  assign sp_pop_thr_o   = sp_pop_thr_q;
+  assign sp_pop_sp_o    = sp_pop_sp_q;
+  assign done_valid_o   = done_v_q;
+  assign done_thr_o     = sp_pop_thr_q;
 
   // The stack and the best t are read at every registered pick (an ended walk leaves its read
   // unused), so the read enables are flip-flops.
@@ -407,8 +433,8 @@ module rc_stack_unit #(
     end
   end
 
-  assign pick_valid_o  = pp_v_q;
-  assign pick_thr_o    = pp_thr_q;
+  assign pick_valid_o  = pk_v_q;
+  assign pick_thr_o    = pk_thr;
   assign route_valid_o = rt_v_q;
   assign route_thr_o   = rt_thr_q;
   assign perf_pop_o    = perf_pop_q;
@@ -418,7 +444,7 @@ module rc_stack_unit #(
   assign perf_empty_o  = perf_empty_q;
 
   logic unused_bits;
-  assign unused_bits = ^{pop_cmp_v[3:1], push_sp_i, start_item_i.thr};
+  assign unused_bits = ^{pop_cmp_v[3:1], push_sp_i, start_item_i.thr, unused_pick_idx};
 
 `ifndef SYNTHESIS
   logic checks_on;
