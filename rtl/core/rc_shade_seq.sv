@@ -151,6 +151,7 @@ module rc_shade_seq #(
   logic               shp_any, shp_room, shp_v_q, st1_v_q, st2_v_q, sh_busy_q;
   logic [ThrW-1:0]    unused_pick_idx, shp_thr_q, st1_thr_q, st2_thr_q, sh_thr_q;
   logic [3:0]         st1_vm_q, st1_hm_q, st2_vm_q, st2_hm_q, sh_vm_q, sh_hm_q;
+  logic [Threads-1:0] st1_hot_q;
   logic [1:0]         sh_r_q;
   logic [127:0]       sh_btri_q;
 
@@ -228,8 +229,8 @@ module rc_shade_seq #(
       shp_v_q   <= shp_any & shp_room;
       gshp_q    <= (shp_any & shp_room) ? g_shp : '0;
       // A packet without rays goes no further than st1 (it is freed there).
-      st1_v_q   <= shp_v_q & (shp_vm != 4'd0);
-      st2_v_q   <= st1_v_q;
+      st1_v_q   <= shp_v_q;
+      st2_v_q   <= st1_v_q & (st1_vm_q != 4'd0);
       if (st2_v_q) begin
         nb_v_q <= 1'b1;
       end else if (sh_load) begin
@@ -259,6 +260,7 @@ module rc_shade_seq #(
   end
   always_ff @(posedge clk_i) begin
     st1_thr_q <= shp_thr_q;
+    st1_hot_q <= gshp_q;
     st1_vm_q  <= shp_vm;
     st1_hm_q  <= shp_hm & {4{~shp_err}};
     st2_thr_q <= st1_thr_q;
@@ -507,8 +509,8 @@ module rc_shade_seq #(
       fbw_q <= '0;
     end else begin
       for (int unsigned t = 0; t < Threads; t++) begin
-        if (gshp_q[t]) begin
-          fbw_q[t*3 +: 3] <= popcount4(shp_vm);
+        if (st1_hot_q[t]) begin
+          fbw_q[t*3 +: 3] <= popcount4(st1_vm_q);
         end else if (fb_take && h_fb[t]) begin
           fbw_q[t*3 +: 3] <= fbw_q[t*3 +: 3] - 3'd1;
         end
@@ -531,8 +533,8 @@ module rc_shade_seq #(
     end else begin
       free_v    <= fb_take && fb_cnt == 3'd1;
       free_thr  <= oq_thr;
-      free0_v   <= shp_v_q && shp_vm == 4'd0;
-      free0_thr <= shp_thr_q;
+      free0_v   <= st1_v_q && st1_vm_q == 4'd0;
+      free0_thr <= st1_thr_q;
     end
   end
   assign free_valid_o  = free_v;

@@ -210,9 +210,14 @@ module rc_stack_unit #(
       pp_hit = pp_hit | ({4{gpp_q[t]}} & hit_i[t*4 +: 4]);
     end
   end
+  // The depth is read a cycle early, by the choice's thread number (pk), and registered: the
+  // distributed RAMs' read and the end decision are in different cycles. (A thread's depth was
+  // written at least a cycle before its pop request, so before the read.)
+  logic [SpW-1:0] pp_sp_q;
+  always_ff @(posedge clk_i) pp_sp_q <= sp_rd_i;
   assign pp_err      = |(gpp_q & err_i);
-  assign sp_rd_thr_o = pp_thr_q;
-  assign pp_sp       = sp_rd_i;
+  assign sp_rd_thr_o = pk_thr;
+  assign pp_sp       = pp_sp_q;
   assign pp_end      = pp_err | (pp_sp == '0);
 
   // The new depth and an ended walk leave through registers (the thread's next pop, or its shading,
