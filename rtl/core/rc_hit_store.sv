@@ -111,14 +111,12 @@ module rc_hit_store #(
   assign iu_rid  = {ThrW'(iu_q.thr), iu_q.ray};
   assign io2_rid = {ThrW'(io2_q.thr), io2_q.ray};
 
-  // The hit bit of the result's ray, sampled at the read's edge.
-  logic iu_hit;
-  always_comb begin
-    iu_hit = 1'b0;
-    for (int unsigned k = 0; k < Threads * 4; k++) begin
-      if (iu_rid == RidW'(k)) iu_hit = hit_i[k];
-    end
-  end
+  // The hit bit of the result's ray, sampled at the read's edge (a bit select by the ray's number:
+  // a balanced multiplexer tree, not a chain of compares).
+  logic                  iu_hit;
+  logic [(4 << ThrW)-1:0] hit_pad;
+  assign hit_pad = (4 << ThrW)'(hit_i);
+  assign iu_hit  = hit_pad[iu_rid];
 
   always_ff @(posedge clk_i) begin
     iu_q      <= res_i;

@@ -201,11 +201,11 @@ module rc_isect_issue #(
   logic [12*W-1:0]   i1_m_q, i2_m_q;
   logic [3:0]        ti_hits;
 
-  always_comb begin
-    ti_hits = '0;
-    for (int unsigned t = 0; t < Threads; t++) begin
-      if (ti_thr_q == ThrW'(t)) ti_hits = hit_i[t*4 +: 4];
-    end
+  // The thread's hit bits by its number (bit selects: balanced multiplexer trees).
+  logic [(4 << ThrW)-1:0] hit_pad;
+  assign hit_pad = (4 << ThrW)'(hit_i);
+  for (genvar r = 0; r < 4; r++) begin : g_hits
+    assign ti_hits[r] = hit_pad[{ti_thr_q, 2'(r)}];
   end
 
   assign ray_re_o  = is_take;

@@ -17,11 +17,14 @@ module rc_onehot_idx #(
     $error("rc_onehot_idx: need N >= 1 and 2^IdxW >= N");
   end
 
-  always_comb begin
-    idx_o = '0;
-    for (int unsigned i = 0; i < N; i++) begin
-      if (hot_i[i]) idx_o = idx_o | IdxW'(i);
+  // Bit k of the index: a reduction OR over the bits whose numbers have bit k set (one balanced OR
+  // per index bit, not a chain through the N bits).
+  for (genvar k = 0; k < IdxW; k++) begin : g_bit
+    logic [N-1:0] has_k;
+    for (genvar i = 0; i < N; i++) begin : g_i
+      assign has_k[i] = ((i >> k) & 1) != 0;
     end
+    assign idx_o[k] = |(hot_i & has_k);
   end
 
 endmodule

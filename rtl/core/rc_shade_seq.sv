@@ -185,11 +185,12 @@ module rc_shade_seq #(
 
   logic [3:0] shp_vm, shp_hm;
   logic       shp_err;
-  always_comb begin
-    shp_hm = '0;
-    for (int unsigned t = 0; t < Threads; t++) begin
-      shp_hm = shp_hm | ({4{gshp_q[t]}} & hit_i[t*4 +: 4]);
+  for (genvar r = 0; r < 4; r++) begin : g_shp_hm
+    logic [Threads-1:0] hit_r;
+    for (genvar t = 0; t < Threads; t++) begin : g_t
+      assign hit_r[t] = hit_i[t*4 + r];
     end
+    assign shp_hm[r] = |(gshp_q & hit_r);   // a reduction OR: balanced, not a chain
   end
   assign shp_err     = |(gshp_q & err_i);
   assign vm_rd_thr_o = shp_thr_q;
@@ -518,11 +519,12 @@ module rc_shade_seq #(
     end
   end
   logic [2:0] fb_cnt;
-  always_comb begin
-    fb_cnt = '0;
-    for (int unsigned t = 0; t < Threads; t++) begin
-      fb_cnt = fb_cnt | ({3{h_fb[t]}} & fbw_q[t*3 +: 3]);
+  for (genvar b = 0; b < 3; b++) begin : g_fb_cnt
+    logic [Threads-1:0] fbw_b;
+    for (genvar t = 0; t < Threads; t++) begin : g_t
+      assign fbw_b[t] = fbw_q[t*3 + b];
     end
+    assign fb_cnt[b] = |(h_fb & fbw_b);
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

@@ -204,11 +204,12 @@ module rc_stack_unit #(
 
   // The picked thread's error flag and hit bits through its one-hot grant, its depth read by its
   // number (rc_thread_ctrl's distributed RAMs); an error or an empty stack ends the walk.
-  always_comb begin
-    pp_hit = '0;
-    for (int unsigned t = 0; t < Threads; t++) begin
-      pp_hit = pp_hit | ({4{gpp_q[t]}} & hit_i[t*4 +: 4]);
+  for (genvar r = 0; r < 4; r++) begin : g_pp_hit
+    logic [Threads-1:0] hit_r;
+    for (genvar t = 0; t < Threads; t++) begin : g_t
+      assign hit_r[t] = hit_i[t*4 + r];
     end
+    assign pp_hit[r] = |(gpp_q & hit_r);   // a reduction OR: balanced, not a chain
   end
   // The depth is read a cycle early, by the choice's thread number (pk), and registered: the
   // distributed RAMs' read and the end decision are in different cycles. (A thread's depth was

@@ -148,13 +148,19 @@ module rc_thread_ctrl #(
       end
     end
   end
-  logic [1:0] sp_rd_sel;
+  // The thread's selector by its number: bit selects of the two selector bits (balanced
+  // multiplexer trees, not a chain of compares).
+  logic [1:0]       sp_rd_sel;
+  logic [Depth-1:0] sel0, sel1;
   always_comb begin
-    sp_rd_sel = SpZero;
+    sel0 = '0;
+    sel1 = '0;
     for (int unsigned t = 0; t < Threads; t++) begin
-      if (sp_rd_thr_i == ThrW'(t)) sp_rd_sel = sp_sel_q[2*t +: 2];
+      sel0[t] = sp_sel_q[2*t];
+      sel1[t] = sp_sel_q[2*t + 1];
     end
   end
+  assign sp_rd_sel = {sel1[sp_rd_thr_i], sel0[sp_rd_thr_i]};
   assign sp_rd_o = (sp_rd_sel == SpFromTr)  ? sp_tr_m[sp_rd_thr_i] :
                    (sp_rd_sel == SpFromPop) ? sp_pop_m[sp_rd_thr_i] : '0;
 
