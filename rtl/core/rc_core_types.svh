@@ -136,3 +136,27 @@ function automatic logic [1:0] walk_route(input logic [3:0] mask, input logic [1
     walk_route = (upper != 32'd0) ? RouteLeaf : RoutePop;
   end
 endfunction
+
+// The lowest ray of a four-ray mask (0 for an empty mask).
+function automatic logic [1:0] ray_lowest(input logic [3:0] m);
+  if (m[0]) begin
+    ray_lowest = 2'd0;
+  end else if (m[1]) begin
+    ray_lowest = 2'd1;
+  end else if (m[2]) begin
+    ray_lowest = 2'd2;
+  end else begin
+    ray_lowest = m[3] ? 2'd3 : 2'd0;
+  end
+endfunction
+
+// The number of rays in a four-ray mask.
+function automatic logic [2:0] ray_count(input logic [3:0] m);
+  ray_count = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
+endfunction
+
+// Ray i's 32-bit word of a four-ray vector (ray r at [32 r +: 32]): a 4:1 multiplexer.
+function automatic logic [31:0] lane32(input logic [127:0] v, input logic [1:0] i);
+  lane32 = '0;
+  for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane32 = v[r*32 +: 32];
+endfunction

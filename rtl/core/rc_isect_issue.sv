@@ -88,17 +88,6 @@ module rc_isect_issue #(
     $error("rc_isect_issue: need IsectInterval 1 or 2");
   end
 
-  function automatic logic [1:0] lowest4(input logic [3:0] m);
-    if (m[0]) begin
-      lowest4 = 2'd0;
-    end else if (m[1]) begin
-      lowest4 = 2'd1;
-    end else if (m[2]) begin
-      lowest4 = 2'd2;
-    end else begin
-      lowest4 = m[3] ? 2'd3 : 2'd0;
-    end
-  endfunction
 
   ///////////////////////////////
   // Skid buffer and issue reg //
@@ -166,7 +155,7 @@ module rc_isect_issue #(
     end else if (is_take) begin
       ti_rem_q  <= ti_rem_next;
       ti_last_q <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
-      ti_r      <= lowest4(ti_rem_next);
+      ti_r      <= rc_pkg::ray_lowest(ti_rem_next);
     end
   end
 
@@ -315,7 +304,7 @@ module rc_isect_issue #(
                                 ti_v_q && !ti_err_q |-> ti_rem_q != 4'd0);
   // The current ray is the lowest ray left, and the last-ray bit says whether one is left.
   TiRem_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                            ti_v_q && !ti_err_q |-> ti_r == lowest4(ti_rem_q) &&
+                            ti_v_q && !ti_err_q |-> ti_r == rc_pkg::ray_lowest(ti_rem_q) &&
                             ti_last_q == ((ti_rem_q & (ti_rem_q - 4'd1)) == 4'd0));
 `endif
 

@@ -110,13 +110,6 @@ module rc_setup_unit #(
     lane_w = '0;
     for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_w = v[r*W +: W];
   endfunction
-  function automatic logic [31:0] lane_32(input logic [127:0] v, input logic [1:0] i);
-    lane_32 = '0;
-    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_32 = v[r*32 +: 32];
-  endfunction
-  function automatic logic [2:0] popcount4(input logic [3:0] m);
-    popcount4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
-  endfunction
 
   //////////////////////////
   // Free threads, intake //
@@ -229,7 +222,7 @@ module rc_setup_unit #(
   assign raywr_thr_o     = feed_thr_q;
   assign raywr_ray_o     = feed_r_q;
   assign raywr_orgdir_o  = {feed_dir_r, feed_org_r};
-  assign raywr_lenpix_o  = {lane_32(feed_pix_q, feed_r_q), lane_w(feed_ilen_q, feed_r_q)};
+  assign raywr_lenpix_o  = {rc_pkg::lane32(feed_pix_q, feed_r_q), lane_w(feed_ilen_q, feed_r_q)};
   assign axwr_valid_o    = su_take & (feed_r_q != 2'd3);
   assign axwr_thr_o      = feed_thr_q;
   assign axwr_axis_o     = feed_r_q;
@@ -427,7 +420,7 @@ module rc_setup_unit #(
 
   assign all_free_o    = (&free_q) & ~feed_busy_q;
   assign perf_packet_o = acc_take;
-  assign perf_rays_o   = acc_take ? popcount4(pkt_mask_i) : 3'd0;
+  assign perf_rays_o   = acc_take ? rc_pkg::ray_count(pkt_mask_i) : 3'd0;
   assign perf_setup_o  = su_take;
   logic unused_bits;
   assign unused_bits = ^unused_pick_idx;

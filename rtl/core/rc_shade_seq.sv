@@ -135,13 +135,6 @@ module rc_shade_seq #(
     $error("rc_shade_seq: need {thread, ray} to fit the port tags");
   end
 
-  function automatic logic [31:0] lane_32(input logic [127:0] v, input logic [1:0] i);
-    lane_32 = '0;
-    for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_32 = v[r*32 +: 32];
-  endfunction
-  function automatic logic [2:0] popcount4(input logic [3:0] m);
-    popcount4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
-  endfunction
 
   ///////////////////////////
   // Traced packets, pick  //
@@ -250,7 +243,7 @@ module rc_shade_seq #(
       if (to_shd) begin
         shd_req_valid_q <= 1'b1;
         shd_req_rid_q   <= {sh_thr_q, sh_r_q};
-        shd_req_index_q <= lane_32(sh_btri_q, sh_r_q);
+        shd_req_index_q <= rc_pkg::lane32(sh_btri_q, sh_r_q);
       end
       if (miss_take) miss_v_q <= 1'b0;
       if (to_miss) begin
@@ -511,7 +504,7 @@ module rc_shade_seq #(
     end else begin
       for (int unsigned t = 0; t < Threads; t++) begin
         if (st1_hot_q[t]) begin
-          fbw_q[t*3 +: 3] <= popcount4(st1_vm_q);
+          fbw_q[t*3 +: 3] <= rc_pkg::ray_count(st1_vm_q);
         end else if (fb_take && h_fb[t]) begin
           fbw_q[t*3 +: 3] <= fbw_q[t*3 +: 3] - 3'd1;
         end

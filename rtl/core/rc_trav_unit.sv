@@ -125,20 +125,6 @@ module rc_trav_unit #(
     $error("rc_trav_unit: need 1 <= Threads <= 2^TagW and StackDepth <= KdtreeStackDepth");
   end
 
-  function automatic logic [1:0] lowest4(input logic [3:0] m);
-    if (m[0]) begin
-      lowest4 = 2'd0;
-    end else if (m[1]) begin
-      lowest4 = 2'd1;
-    end else if (m[2]) begin
-      lowest4 = 2'd2;
-    end else begin
-      lowest4 = m[3] ? 2'd3 : 2'd0;
-    end
-  endfunction
-  function automatic logic [2:0] popcount4(input logic [3:0] m);
-    popcount4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
-  endfunction
 
   ///////////
   // Issue //
@@ -252,7 +238,7 @@ module rc_trav_unit #(
   assign {w_sp, w_entry} = wait_rd;
   assign w_left  = w_entry.node.rec[rc_pkg::KdNodeIndexLsb +: NodeW];
   assign w_split = w_entry.node.rec[rc_pkg::KdNodeValueLsb +: W];
-  assign w_lead  = lowest4(w_entry.mask);
+  assign w_lead  = rc_pkg::ray_lowest(w_entry.mask);
   assign w_lsign = ax_sign_i[w_lead];
   assign w_same  = ax_sign_i ^ {4{~w_lsign}};
   assign step_v  = r2_v_q & ~r2_err_q;
@@ -476,7 +462,7 @@ module rc_trav_unit #(
   assign dec_thr_o         = dc_thr_q;
   assign perf_node_req_o   = node_req_valid_o & node_req_ready_i;
   assign perf_inner_o      = step_v;
-  assign perf_steps_o      = step_v ? popcount4(w_entry.mask) : 3'd0;
+  assign perf_steps_o      = step_v ? rc_pkg::ray_count(w_entry.mask) : 3'd0;
   assign perf_push_o       = push_v_q;
   assign perf_push_depth_o = push_sp_q;
   assign perf_leaf_o       = perf_leaf_q;
