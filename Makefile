@@ -169,17 +169,19 @@ fpga-vivado: $(GEN_PKG)
 # (rc_board, UART host link, PLL for FPGA_FREQ MHz), nextpnr-ecp5 (LFE5U-85F, CABGA381, pins
 # fpga/ecp5/ulx3s.lpf), ecppack; writes rc_ulx3s.bit and report.md (utilisation, Fmax against the
 # target with PASS/FAIL, critical path, step times) to $(BUILD)/fpga/ecp5/. FPGA_ARGS passes more
-# options (e.g. FPGA_ARGS="--param Threads=1" for a quick reduced build). Yosys takes 3 to
-# 10 minutes and nextpnr 14 to 33 (static placer, FPGA_SEED, router1 with its timing-driven
-# rip-up; FPGA_ARGS=--no-tmg-ripup routes in up to a quarter of the time, to a lower Fmax) on
-# the default build.
+# options (e.g. FPGA_ARGS="--param Threads=1" for a quick reduced build). On the default build
+# (the unit core, 128 threads) Yosys takes about 5 minutes and nextpnr over two hours (static
+# placer, FPGA_SEED, about 40 minutes; router1 with its timing-driven rip-up, over 90 on a design
+# that does not yet close 100 MHz; FPGA_ARGS=--no-tmg-ripup routes in a fraction of the time, to
+# a lower Fmax).
 FPGA_SCENE ?= scenes/cornell.json
 FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
-# nextpnr's seed: 4 is the one of seeds 1 to 5 on cabf34e's netlist that closes 100 MHz
-# (docs/history.md, runs 36 to 36s5: 88.12, 91.57, 93.55, 100.28 PASS, 97.68 MHz). Another RTL
-# gives another netlist, whose placements differ; sweep the seed again after a change.
+# nextpnr's seed: 4 is the one of seeds 1 to 5 on cabf34e's netlist (the core before the unit
+# redesign) that closed 100 MHz (docs/history.md, runs 36 to 36s5: 88.12, 91.57, 93.55, 100.28
+# PASS, 97.68 MHz). The unit core does not close yet at any seed tried (docs/fpga.md, "Status");
+# sweep the seed again once a placement comes near.
 FPGA_SEED  ?= 4
 ECPPACK    ?= yowasp-ecppack
 # The board build synthesises with YoWASP's Yosys (PyPI, a 2026 Yosys whose synth_ecp5 maps with
