@@ -828,7 +828,8 @@ module rc_core #(
     assign e_pick     = at(stk_pick_valid, stk_pick_thr, ThrW'(t));
     assign e_done     = at(stk_done_valid, stk_done_thr, ThrW'(t));
     assign e_spick    = at(shd_pick_valid, shd_pick_thr, ThrW'(t));
-    assign e_free     = at(shd_free_valid, shd_free_thr, ThrW'(t)) | at(shd_free0_valid, shd_free0_thr, ThrW'(t));
+    assign e_free     = at(shd_free_valid, shd_free_thr, ThrW'(t)) |
+                        at(shd_free0_valid, shd_free0_thr, ThrW'(t));
     // A continuation is issued in the cycle the decision's registers show it.
     assign e_cont     = e_iss && u_trav.cont_v_q;
 

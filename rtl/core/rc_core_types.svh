@@ -6,8 +6,8 @@
 // number format is docs/spec.toml [fp24] (CoreFpW bits), thread numbers are CoreThrBits wide
 // (enough for [core] max_threads; a core with fewer threads leaves the upper bits zero), stack
 // depths CoreSpBits (0 .. [kdtree] stack_depth). Written for both Verilator and Yosys 0.23:
-// packed structs, no enums (a vector cannot be cast to one in Yosys 0.23, so codes are localparams),
-// no struct literals, no `$bits` of a type, no casts to a type.
+// packed structs, no enums (a vector cannot be cast to one in Yosys 0.23, so codes are
+// localparams), no struct literals, no `$bits` of a type, no casts to a type.
 
 localparam int unsigned CoreFpW     = 1 + Fp24ExpW + Fp24FracW;
 localparam int unsigned CoreThrBits = $clog2(CoreMaxThreads);
@@ -94,9 +94,9 @@ localparam logic [1:0] RouteTrav = 2'd0;  // an inner node: the traversal unit
 localparam logic [1:0] RouteLeaf = 2'd1;  // a leaf with triangles: the list unit
 localparam logic [1:0] RoutePop  = 2'd2;  // no active ray, an empty leaf or an error: the pop unit
 
-// The checks of a node's record read at index own (Node*) (docs/architecture.md, "Errors"): an inner node
-// must have its children after itself and inside the node section and a finite split of the
-// format's width; a leaf's list range must lie inside the list section.
+// The checks of a node's record read at index own (Node*) (docs/architecture.md, "Errors"): an
+// inner node must have its children after itself and inside the node section and a finite split
+// of the format's width; a leaf's list range must lie inside the list section.
 function automatic logic [1:0] node_check(input logic [63:0] rec, input logic [29:0] own,
                                          input logic [31:0] node_count,
                                          input logic [31:0] list_count);

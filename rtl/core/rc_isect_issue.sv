@@ -88,7 +88,6 @@ module rc_isect_issue #(
     $error("rc_isect_issue: need IsectInterval 1 or 2");
   end
 
-
   ///////////////////////////////
   // Skid buffer and issue reg //
   ///////////////////////////////

@@ -111,7 +111,6 @@ module rc_list_unit #(
     $error("rc_list_unit: need ListTags >= 2 tags of at most TagW bits");
   end
 
-
   ///////////////////
   // Leaf sources  //
   ///////////////////
@@ -313,7 +312,8 @@ module rc_list_unit #(
     if (li_take) begin
       tp_thr_m[tag_new_q]   <= lu_thr_q;
       tp_mask_m[tag_new_q]  <= lu_mask_q;
-      tp_first_m[tag_new_q] <= {(lu_mask_q & (lu_mask_q - 4'd1)) == 4'd0, rc_pkg::ray_lowest(lu_mask_q)};
+      tp_first_m[tag_new_q] <= {(lu_mask_q & (lu_mask_q - 4'd1)) == 4'd0,
+                                rc_pkg::ray_lowest(lu_mask_q)};
     end
     // Written on every list response, failed ones too (a failed entry's tag sends no triangle
     // request, and the tag's next response writes it again before it is read).

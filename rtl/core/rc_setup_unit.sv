@@ -135,10 +135,11 @@ module rc_setup_unit #(
   rc_onehot_idx #(.N(Threads), .IdxW(ThrW)) u_acc_idx (.hot_i(gacc_c_q), .idx_o(acc_thr_q));
 
   // The free-thread choice is registered (acc_any_q and the one-hot gacc_c_q, whose thread number
-  // acc_thr_q is encoded from it), so pkt_ready_o is a gate of two flip-flops. A registered choice is still free when it is used: only a take makes
-  // a free thread busy, the choice is withdrawn in the cycle after a take, and the feeder stays
-  // busy for the packet's four rays while the free set catches up (gacc_q clears the bit a cycle
-  // after the take). A thread that becomes free is offered a cycle later than the choice sees it.
+  // acc_thr_q is encoded from it), so pkt_ready_o is a gate of two flip-flops. A registered
+  // choice is still free when it is used: only a take makes a free thread busy, the choice is
+  // withdrawn in the cycle after a take, and the feeder stays busy for the packet's four rays
+  // while the free set catches up (gacc_q clears the bit a cycle after the take). A thread that
+  // becomes free is offered a cycle later than the choice sees it.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       acc_any_q <= 1'b0;

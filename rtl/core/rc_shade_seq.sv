@@ -135,7 +135,6 @@ module rc_shade_seq #(
     $error("rc_shade_seq: need {thread, ray} to fit the port tags");
   end
 
-
   ///////////////////////////
   // Traced packets, pick  //
   ///////////////////////////

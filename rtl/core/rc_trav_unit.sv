@@ -125,7 +125,6 @@ module rc_trav_unit #(
     $error("rc_trav_unit: need 1 <= Threads <= 2^TagW and StackDepth <= KdtreeStackDepth");
   end
 
-
   ///////////
   // Issue //
   ///////////
