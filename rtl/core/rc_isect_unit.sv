@@ -457,19 +457,18 @@ module rc_isect_unit #(
   end else begin : g_out_reg
     // Every result is taken as it appears (ready_i is 1), so one output register replaces the
     // FIFO: the same latency, no credits.
-    logic out_v_q;
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        out_v_q <= 1'b0;
-      end else begin
-        out_v_q <= pipe_valid;
-      end
-    end
-    always_ff @(posedge clk_i) begin
-      if (pipe_valid) {tag_o, tri_o, hit_o, dz_o, t_o, v_o, u_o} <=
-                      {pipe_tag, pipe_tri, pipe_hit, pipe_dz, pipe_t, pipe_v, pipe_u};
-    end
-    assign valid_o = out_v_q;
+    rc_pipe_out #(
+      .Width   (TagW + 32 + 1 + 4 * W),
+      .DataRegs(1),
+      .Stages  (1)
+    ) u_out (
+      .clk_i,
+      .rst_ni,
+      .valid_i(pipe_valid),
+      .data_i ({pipe_tag, pipe_tri, pipe_hit, pipe_dz, pipe_t, pipe_v, pipe_u}),
+      .valid_o,
+      .data_o ({tag_o, tri_o, hit_o, dz_o, t_o, v_o, u_o})
+    );
     assign ready_o = ~issue_busy;
 `ifndef SYNTHESIS
     NoBackpressure_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)

@@ -237,20 +237,22 @@ module rc_trav_step #(
       .data_o    ({tag_o, t_o, case_o})
     );
   end else begin : g_out_reg
-    logic out_v_q;
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        out_v_q <= 1'b0;
-      end else begin
-        out_v_q <= cmp_valid;
-      end
-    end
-    always_ff @(posedge clk_i) begin
-      if (cmp_valid) {tag_o, t_o, case_o} <= {tag_c, t_c, case_c};
-    end
-    assign valid_o = out_v_q;
+    // Every result is taken as it appears (ready_i is 1), so one output register replaces the
+    // FIFO: the same latency, no credits.
+    rc_pipe_out #(
+      .Width   (OutW),
+      .DataRegs(1),
+      .Stages  (1)
+    ) u_out (
+      .clk_i,
+      .rst_ni,
+      .valid_i(cmp_valid),
+      .data_i ({tag_c, t_c, case_c}),
+      .valid_o,
+      .data_o ({tag_o, t_o, case_o})
+    );
     assign ready_o = 1'b1;
-    logic unused_ready;
+    logic unused_ready;   // ready_i must be 1 (NoBackpressure_A)
     assign unused_ready = ready_i;
   end
 
@@ -274,6 +276,9 @@ module rc_trav_step #(
   // legal input, so only the NaN implication is checked.
   NanComparesFalse_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                        cmp_valid && t_nan |-> !beyond && !behind);
+  // Without backpressure the consumer takes every result as it appears.
+  NoBackpressure_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                     !Backpressure && valid_o |-> ready_i);
   // ready_o must be known once out of reset (upstream acts on it).
   ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));
