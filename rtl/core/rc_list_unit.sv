@@ -155,11 +155,13 @@ module rc_list_unit #(
   logic [2:0]          tp_first_m [0:ListTags-1];
   logic [31:0]         tp_tri_m [0:ListTags-1];
 
-  // The next tag to take: the lowest set bit of the free set (x & -x), registered, computed from
-  // the free set without this cycle's take; freed tags are offered a cycle later. The search runs
-  // on the free set with and without the registered tag, and the take picks one at the end.
+  // The next tag to take: the lowest set bit of the free set (x & -x), registered one-hot
+  // (tag_first_q), computed from the free set without this cycle's take; freed tags are offered a
+  // cycle later. The search runs on the free set with and without the registered tag, and the
+  // take picks one at the end; the tag's number is encoded from the register (tag_new), so the
+  // search's loop has no encoder in it.
   logic [ListTags-1:0] tf_rest, tag_first_all, tag_first_rest, tag_first_q;
-  logic [LtW-1:0]      tag_new_all, tag_new_rest, tag_new_q;
+  logic [LtW-1:0]      tag_new;
   logic                tag_avail_q;
   function automatic logic [LtW-1:0] tag_index(input logic [ListTags-1:0] one_hot);
     tag_index = '0;
@@ -170,17 +172,14 @@ module rc_list_unit #(
   assign tf_rest        = tf_q & ~tag_first_q;
   assign tag_first_all  = tf_q & (~tf_q + ListTags'(1));
   assign tag_first_rest = tf_rest & (~tf_rest + ListTags'(1));
-  assign tag_new_all    = tag_index(tag_first_all);
-  assign tag_new_rest   = tag_index(tag_first_rest);
+  assign tag_new        = tag_index(tag_first_q);
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       tag_avail_q <= 1'b1;
       tag_first_q <= ListTags'(1);
-      tag_new_q   <= '0;
     end else begin
       tag_avail_q <= li_take ? |tf_rest : |tf_q;
       tag_first_q <= li_take ? tag_first_rest : tag_first_all;
-      tag_new_q   <= li_take ? tag_new_rest : tag_new_all;
     end
   end
 
@@ -190,7 +189,10 @@ module rc_list_unit #(
 
   logic           lreq_free, lout_free;
   logic           list_req_valid_q, lsk_v_q;
-  logic [LtW-1:0] list_req_tag_q, lsk_tag_q;
+  // Not state machines (Yosys's FSM extraction would see constants chosen by tag_first_q's bits
+  // and enumerate them).
+  (* fsm_encoding = "none" *) logic [LtW-1:0] list_req_tag_q;
+  (* fsm_encoding = "none" *) logic [LtW-1:0] lsk_tag_q;
   logic [31:0]    list_req_index_q, lsk_index_q;
 
   // The request leaves through a register with a one-entry skid buffer (lsk), so the unit issues
@@ -225,12 +227,12 @@ module rc_list_unit #(
       end
       if (lout_free) begin
         list_req_valid_q <= lsk_v_q | li_take;
-        list_req_tag_q   <= lsk_v_q ? lsk_tag_q : tag_new_q;
+        list_req_tag_q   <= lsk_v_q ? lsk_tag_q : tag_new;
         list_req_index_q <= lsk_v_q ? lsk_index_q : lu_idx_q;
       end
       lsk_v_q <= lsk_v_q ? ~lout_free : (li_take & ~lout_free);
       if (!lsk_v_q) begin
-        lsk_tag_q   <= tag_new_q;
+        lsk_tag_q   <= tag_new;
         lsk_index_q <= lu_idx_q;
       end
       if (li_take) begin
@@ -310,9 +312,9 @@ module rc_list_unit #(
 
   always_ff @(posedge clk_i) begin
     if (li_take) begin
-      tp_thr_m[tag_new_q]   <= lu_thr_q;
-      tp_mask_m[tag_new_q]  <= lu_mask_q;
-      tp_first_m[tag_new_q] <= {(lu_mask_q & (lu_mask_q - 4'd1)) == 4'd0,
+      tp_thr_m[tag_new]   <= lu_thr_q;
+      tp_mask_m[tag_new]  <= lu_mask_q;
+      tp_first_m[tag_new] <= {(lu_mask_q & (lu_mask_q - 4'd1)) == 4'd0,
                                 rc_pkg::ray_lowest(lu_mask_q)};
     end
     // Written on every list response, failed ones too (a failed entry's tag sends no triangle
@@ -442,8 +444,8 @@ module rc_list_unit #(
                                     lb_v_q |-> !tf_q[lb_tag_q]);
   // The registered next tag is free, one-hot with its index (or none while none was free).
   TagFirst_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               tag_avail_q ? (tf_q[tag_new_q] &&
-                                              tag_first_q == ListTags'(1) << tag_new_q) :
+                               tag_avail_q ? (tf_q[tag_new] &&
+                                              tag_first_q == ListTags'(1) << tag_new) :
                                              (tag_first_q == '0));
   // A tag is freed only while in use.
   TagFreeBusy_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
