@@ -1,31 +1,38 @@
 // rc_rr_pick: round-robin choice of one request among N (the core's thread schedulers).
 //
 // Contract
-// - req_i bit i: requester i wants service. valid_o = |req_i; idx_o = the first requester at or
-//   after the rotating pointer (wrapping around), combinational from req_i and the pointer
-//   register (log depth in N: an AND with the pointer mask, lowest-set-bit carry chains and OR
-//   trees).
-// - take_i: the choice is used this cycle if there is one; the pointer then moves to idx_o + 1
-//   so that every requester is served within N takes of asking (no starvation; for N > 32 see
-//   Structure: within N rounded up to a multiple of 16). take_i without a request (valid_o low)
-//   is legal and returns the pointer to 0: a user can take whenever it has room, so valid_o (an
-//   OR over all requests) need not reach its registers' enables. A requester that waits keeps
-//   valid_o high, so the return to 0 never delays it.
-// - The pointer is kept as a mask (hi_q: the requesters at or after it), so neither the choice
-//   nor the pointer's update compares indices: the update is the bits above the chosen one.
-// - grant_o: the choice as a one-hot vector (bit idx_o set; zero without a request), for users
-//   that decode the choice per requester (no index encoding and decoding on their path).
-// - Structure: up to 32 requesters, one pointer over all of them (above). More are split into
-//   groups of 16, each with its own round-robin pick and pointer, and a round-robin pick over the
-//   groups that have a request: the grant is the chosen group's grant (an AND per requester),
-//   and only the chosen group's pointer moves at a take. Every requester is then served within
-//   16 G takes of asking (its group within G takes, it within 16 of its group's turns; N rounded
-//   up to a multiple of 16), and no carry chain is longer than 16 bits or the group count (the
-//   128-thread core's schedulers).
-// - Latency: 0 (combinational choice); the pointers update at the clock edge.
+// - req_i bit i: requester i wants service. take_i: the choice (valid_o, idx_o, grant_o) is used
+//   this cycle if there is one. take_i without a choice (valid_o low) is legal: a user can take
+//   whenever it has room, so valid_o need not reach its registers' enables.
+// - grant_o: the choice as a one-hot vector (bit idx_o set; zero when valid_o is low), for users
+//   that decode the choice per requester.
+// - Up to 32 requesters (one pointer over all of them, rc_rr_pick_flat): valid_o = |req_i; idx_o
+//   = the first requester at or after the rotating pointer (wrapping around), combinational from
+//   req_i and the pointer register. A take moves the pointer to idx_o + 1, so every requester is
+//   served within N takes of asking; a take without a request returns the pointer to 0. The
+//   pointer is kept as a mask (the requesters at or after it), so neither the choice nor the
+//   update compares indices. Latency 0: a request can be chosen in the cycle it rises.
+// - More than 32 requesters: groups of 16 (the last one padded with requesters that never ask),
+//   each holding a candidate in registers: one of its requesters, chosen round robin
+//   (rc_rr_pick_flat) among its requests without the candidate it replaces and without the
+//   requester taken in the cycle before. A group with no candidate chooses one every cycle; a
+//   group whose candidate is taken chooses its next one in the same cycle. The choice is a
+//   round-robin pick (rc_rr_pick_flat) over the groups holding a candidate, and that group's
+//   candidate: it comes from registers, so no path runs from req_i to the outputs, and the
+//   choice's loop (a take, the candidate's replacement) passes one 16-way pick and the group
+//   pick instead of a pick over all N. Rules for the user:
+//   - a request stays up until the requester is taken (candidates are not withdrawn; checked by
+//     ReqHeld_A), and drops at the clock edge that ends the take's cycle or at the next one;
+//   - a request is chosen at the earliest in the cycle after it rises (latency 1);
+//   - a group whose candidate is taken offers its next one in the next cycle, so one group can
+//     be served every cycle.
+//   Every requester is served within G (16 + 1) takes of asking (G groups: 136 at N = 128): it
+//   becomes its group's candidate within 16 of the group's takes, each within G takes, and is
+//   then taken within G takes.
 // - Parameters: N >= 1 requesters; IdxW index bits (>= 1, 2^IdxW >= N).
-// - Illegal input: none.
-// - Reset: rst_ni (active low, asynchronous) sets the pointer to 0 (hi_q all ones).
+// - Illegal input: a request dropped before it is taken (more than 32 requesters).
+// - Reset: rst_ni (active low, asynchronous) sets the pointers to 0 and, above 32 requesters,
+//   clears the candidates.
 module rc_rr_pick #(
   parameter int unsigned N    = 8,
   parameter int unsigned IdxW = (N > 1) ? $clog2(N) : 1
@@ -57,32 +64,50 @@ module rc_rr_pick #(
       .grant_o
     );
   end else begin : g_tree
-    // Groups of GS requesters (the last one padded with requesters that never ask).
     localparam int unsigned GS  = 16;
     localparam int unsigned G   = (N + GS - 1) / GS;
     localparam int unsigned GW  = (G > 1) ? $clog2(G) : 1;
     localparam int unsigned GIW = 4;
-    logic [G*GS-1:0]  req_all, grant_all;
-    logic [G-1:0]     g_any, g_grant;
+    logic [G*GS-1:0]  req_all, grant_all, cand_all, taken_q;
+    logic [G-1:0]     cand_v, g_grant, load;
     logic [GW-1:0]    g_idx;
-    logic [G*GIW-1:0] in_idx;
+    logic [G*GIW-1:0] cand_idx;
     logic [GIW-1:0]   idx_in;
     assign req_all = (G * GS)'(req_i);
     for (genvar g = 0; g < G; g++) begin : g_group
-      logic [GS-1:0] in_grant;
+      logic [GS-1:0]  cand_q, new_hot;
+      logic [GIW-1:0] cand_idx_q, new_idx;
+      logic           cand_v_q, new_v;
+      // A new candidate when the group has none or its candidate is taken, never the candidate
+      // it replaces or last cycle's taken requester (whose request may still be up).
+      assign load[g] = ~cand_v_q | (take_i & g_grant[g]);
       rc_rr_pick_flat #(
         .N   (GS),
         .IdxW(GIW)
       ) u_in (
         .clk_i,
         .rst_ni,
-        .req_i  (req_all[g*GS +: GS]),
-        .take_i (take_i & g_grant[g]),
-        .valid_o(g_any[g]),
-        .idx_o  (in_idx[g*GIW +: GIW]),
-        .grant_o(in_grant)
+        .req_i  (req_all[g*GS +: GS] & ~cand_q & ~taken_q[g*GS +: GS]),
+        .take_i (load[g]),
+        .valid_o(new_v),
+        .idx_o  (new_idx),
+        .grant_o(new_hot)
       );
-      assign grant_all[g*GS +: GS] = {GS{g_grant[g]}} & in_grant;
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) begin
+          cand_v_q   <= 1'b0;
+          cand_q     <= '0;
+          cand_idx_q <= '0;
+        end else if (load[g]) begin
+          cand_v_q   <= new_v;
+          cand_q     <= new_hot;
+          cand_idx_q <= new_idx;
+        end
+      end
+      assign cand_v[g]                = cand_v_q;
+      assign cand_idx[g*GIW +: GIW]   = cand_idx_q;
+      assign cand_all[g*GS +: GS]  = cand_q;
+      assign grant_all[g*GS +: GS] = {GS{g_grant[g]}} & cand_q;
     end
     rc_rr_pick_flat #(
       .N   (G),
@@ -90,22 +115,47 @@ module rc_rr_pick #(
     ) u_groups (
       .clk_i,
       .rst_ni,
-      .req_i  (g_any),
+      .req_i  (cand_v),
       .take_i (take_i),
       .valid_o(valid_o),
       .idx_o  (g_idx),
       .grant_o(g_grant)
     );
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        taken_q <= '0;
+      end else begin
+        taken_q <= take_i ? grant_all : '0;
+      end
+    end
     always_comb begin
       idx_in = '0;
       for (int unsigned g = 0; g < G; g++) begin
-        idx_in = idx_in | ({GIW{g_grant[g]}} & in_idx[g*GIW +: GIW]);
+        idx_in = idx_in | ({GIW{g_grant[g]}} & cand_idx[g*GIW +: GIW]);
       end
     end
     assign idx_o   = IdxW'({g_idx, idx_in});
     assign grant_o = grant_all[N-1:0];
     logic unused_pad;
     assign unused_pad = ^grant_all;
+
+`ifndef SYNTHESIS
+    logic tree_checks_on;
+    rc_checks_on u_tree_checks_on (
+      .clk_i,
+      .rst_ni,
+      .on_o (tree_checks_on)
+    );
+    // A candidate is a requester that still asks (requests are held until taken).
+    ReqHeld_A: assert property (@(posedge clk_i) disable iff (tree_checks_on !== 1'b1)
+                                (cand_all & ~req_all) == '0);
+    // A candidate register holds one requester, and its valid bit says whether it holds one.
+    for (genvar g = 0; g < G; g++) begin : g_cand_chk
+      CandOneHot_A: assert property (@(posedge clk_i) disable iff (tree_checks_on !== 1'b1)
+                                     $onehot0(cand_all[g*GS +: GS]) &&
+                                     (cand_v[g] == |cand_all[g*GS +: GS]));
+    end
+`endif
   end
 
 `ifndef SYNTHESIS

@@ -8,8 +8,9 @@
 //   free0_valid_i (shading: its last framebuffer write, or a packet without rays) and busy when
 //   this unit takes a packet into it. All free at reset.
 // - Packet input (rc_core's pkt_* ports, valid/ready): a packet is taken when a thread is free and
-//   the feeder is idle; pkt_ready_o is a gate of two flip-flops (the free-thread choice is
-//   registered). acc_valid_o/acc_thr_o/acc_vmask_o announce the take in the cycle after it.
+//   the feeder is idle; pkt_ready_o is the free-thread choice's valid (rc_rr_pick: from its
+//   candidate registers at more than 32 threads) and the feeder's idle flag.
+//   acc_valid_o/acc_thr_o/acc_vmask_o announce the take in the cycle after it.
 // - Ray stores: the feeder offers the packet's rays 0..3, one per cycle while the set-up units
 //   take them, and writes per ray r, in the cycle it is taken, the ray store's per-ray words
 //   (raywr_*: origin and direction; ilen and pixel id) and, for r = axis a < 3, the per-axis
@@ -115,11 +116,15 @@ module rc_setup_unit #(
   // Free threads, intake //
   //////////////////////////
 
-  logic [Threads-1:0] free_q, g_acc, gacc_c_q, gacc_q;
-  logic               acc_any, acc_take, acc_any_q, acc_v_q;
-  logic [ThrW-1:0]    unused_pick_idx, acc_thr_q;
+  logic [Threads-1:0] free_q, g_acc, gacc_q;
+  logic               acc_any, acc_take, acc_v_q;
+  logic [ThrW-1:0]    acc_thr;
   logic               feed_busy_q;
 
+  // The free-thread choice (from registers at more than 32 threads: rc_rr_pick's candidates) is
+  // taken as it is: pkt_ready_o is its valid and the feeder's idle flag. A taken thread leaves
+  // the free set a cycle after the take (gacc_q); the feeder stays busy for the packet's four
+  // rays meanwhile, and the pick leaves out the requester it took a cycle before.
   rc_rr_pick #(
     .N   (Threads),
     .IdxW(ThrW)
@@ -129,33 +134,22 @@ module rc_setup_unit #(
     .req_i  (free_q),
     .take_i (acc_take),
     .valid_o(acc_any),
-    .idx_o  (unused_pick_idx),
+    .idx_o  (acc_thr),
     .grant_o(g_acc)
   );
-  rc_onehot_idx #(.N(Threads), .IdxW(ThrW)) u_acc_idx (.hot_i(gacc_c_q), .idx_o(acc_thr_q));
 
-  // The free-thread choice is registered (acc_any_q and the one-hot gacc_c_q, whose thread number
-  // acc_thr_q is encoded from it), so pkt_ready_o is a gate of two flip-flops. A registered
-  // choice is still free when it is used: only a take makes a free thread busy, the choice is
-  // withdrawn in the cycle after a take, and the feeder stays busy for the packet's four rays
-  // while the free set catches up (gacc_q clears the bit a cycle after the take). A thread that
-  // becomes free is offered a cycle later than the choice sees it.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      acc_any_q <= 1'b0;
-      gacc_c_q  <= '0;
       acc_v_q   <= 1'b0;
       gacc_q    <= '0;
       free_q    <= '1;
     end else begin
-      acc_any_q <= acc_any & ~acc_take;
-      gacc_c_q  <= g_acc;
       acc_v_q   <= acc_take;
-      gacc_q    <= acc_take ? gacc_c_q : '0;
+      gacc_q    <= acc_take ? g_acc : '0;
       free_q    <= (free_q & ~gacc_q) | h_free | h_free0;
     end
   end
-  assign pkt_ready_o = acc_any_q & ~feed_busy_q;
+  assign pkt_ready_o = acc_any & ~feed_busy_q;
   logic [Threads-1:0] h_free, h_free0;
   rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_free (.valid_i(free_valid_i), .idx_i(free_thr_i),
                                                    .hot_o(h_free));
@@ -192,7 +186,7 @@ module rc_setup_unit #(
     end else begin
       if (acc_take) begin
         feed_busy_q <= 1'b1;
-        feed_thr_q  <= acc_thr_q;
+        feed_thr_q  <= acc_thr;
         feed_r_q    <= '0;
       end else if (su_take) begin
         feed_r_q <= feed_r_q + 2'd1;
@@ -389,15 +383,24 @@ module rc_setup_unit #(
   // Start //
   ///////////
 
-  // The root's checks, from the quasi-static configuration (registered): an empty node section
+  // The root's checks, from the quasi-static configuration through two registers (its inputs,
+  // then the checks): a packet's start leaves the set-up pipeline tens of cycles after the packet
+  // is offered, long after a configuration change has reached root_chk_q. An empty node section
   // makes the root malformed (rc::trace_packet: the root index is outside the section).
-  logic [1:0] root_chk_q;
+  logic [1:0]  root_chk_q;
+  logic [63:0] root_cfg_q;
+  logic [31:0] node_count_q, list_count_q;
+  always_ff @(posedge clk_i) begin
+    root_cfg_q   <= root_node_i;
+    node_count_q <= node_count_i;
+    list_count_q <= list_count_i;
+  end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       root_chk_q <= rc_pkg::NodeOk;
     end else begin
-      root_chk_q <= (node_count_i == 32'd0) ? rc_pkg::NodeMalformed :
-                    rc_pkg::node_check(root_node_i, 30'd0, node_count_i, list_count_i);
+      root_chk_q <= (node_count_q == 32'd0) ? rc_pkg::NodeMalformed :
+                    rc_pkg::node_check(root_cfg_q, 30'd0, node_count_q, list_count_q);
     end
   end
 
@@ -406,7 +409,7 @@ module rc_setup_unit #(
     start_item_o                = '0;
     start_item_o.thr            = rc_pkg::CoreThrBits'(wo_thr_q);
     start_item_o.sp             = '0;
-    start_item_o.entry.node.rec = root_node_i;
+    start_item_o.entry.node.rec = root_cfg_q;
     start_item_o.entry.node.chk = root_chk_q;
     start_item_o.entry.mask     = wo_mask_q;
     for (int unsigned r = 0; r < 4; r++) begin
@@ -423,8 +426,6 @@ module rc_setup_unit #(
   assign perf_packet_o = acc_take;
   assign perf_rays_o   = acc_take ? rc_pkg::ray_count(pkt_mask_i) : 3'd0;
   assign perf_setup_o  = su_take;
-  logic unused_bits;
-  assign unused_bits = ^unused_pick_idx;
 
 `ifndef SYNTHESIS
   logic checks_on;
@@ -433,10 +434,9 @@ module rc_setup_unit #(
     .rst_ni,
     .on_o (checks_on)
   );
-  // The registered free-thread choice is a free thread when the packet input offers it.
+  // The free-thread choice is a free thread when the packet input offers it.
   AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                    pkt_ready_o |-> free_q[acc_thr_q] &&
-                                    gacc_c_q == (Threads'(1) << acc_thr_q));
+                                    pkt_ready_o |-> free_q[acc_thr] && gacc_q[acc_thr] == 1'b0);
   // Results come back in the rotation's order: ray r of a packet after ray r - 1 of the same one.
   logic [ThrW-1:0] last_thr_q;
   logic [1:0]      last_r_q;

@@ -21,7 +21,7 @@
 // - Framebuffer writes (fb_*, valid/ready from a queue's head register): the shaded rays first,
 //   then the misses. A write's pixel id (rc_ray_store) and hit record (the hit store's fb copy;
 //   zeros for a miss) are read on its way to the queue (two cycles). One write per existing ray;
-//   a thread's last write frees it (free_valid_o).
+//   a thread's last write frees it (free_valid_o, two cycles after the write).
 // - Errors: a failed shading or material read raises the core's bad-address bit (err_shd_o,
 //   err_mat_o: the packet's own error bits are final by then).
 // - Parameters: Threads.
@@ -141,7 +141,7 @@ module rc_shade_seq #(
 
   logic [Threads-1:0] done_q, g_shp, gshp_q;
   logic               shp_any, shp_room, shp_v_q, st1_v_q, st2_v_q, sh_busy_q;
-  logic [ThrW-1:0]    unused_pick_idx, shp_thr_q, st1_thr_q, st2_thr_q, sh_thr_q;
+  logic [ThrW-1:0]    shp_idx, shp_thr_q, st1_thr_q, st2_thr_q, sh_thr_q;
   logic [3:0]         st1_vm_q, st1_hm_q, st2_vm_q, st2_hm_q, sh_vm_q, sh_hm_q;
   logic [Threads-1:0] st1_hot_q;
   logic [1:0]         sh_r_q;
@@ -156,12 +156,11 @@ module rc_shade_seq #(
     .req_i  (done_q),
     .take_i (shp_room),
     .valid_o(shp_any),
-    .idx_o  (unused_pick_idx),
+    .idx_o  (shp_idx),
     .grant_o(g_shp)
   );
-  // The choice is registered one-hot (gshp_q) and its thread number encoded from that register
-  // (the choice's carry chains end at flip-flops).
-  rc_onehot_idx #(.N(Threads), .IdxW(ThrW)) u_shp_idx (.hot_i(gshp_q), .idx_o(shp_thr_q));
+  // The choice is registered, one-hot (gshp_q) and as its thread number (shp_thr_q): the reads
+  // after it start at flip-flops.
 
   // A packet is chosen when the stages before the sequencer are free (shp_room, from flip-flops);
   // the choice is registered (shp), the rays and hit bits sampled through the one-hot choice, the
@@ -206,6 +205,7 @@ module rc_shade_seq #(
       done_q          <= '0;
       shp_v_q         <= 1'b0;
       gshp_q          <= '0;
+      shp_thr_q       <= '0;
       st1_v_q         <= 1'b0;
       st2_v_q         <= 1'b0;
       nb_v_q          <= 1'b0;
@@ -221,6 +221,7 @@ module rc_shade_seq #(
       done_q    <= (done_q & ~gshp_q) | h_done;
       shp_v_q   <= shp_any & shp_room;
       gshp_q    <= (shp_any & shp_room) ? g_shp : '0;
+      shp_thr_q <= shp_idx;
       // A packet without rays goes no further than st1 (it is freed there).
       st1_v_q   <= shp_v_q;
       st2_v_q   <= st1_v_q & (st1_vm_q != 4'd0);
@@ -488,13 +489,25 @@ module rc_shade_seq #(
   assign {oq_thr, fb_pixel_o, fb_rgb_o, fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o} = oq_data;
   assign fb_take = fb_valid_o & fb_ready_i;
 
-  // Writes still due per thread: set as shading takes the packet (st1), counted down by writes;
-  // the last one frees the thread (a packet without rays is freed at st1).
+  // Writes still due per thread: set as shading takes the packet (st1), counted down by writes
+  // (registered first: fbt_*), the last one frees the thread (a packet without rays is freed at
+  // st1). A thread's count is set only after its last write has freed it, so the two never meet.
   logic [Threads*3-1:0] fbw_q;
   logic [Threads-1:0]   h_done, h_fb;
+  logic                 fbt_v_q;
+  logic [ThrW-1:0]      fbt_thr_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      fbt_v_q   <= 1'b0;
+      fbt_thr_q <= '0;
+    end else begin
+      fbt_v_q   <= fb_take;
+      fbt_thr_q <= oq_thr;
+    end
+  end
   rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_done (.valid_i(done_valid_i), .idx_i(done_thr_i),
                                                    .hot_o(h_done));
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_fb (.valid_i(1'b1), .idx_i(oq_thr), .hot_o(h_fb));
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_fb (.valid_i(1'b1), .idx_i(fbt_thr_q), .hot_o(h_fb));
   logic                 free_v, free0_v;
   logic [ThrW-1:0]      free_thr, free0_thr;
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -504,7 +517,7 @@ module rc_shade_seq #(
       for (int unsigned t = 0; t < Threads; t++) begin
         if (st1_hot_q[t]) begin
           fbw_q[t*3 +: 3] <= rc_pkg::ray_count(st1_vm_q);
-        end else if (fb_take && h_fb[t]) begin
+        end else if (fbt_v_q && h_fb[t]) begin
           fbw_q[t*3 +: 3] <= fbw_q[t*3 +: 3] - 3'd1;
         end
       end
@@ -525,8 +538,8 @@ module rc_shade_seq #(
       free0_v   <= 1'b0;
       free0_thr <= '0;
     end else begin
-      free_v    <= fb_take && fb_cnt == 3'd1;
-      free_thr  <= oq_thr;
+      free_v    <= fbt_v_q && fb_cnt == 3'd1;
+      free_thr  <= fbt_thr_q;
       free0_v   <= st1_v_q && st1_vm_q == 4'd0;
       free0_thr <= st1_thr_q;
     end
@@ -547,7 +560,7 @@ module rc_shade_seq #(
 
   logic unused_bits;
   assign unused_bits = ^{shd_rsp_tag_i, shd_rsp_data_i, mat_rsp_tag_i, mat_rsp_data_i,
-                         f2_rid_q, unused_pick_idx};
+                         f2_rid_q};
 
 `ifndef SYNTHESIS
   logic checks_on;
@@ -568,7 +581,7 @@ module rc_shade_seq #(
                                  shp_v_q |-> gshp_q == (Threads'(1) << shp_thr_q));
   // A write belongs to a thread with writes due.
   FbDue_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                            fb_take |-> fb_cnt != 3'd0);
+                            fbt_v_q |-> fb_cnt != 3'd0);
 `endif
 
 endmodule

@@ -132,11 +132,10 @@ module rc_stack_unit #(
 
   logic [Threads-1:0] popq_q, g_pp, pk_hot_q, gpp_q, own_req;
   logic               pp_any, pp_take, pk_v_q, pp_v_q, pick_room_q;
-  logic [ThrW-1:0]    pp_thr_q, pk_thr, unused_pick_idx;
+  logic [ThrW-1:0]    pp_thr_q, pk_thr_q, pp_idx;
 
-  // The pick's one-hot grant is registered (pk), its thread number encoded from that register in
-  // the next cycle (pp): the choice's carry chains end at flip-flops, the index's OR trees start
-  // at them.
+  // The pick's one-hot grant and its thread number are registered (pk): the per-thread reads
+  // after the pick start at flip-flops.
   rc_rr_pick #(
     .N   (Threads),
     .IdxW(ThrW)
@@ -146,10 +145,9 @@ module rc_stack_unit #(
     .req_i  (popq_q & ~pk_hot_q),
     .take_i (pp_take),
     .valid_o(pp_any),
-    .idx_o  (unused_pick_idx),
+    .idx_o  (pp_idx),
     .grant_o(g_pp)
   );
-  rc_onehot_idx #(.N(Threads), .IdxW(ThrW)) u_pk_idx (.hot_i(pk_hot_q), .idx_o(pk_thr));
   // A thread is picked while both queues have room for every pop in flight (their counts as they
   // were a cycle ago: pick_room_q) and no start waits for the routing stage.
   assign pp_take = pp_any & pick_room_q & ~start_valid_i;
@@ -186,6 +184,7 @@ module rc_stack_unit #(
     if (!rst_ni) begin
       pk_v_q   <= 1'b0;
       pk_hot_q <= '0;
+      pk_thr_q <= '0;
       pp_v_q   <= 1'b0;
       pp_thr_q <= '0;
       gpp_q    <= '0;
@@ -194,8 +193,9 @@ module rc_stack_unit #(
     end else begin
       pk_v_q   <= pp_take;
       pk_hot_q <= pp_take ? g_pp : '0;
+      pk_thr_q <= pp_idx;
       pp_v_q   <= pk_v_q;
-      pp_thr_q <= pk_thr;
+      pp_thr_q <= pk_thr_q;
       gpp_q    <= pk_hot_q;
       pop0_v_q <= pp_v_q & ~pp_end;
       pop1_v_q <= pop0_v_q;
@@ -217,7 +217,7 @@ module rc_stack_unit #(
   logic [SpW-1:0] pp_sp_q;
   always_ff @(posedge clk_i) pp_sp_q <= sp_rd_i;
   assign pp_err      = |(gpp_q & err_i);
-  assign sp_rd_thr_o = pk_thr;
+  assign sp_rd_thr_o = pk_thr_q;
   assign pp_sp       = pp_sp_q;
   assign pp_end      = pp_err | (pp_sp == '0);
 
@@ -440,7 +440,7 @@ module rc_stack_unit #(
   end
 
   assign pick_valid_o  = pk_v_q;
-  assign pick_thr_o    = pk_thr;
+  assign pick_thr_o    = pk_thr_q;
   assign route_valid_o = rt_v_q;
   assign route_thr_o   = rt_thr_q;
   assign perf_pop_o    = perf_pop_q;
@@ -450,7 +450,7 @@ module rc_stack_unit #(
   assign perf_empty_o  = perf_empty_q;
 
   logic unused_bits;
-  assign unused_bits = ^{pop_cmp_v[3:1], push_sp_i, start_item_i.thr, unused_pick_idx};
+  assign unused_bits = ^{pop_cmp_v[3:1], push_sp_i, start_item_i.thr};
 
 `ifndef SYNTHESIS
   logic checks_on;

@@ -9,25 +9,28 @@
 // which must return the pointer to 0. grant_o (the choice one-hot) is checked against the same
 // reference in every case.
 //
-// Groups of 16 (N > 32), verilated at N = 128 (the core's default thread count) and 40 (two full
-// groups and a third padded with 8 requesters that never ask), against GroupedRef, a model written
-// from the contract: a pointer per group and one over the groups; the choice is the first group
-// with a request at or after the group pointer, and in it the first requester at or after that
-// group's pointer; a take moves the group pointer past the chosen group and only the chosen
-// group's pointer past the chosen requester; a take without a request returns the group pointer
-// to 0 and moves no group's pointer. Checked every cycle (valid_o, grant_o, and idx_o when valid_o
-// is high):
-// - seeded random: 240,000 cycles in runs of 1..400 cycles, each run one kind of request vector
-//   (dense, half, sparse, a few, a single requester, all requesters, the last group only (the
-//   padded one at 40), one group, one requester in each of some groups, none, requesters that
-//   leave when served and join at random), redrawn every cycle or held, taken with probability
-//   1, 3/4 or 1/4; every requester must be taken at least once, and some takes have no request;
-// - fairness: fixed sets of requesters that keep asking (all, dense, sparse, one per group, a
-//   single one, the last group, a full group and one in every other group), 30 N takes each (one
-//   cycle in eight without a take) after random traffic that scatters the pointers; each served
-//   requester's wait (takes since it asked or was last served, the serving take included) must be
-//   at most the contract's bound: 16 x the group count (N rounded up to a multiple of 16; 48 at
-//   N = 40, which all requesters asking do reach); the worst wait is printed.
+// Groups of 16 with a candidate register each (N > 32), verilated at N = 128 (the core's default
+// thread count) and 40 (two full groups and a third padded with 8 requesters that never ask),
+// against GroupedRef, a model written from the contract: per group a candidate (or none) and a
+// pointer, and a pointer over the groups; the choice is the candidate of the first group holding
+// one at or after the group pointer; at a clock edge a group with no candidate, or whose candidate
+// is taken, loads the first of its requests at or after its pointer, leaving out the candidate it
+// replaces and the requester taken in the cycle before (its pointer then moves past it, or to 0
+// when there is none); a take moves the group pointer past the chosen group, or to 0 without a
+// choice. The requests keep the contract's rules: a requester asks until it is taken and drops at
+// the take's edge or at the next one (drawn at random), and may ask again from the cycle after.
+// Checked every cycle (valid_o, grant_o, and idx_o when valid_o is high):
+// - seeded random: 240,000 cycles in runs of 1..400 cycles, each run one kind of arrivals (dense,
+//   half, sparse, a few, a single requester, all requesters, the last group only (the padded one
+//   at 40), one group, one requester in each of some groups, none), taken with probability 1, 3/4
+//   or 1/4; every requester must be taken at least once, some takes have no choice, and the
+//   assertions in the RTL (a candidate still asks) run throughout;
+// - fairness: fixed sets of requesters that ask again as soon as the rules let them (all, dense,
+//   sparse, one per group, a single one, the last group, a full group and one in every other
+//   group), 30 N takes each (one cycle in eight without a take) after random traffic that
+//   scatters the pointers; each served requester's wait (takes while it asked, the serving take
+//   included) must be at most the contract's bound G (16 + 1) (136 at N = 128, 51 at N = 40);
+//   the worst wait is printed.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -234,48 +237,52 @@ Bits get(const VlWide<W>& port) {
 }
 
 // The reference for N > 32, from rc_rr_pick's contract: requesters in groups of 16 (the last
-// padded with requesters that never ask), a round-robin pointer in each group and one over the
-// groups that have a request. All pointers start at 0.
+// padded with requesters that never ask), a candidate and a round-robin pointer in each group, a
+// pointer over the groups holding a candidate. All pointers start at 0, no candidates.
 class GroupedRef {
  public:
   explicit GroupedRef(int n)
-      : n_(n), groups_((n + kGroup - 1) / kGroup), gptr_(static_cast<std::size_t>(groups_), 0) {}
+      : n_(n),
+        groups_((n + kGroup - 1) / kGroup),
+        gptr_(static_cast<std::size_t>(groups_), 0),
+        cand_(static_cast<std::size_t>(groups_), -1) {}
 
   int groups() const { return groups_; }
   int outer_ptr() const { return optr_; }
   int group_ptr(int g) const { return gptr_[static_cast<std::size_t>(g)]; }
+  int cand(int g) const { return cand_[static_cast<std::size_t>(g)]; }
 
-  // The chosen requester, -1 without a request: the first group with a request at or after the
-  // group pointer (wrapping around), in it the first requester at or after its pointer.
-  int choose(const Bits& req) const {
+  // The choice, -1 without one: the candidate of the first group holding one at or after the
+  // group pointer (wrapping around). It depends on the registers only.
+  int choose() const {
     for (int k = 0; k < groups_; ++k) {
       const int g = (optr_ + k) % groups_;
-      for (int j = 0; j < kGroup; ++j) {
-        const int i = g * kGroup + (group_ptr(g) + j) % kGroup;
-        if (i < n_ && req.test(i)) return i;
-      }
+      if (cand(g) >= 0) return cand(g);
     }
     return -1;
   }
-  // A take: the group pointer moves past the chosen group, the chosen group's pointer past the
-  // chosen requester, no other group's pointer moves; without a request the group pointer
-  // returns to 0. Returns the choice.
-  int take(const Bits& req) {
-    const int c = choose(req);
-    if (c < 0) {
-      optr_ = 0;
-      return c;
+  // The clock edge, with this cycle's requests and take.
+  void edge(const Bits& req, bool take) {
+    const int c = choose();
+    const int cg = c < 0 ? -1 : c / kGroup;
+    if (take) optr_ = c < 0 ? 0 : (cg + 1) % groups_;
+    for (int g = 0; g < groups_; ++g) {
+      if (cand(g) >= 0 && !(take && g == cg)) continue;
+      int pick = -1;
+      for (int j = 0; j < kGroup && pick < 0; ++j) {
+        const int i = g * kGroup + (group_ptr(g) + j) % kGroup;
+        if (i < n_ && req.test(i) && i != cand(g) && i != taken_) pick = i;
+      }
+      cand_[static_cast<std::size_t>(g)] = pick;
+      gptr_[static_cast<std::size_t>(g)] = pick < 0 ? 0 : (pick % kGroup + 1) % kGroup;
     }
-    const int g = c / kGroup;
-    optr_ = (g + 1) % groups_;
-    gptr_[static_cast<std::size_t>(g)] = (c % kGroup + 1) % kGroup;
-    return c;
+    taken_ = take ? c : -1;
   }
 
  private:
   int n_, groups_;
-  int optr_ = 0;
-  std::vector<int> gptr_;
+  int optr_ = 0, taken_ = -1;
+  std::vector<int> gptr_, cand_;
 };
 
 // The verilated grouped picker with the model beside it, compared every cycle.
@@ -311,7 +318,7 @@ class Checked {
   // One cycle: drive req_i and take_i, compare the choice with the model's, clock both. Returns
   // the picker's choice (-1 when valid_o is low).
   int cycle(const Bits& req, bool take) {
-    const int want = ref_.choose(req);
+    const int want = ref_.choose();
     const Bits want_grant = want < 0 ? Bits{} : Bits::one(want);
     put(m_->req_i, req);
     m_->take_i = static_cast<uint8_t>(take);
@@ -322,15 +329,16 @@ class Checked {
     ++cases_;
     if (valid != (want >= 0) || (valid && idx != want) || grant != want_grant) {
       if (bad_ < 8) {
-        std::string ptrs = "group ptr " + std::to_string(ref_.outer_ptr()) + ", in-group ptrs";
-        for (int g = 0; g < ref_.groups(); ++g) ptrs += " " + std::to_string(ref_.group_ptr(g));
+        std::string ptrs = "group ptr " + std::to_string(ref_.outer_ptr()) + ", candidates";
+        for (int g = 0; g < ref_.groups(); ++g)
+          ptrs += " " + std::to_string(ref_.cand(g)) + "@" + std::to_string(ref_.group_ptr(g));
         ADD_FAILURE() << what_ << ": cycle " << cycle_ << " (model " << ptrs << ") req " << req
                       << ": valid " << valid << " idx " << idx << " grant " << grant << ", want "
                       << (want >= 0) << " idx " << want << " grant " << want_grant;
       }
       ++bad_;
     }
-    if (take) ref_.take(req);
+    ref_.edge(req, take);
     tick();
     m_->take_i = 0;
     ++cycle_;
@@ -414,10 +422,10 @@ enum Kind {
   kOneGroup,
   kPerGroup,
   kNone,
-  kLeave,
   kKinds
 };
 
+// New requests offered in one cycle (only requesters free to ask take them up).
 Bits draw(ReqGen& gen, Kind kind, int n) {
   switch (kind) {
     case kDense: return gen.density(gen.below(2) != 0u ? 6 : 7, 8);
@@ -430,42 +438,78 @@ Bits draw(ReqGen& gen, Kind kind, int n) {
     case kOneGroup: return gen.one_group();
     case kPerGroup: return gen.per_group();
     case kNone: return Bits{};
-    case kLeave: return gen.density(3, 4);
     case kKinds: break;
   }
   return Bits{};
 }
+
+// The requesters, kept to the contract's rules: a request stays up until it is taken, drops at
+// the take's edge (late = false) or at the next one (late = true), and may rise again from the
+// cycle after it dropped.
+class Requests {
+ public:
+  explicit Requests(int n) : n_(n) {}
+  const Bits& now() const { return req_; }
+  // Requesters in `want` that are free to ask start asking (from this cycle).
+  void ask(const Bits& want) {
+    for (int i = 0; i < n_; ++i)
+      if (want.test(i) && !blocked_.test(i)) req_.set(i);
+  }
+  // The clock edge: `taken` (or -1) was taken in the cycle that ends; `late` keeps its request up
+  // for one more cycle.
+  void edge(int taken, bool late) {
+    blocked_ = Bits{};
+    if (late_ >= 0) {
+      req_.clear(late_);
+      blocked_.set(late_);
+      late_ = -1;
+    }
+    if (taken < 0) return;
+    if (late) {
+      late_ = taken;
+      blocked_.set(taken);
+    } else {
+      req_.clear(taken);
+      blocked_.set(taken);
+    }
+  }
+
+ private:
+  int n_;
+  int late_ = -1;
+  Bits req_, blocked_;
+};
 
 template <class V>
 void run_grouped_random(int n, const char* what) {
   constexpr uint64_t kCycles = 240000;
   Checked<V> ck(n, what);
   ReqGen gen(n, 0x9e0b0000u + static_cast<uint32_t>(n));
+  Requests rq(n);
   std::vector<uint64_t> taken(static_cast<std::size_t>(n), 0);
   std::array<uint64_t, kKinds> kind_cycles{};
-  uint64_t cycles = 0, takes = 0, empty_takes = 0;
+  uint64_t cycles = 0, takes = 0, empty_takes = 0, late_drops = 0;
   while (cycles < kCycles) {
     const Kind kind = static_cast<Kind>(gen.pick(kKinds));
     const int len = 1 + gen.pick(400);
     const uint32_t take_in_8 = std::array<uint32_t, 3>{8, 6, 2}[gen.below(3)];
-    // kLeave keeps its vector and changes it itself; a single requester is held so that it is
-    // taken repeatedly.
-    const bool hold = kind == kLeave || gen.below(2) != 0u;
-    Bits req = draw(gen, kind, n);
+    // Arrivals every cycle, or only in the run's first cycle.
+    const bool once = gen.below(2) != 0u;
     for (int k = 0; k < len; ++k, ++cycles) {
-      if (!hold && k > 0) req = draw(gen, kind, n);
+      if (!once || k == 0) rq.ask(draw(gen, kind, n));
       const bool take = gen.below(8) < take_in_8;
-      const int got = ck.cycle(req, take);
+      const int got = ck.cycle(rq.now(), take);
       ++kind_cycles[static_cast<std::size_t>(kind)];
+      const bool late = gen.below(2) != 0u;
+      rq.edge(take ? got : -1, late);
       if (!take) continue;
       ++takes;
       if (got < 0) {
         ++empty_takes;
         continue;
       }
+      if (late) ++late_drops;
       ++taken[static_cast<std::size_t>(got)];
-      if (kind == kLeave) req.clear(got);
-      if (kind == kLeave && gen.below(4) == 0u) req.set(gen.pick(n));
     }
   }
   int never = 0;
@@ -473,20 +517,23 @@ void run_grouped_random(int n, const char* what) {
     if (taken[static_cast<std::size_t>(i)] == 0u) {
       if (never++ < 4) ck.fail("requester " + std::to_string(i) + " never taken");
     }
-  if (empty_takes == 0u) ck.fail("no take without a request");
+  if (empty_takes == 0u) ck.fail("no take without a choice");
+  if (late_drops == 0u) ck.fail("no request dropped a cycle after its take");
   for (int k = 0; k < kKinds; ++k)
     if (kind_cycles[static_cast<std::size_t>(k)] == 0u)
       ck.fail("request kind " + std::to_string(k) + " never drawn");
   const std::string line = std::string(what) + ": " + std::to_string(cycles) + " cycles, " +
                            std::to_string(takes) + " takes (" + std::to_string(empty_takes) +
-                           " without a request), " +
+                           " without a choice, " + std::to_string(late_drops) +
+                           " requests dropped a cycle late), " +
                            (never == 0 ? std::string("every requester taken")
                                        : std::to_string(never) + " requesters never taken");
   report_cases(line.c_str(), ck.cases(), ck.bad());
   EXPECT_EQ(ck.bad(), 0u);
 }
 
-// Fairness: fixed sets of requesters that keep asking; each must be served within N takes.
+// Fairness: fixed sets of requesters that ask again as soon as they may; each must be served
+// within the contract's bound of takes while it asks.
 template <class V>
 void run_grouped_fairness(int n, const char* what) {
   Checked<V> ck(n, what);
@@ -511,26 +558,44 @@ void run_grouped_fairness(int n, const char* what) {
     full_and_ones.set(g * kGroup + gen.pick(std::min(n - g * kGroup, kGroup)));
   sets.emplace_back("group 0 full + one per other group", full_and_ones);
 
-  const int bound = groups * kGroup;  // the contract: N rounded up to a multiple of 16
+  const int bound = groups * (kGroup + 1);  // the contract: G (16 + 1)
   const int takes_per_set = 30 * n;
   int worst = 0, over = 0;
   std::string worst_set, per_set;
+  Requests rq(n);
+  // Take every request that is up until none is left (no new ones).
+  auto drain = [&] {
+    for (int k = 0; k < 8 * n && rq.now().any(); ++k) rq.edge(ck.cycle(rq.now(), true), false);
+    if (rq.now().any()) ck.fail("requests left after draining");
+    for (int k = 0; k < 3; ++k) rq.edge(ck.cycle(rq.now(), true), false);
+  };
   for (const auto& [name, set] : sets) {
-    // Scatter the pointers with random traffic first.
-    for (int k = 0; k < 500; ++k) ck.cycle(gen.density(1, 4), gen.below(4) != 0u);
+    // Scatter the pointers with random traffic first, then let it drain.
+    for (int k = 0; k < 500; ++k) {
+      rq.ask(gen.density(1, 4));
+      const bool take = gen.below(4) != 0u;
+      const int got = ck.cycle(rq.now(), take);
+      rq.edge(take ? got : -1, gen.below(2) != 0u);
+    }
+    drain();
     std::vector<int> pending(static_cast<std::size_t>(n), 0);
     int set_worst = 0;
     for (int takes = 0; takes < takes_per_set;) {
+      rq.ask(set);
+      const Bits asking = rq.now();
       const bool take = gen.below(8) != 0u;
-      const int got = ck.cycle(set, take);
+      const bool late = gen.below(2) != 0u;
+      const int got = ck.cycle(asking, take);
+      rq.edge(take ? got : -1, late);
       if (!take) continue;
       ++takes;
-      if (got < 0 || !set.test(got)) {
+      if (got < 0) continue;  // every asker is between its drop and its next candidacy
+      if (!set.test(got)) {
         ck.fail(name + ": take " + std::to_string(takes) + " chose " + std::to_string(got));
         continue;
       }
       for (int i = 0; i < n; ++i)
-        if (set.test(i)) ++pending[static_cast<std::size_t>(i)];
+        if (asking.test(i)) ++pending[static_cast<std::size_t>(i)];
       const int wait = pending[static_cast<std::size_t>(got)];
       pending[static_cast<std::size_t>(got)] = 0;
       set_worst = std::max(set_worst, wait);
@@ -549,6 +614,7 @@ void run_grouped_fairness(int n, const char* what) {
       ck.fail(name + ": requester " + std::to_string(i) + " still waiting after " +
               std::to_string(wait) + " takes");
     }
+    drain();
     if (set_worst > worst) {
       worst = set_worst;
       worst_set = name;
@@ -557,8 +623,8 @@ void run_grouped_fairness(int n, const char* what) {
   }
   const std::string line = std::string(what) + " (" + std::to_string(sets.size()) + " sets x " +
                            std::to_string(takes_per_set) + " takes; worst wait " +
-                           std::to_string(worst) + " takes (" + worst_set +
-                           "), bound " + std::to_string(bound) + ", " + std::to_string(over) +
+                           std::to_string(worst) + " takes (" + worst_set + "), bound " +
+                           std::to_string(bound) + ", " + std::to_string(over) +
                            " waits over it; " + per_set + ")";
   report_cases(line.c_str(), ck.cases(), ck.bad());
   EXPECT_EQ(ck.bad(), 0u);
