@@ -173,7 +173,8 @@ fpga-vivado: $(GEN_PKG)
 # (the unit core, 128 threads) Yosys takes about 5 minutes and nextpnr over two hours (static
 # placer, FPGA_SEED, about 40 minutes; router1 with its timing-driven rip-up, over 90 on a design
 # that does not yet close 100 MHz; FPGA_ARGS=--no-tmg-ripup routes in a fraction of the time, to
-# a lower Fmax).
+# a lower Fmax; FPGA_ARGS=--no-route stops after placement and lists every endpoint the placement's
+# estimates fail, in sta.txt).
 FPGA_SCENE ?= scenes/cornell.json
 FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100

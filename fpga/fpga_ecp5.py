@@ -35,6 +35,12 @@ Target: the ULX3S board, Lattice ECP5 LFE5U-85F, package CABGA381; top fpga/ecp5
               Yosys netlist instead of steps 3 and 4 (another seed, placer or router on the
               same design); --no-tmg-ripup leaves out the router's timing-driven rip-up
               (faster, but run 33's placement then routes to 94.58 MHz instead of 100.26).
+              --no-route stops after placement (nextpnr --no-route; 20 to 40 minutes instead of
+              hours): no bitstream, and step 7 runs on the SDF nextpnr writes with its placement
+              estimates for the unrouted nets, which lists every endpoint that the placement
+              already makes fail (OUT/sta.txt, OUT/report.md). The estimates are pessimistic
+              (the old core's placements estimated at 60 to 75 MHz routed at 88 to 100), the
+              ranking is the point.
   6. pack     in OUT: `yowasp-ecppack --compress rc_ulx3s.config rc_ulx3s.bit`.
   7. sta      `fpga/sta.py rc_ulx3s.sdf --period P --netlist rc_ulx3s.json` over the routed
               delays: every failing endpoint, grouped by register with its RTL source line, and
@@ -418,6 +424,32 @@ def synthesise(yosys, args, files, top_params, netlist, stat, ys, out, step):
         raise FlowError(f"latch inferred (see {out / 'synth.log'})")
 
 
+def placement_only(args, ctx, out, sdf, netlist, pll, pnr_start, step):
+    """--no-route: every endpoint from the placement's estimated delays, and a short report."""
+    sta_json = out / "sta.json"
+    step("sta", [sys.executable, ROOT / "fpga" / "sta.py", sdf.name, "--period",
+                 f"{1000.0 / pll['mhz']:.4f}", "--netlist", netlist.name, "--json",
+                 sta_json.name], out / "sta.txt", cwd=out)
+    sta = json.loads(sta_json.read_text())
+    lines = [f"# ULX3S build (rc_ulx3s): placement only (--no-route), seed {ctx['seed']}", "",
+             "No routing and no bitstream: the delays are nextpnr's placement estimates "
+             "(pessimistic; the ranking is the point).", "",
+             f"- Estimated worst slack {sta['worst_slack_ns']:.2f} ns at "
+             f"{pll['mhz']:g} MHz: **{sta['fmax_mhz']:.2f} MHz** estimated; "
+             f"{sta['failing']} of {sta['endpoints']} endpoints fail.",
+             f"- Place: {(time.monotonic() - pnr_start) / 60:.1f} min; tools: {ctx['versions']}",
+             "", "| worst slack (ns) | endpoints | register group | worst path from |",
+             "|---|---|---|---|"]
+    for g in sta["by_end"][:25]:
+        lines.append(f"| {g['worst']:.2f} | {g['count']} | `{g['name']}` | `{g['start']}` |")
+    lines += ["", "Every group and the worst paths in full: `sta.txt`."]
+    text = "\n".join(lines) + "\n"
+    (out / "report.md").write_text(text)
+    print(text)
+    print(f"fpga_ecp5: wrote {out / 'report.md'} (placement only)", file=sys.stderr)
+    return 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--build", default="build", help="CMake build directory (raycore, gen/)")
@@ -434,6 +466,9 @@ def main():
                     help="nextpnr's timing-driven rip-up in the router (--tmg-ripup; default on: "
                          "on run 33's placement it took 94.58 MHz to 100.26, for a router four "
                          "to five times slower)")
+    ap.add_argument("--no-route", action="store_true",
+                    help="stop after placement: no bitstream; sta.txt and report.md from "
+                         "nextpnr's placement estimates (every endpoint, in 20 to 40 minutes)")
     ap.add_argument("--synth-opts", default="",
                     help="more options of synth_ecp5 (e.g. \"-abc9\")")
     ap.add_argument("--netlist", default=None,
@@ -573,7 +608,9 @@ def main():
            "--freq", f"{args.freq:g}", "--textcfg", npath(config), "--report", npath(report),
            "--sdf", npath(sdf), "--seed", str(args.seed), "--placer", args.placer,
            "--router", args.router, "--timing-allow-fail"]
-    if args.tmg_ripup:
+    if args.no_route:
+        cmd.append("--no-route")
+    elif args.tmg_ripup:
         cmd.append("--tmg-ripup")
     ctx = {"report": None, "pll": pll, "seed": args.seed, "placer": args.placer,
            "router": args.router + (" with --tmg-ripup" if args.tmg_ripup else ""),
@@ -599,6 +636,9 @@ def main():
         print(text)
         print(f"fpga_ecp5: wrote {out / 'report.md'}", file=sys.stderr)
         raise
+
+    if args.no_route:
+        return placement_only(args, ctx, out, sdf, netlist, pll, pnr_start, step)
 
     # 6. Bitstream.
     bit = out / f"{TOP}.bit"
