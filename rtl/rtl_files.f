@@ -20,6 +20,7 @@ rtl/core/rc_onehot.sv
 rtl/core/rc_onehot_idx.sv
 rtl/core/rc_ram.sv
 rtl/core/rc_fifo.sv
+rtl/core/rc_hit_bits.sv
 rtl/core/rc_thread_ctrl.sv
 rtl/core/rc_setup_unit.sv
 rtl/core/rc_ray_store.sv

@@ -20,9 +20,9 @@
 //   file (camera, frame size, background, root box, record counts, shading constants, the root
 //   node's record: rc_core root_node_i = {BoardRegRoot + 1, BoardRegRoot}), initialised from
 //   RegsHex (plusarg +regs=); writes to it are ignored while busy_o. Writing bit 0 of
-//   BoardRegControl (or a start_i pulse) starts a frame when busy_o is 0: three cycles later
-//   the frame size is checked (width * height <= FbPixels, else status bit size_error and no
-//   frame) and the ray generation unit starts. BoardRegPerfLo/Hi show the core's counter
+//   BoardRegControl (or a start_i pulse, a cycle later) starts a frame when busy_o is 0: three
+//   cycles later the frame size is checked (width * height <= FbPixels, else status bit
+//   size_error and no frame) and the ray generation unit starts. BoardRegPerfLo/Hi show the core's counter
 //   BoardRegPerfSel through a register (perf_rd_q, loaded every cycle): a read shows the
 //   counter selected two cycles before its address is given, so after writing PerfSel wait one
 //   cycle before reading PerfLo/Hi. The counters' 64-bit multiplexer thus ends at a flip-flop
@@ -161,7 +161,17 @@ module rc_board #(
   logic [31:0] pixels_q, cycles_q;
   logic        size_ok_q;
 
-  assign start_req = !busy && (start_i || (reg_we_i && {1'b0, reg_addr_i} ==
+  // The start pulse is registered first (it comes from the board top's button logic, placed
+  // anywhere on the chip), so its one net ends at a flip-flop beside the frame control.
+  logic start_in_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      start_in_q <= 1'b0;
+    end else begin
+      start_in_q <= start_i;
+    end
+  end
+  assign start_req = !busy && (start_in_q || (reg_we_i && {1'b0, reg_addr_i} ==
                      (AddrW+1)'(rc_pkg::BoardRegControl) && reg_wdata_i[0]));
   assign size_ok   = size_ok_q;
   assign gen_start = (pend_q == 2'd1) && size_ok;

@@ -13,7 +13,9 @@
 //   the miss colour, R [7:0], G [15:8], B [23:16].
 // - Packet input: valid/ready. pkt_mask_i bit r: ray r exists. Per ray r: origin and direction
 //   component a at [(3r + a)*W +: W], inv_len at [r*W +: W], pixel id at [r*32 +: 32]. A packet
-//   is taken when a thread is free and the feeder is idle (rc_setup_unit).
+//   is taken into the set-up unit's input register whenever it is empty (pkt_ready_o is that
+//   register's empty flag), and from there when a thread is free and the feeder is idle
+//   (rc_setup_unit).
 // - Framebuffer write port: valid/ready, one write per existing ray of every packet, in no
 //   particular order: fb_pixel_o (the ray's pixel id), fb_rgb_o, and the ray's hit record
 //   (fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o; zero on a miss). A packet that met an error
@@ -567,7 +569,11 @@ module rc_core #(
     .ray_ray_o     (isect_ray_ray),
     .ray_orgdir_i  (rays_od),
     .best_i        (hits_isect_best),
-    .hit_i         (thr_hit),
+    .acc_valid_i   (acc_valid),
+    .acc_thr_i     (acc_thr),
+    .hitset_valid_i(hits_hit_valid),
+    .hitset_thr_i  (hits_hit_thr),
+    .hitset_ray_i  (hits_hit_ray),
     .res_valid_o   (isect_res_valid),
     .res_o         (isect_res),
     .err_valid_o   (isect_err_valid),

@@ -11,7 +11,7 @@
 // - Tests: from the issue register one ray per IsectInterval cycles (the intersection unit's
 //   rate), lowest ray first: the ray's origin and direction (rc_ray_store, per {thread, ray}) and
 //   its best hit (t and triangle, the hit store's copy for this unit) are read from block RAMs, the
-//   ray's hit bit is sampled at the same edge (the best hit is +inf and triangle -1 without it; a
+//   ray's hit bit (this unit's copy of the hit bits, rc_hit_bits) is sampled at the same edge (the best hit is +inf and triangle -1 without it; a
 //   bit and word sampled together are the same commit's, or the word is newer and the bit older,
 //   which only lets through a test the write-back rejects), and two cycles later the test enters
 //   rc_isect_unit, which is then always ready (its results are always taken, and the tests are
@@ -55,9 +55,14 @@ module rc_isect_issue #(
   output logic [ThrW-1:0]     ray_thr_o,
   output logic [1:0]          ray_ray_o,
   input  logic [6*W-1:0]      ray_orgdir_i,   // org x, y, z, dir x, y, z
-  // The best hits (the hit store's copy, per {thread, ray}; 2 cycles) and the hit bits.
+  // The best hits (the hit store's copy, per {thread, ray}; 2 cycles).
   input  logic [W+31:0]       best_i,         // {tri, t}
-  input  logic [Threads*4-1:0] hit_i,
+  // The events that change the hit bits (rc_thread_ctrl's): this unit keeps its own copy.
+  input  logic                acc_valid_i,    // a packet taken into thread acc_thr_i
+  input  logic [ThrW-1:0]     acc_thr_i,
+  input  logic                hitset_valid_i, // the write-back's commit of a new best hit
+  input  logic [ThrW-1:0]     hitset_thr_i,
+  input  logic [1:0]          hitset_ray_i,
 
   // Results.
   output logic                res_valid_o,
@@ -189,9 +194,23 @@ module rc_isect_issue #(
   logic [12*W-1:0]   i1_m_q, i2_m_q;
   logic [3:0]        ti_hits;
 
-  // The thread's hit bits by its number (bit selects: balanced multiplexer trees).
+  // The hit bits: this unit's copy of rc_thread_ctrl's (rc_hit_bits, the same events), placed
+  // beside the unit; the thread's bits by its number (bit selects: balanced multiplexer trees).
+  logic [Threads*4-1:0]   hit_bits;
   logic [(4 << ThrW)-1:0] hit_pad;
-  assign hit_pad = (4 << ThrW)'(hit_i);
+  rc_hit_bits #(
+    .Threads(Threads)
+  ) u_hit_bits (
+    .clk_i,
+    .rst_ni,
+    .acc_valid_i,
+    .acc_thr_i,
+    .hit_valid_i(hitset_valid_i),
+    .hit_thr_i  (hitset_thr_i),
+    .hit_ray_i  (hitset_ray_i),
+    .hit_o      (hit_bits)
+  );
+  assign hit_pad = (4 << ThrW)'(hit_bits);
   for (genvar r = 0; r < 4; r++) begin : g_hits
     assign ti_hits[r] = hit_pad[{ti_thr_q, 2'(r)}];
   end

@@ -22,8 +22,8 @@
 // - Leaf end: per thread the list entries in flight (issued, not finished) are counted; an entry
 //   finishes as a failed list entry, a failed triangle read (fin_te_*) or its last ray's test
 //   result reaching the best-hit compare (fin_io_*). When a thread's count reaches zero and the
-//   unit issues no more for it, leaf_end_o[t] asks its pop (a cycle after its last entry
-//   finished: the best-hit commit of that result is then made).
+//   unit issues no more for it, leaf_end_o[t] (a register) asks its pop, two cycles after its
+//   last entry finished (the best-hit commit of that result is made by then).
 // - Counters (perf_*): list entries read, list requests issued (the unit's busy cycles).
 // - Parameters: Threads, ListTags (>= 2).
 // - Reset: rst_ni (active low, asynchronous) clears the pool, queues and counts.
@@ -406,7 +406,16 @@ module rc_list_unit #(
       lf_inc_q   <= lf_inc_d;
     end
   end
-  assign leaf_end_o = pend_zero;
+  // The leaf ends leave through a register (the pop unit's request bits are across the chip).
+  logic [Threads-1:0] leaf_end_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      leaf_end_q <= '0;
+    end else begin
+      leaf_end_q <= pend_zero;
+    end
+  end
+  assign leaf_end_o = leaf_end_q;
 
   assign err_valid_o  = lb_v_q;
   assign err_thr_o    = lb_thr_q;

@@ -7,16 +7,16 @@
 // - Threads: a thread is free when it holds no packet. It becomes free with free_valid_i or
 //   free0_valid_i (shading: its last framebuffer write, or a packet without rays) and busy when
 //   this unit takes a packet into it. All free at reset.
-// - Packet input (rc_core's pkt_* ports, valid/ready): a packet is taken when a thread is free and
-//   the feeder is idle; pkt_ready_o is the free-thread choice's valid (rc_rr_pick: from its
-//   candidate registers at more than 32 threads) and the feeder's idle flag.
+// - Packet input (rc_core's pkt_* ports, valid/ready): a packet enters an input register when it
+//   is empty (pkt_ready_o: its empty flag, a flip-flop), and is taken from there into a thread
+//   when a thread is free (the free-thread choice, rc_rr_pick) and the feeder is idle.
 //   acc_valid_o/acc_thr_o/acc_vmask_o announce the take in the cycle after it.
 // - Ray stores: the feeder offers the packet's rays 0..3, one per cycle while the set-up units
-//   take them, and writes per ray r, in the cycle it is taken, the ray store's per-ray words
-//   (raywr_*: origin and direction; ilen and pixel id) and, for r = axis a < 3, the per-axis
-//   word of the four rays' origins and direction signs on axis a (axwr_*). After the packet's
-//   last set-up result it writes the four rays' 1/d on each axis (invwr_*, axes x, y, z in
-//   three cycles), then offers the start entry.
+//   take them, and writes per ray r, from registers in the cycle after it is taken, the ray
+//   store's per-ray words (raywr_*: origin and direction; ilen and pixel id) and, for r = axis
+//   a < 3, the per-axis word of the four rays' origins and direction signs on axis a (axwr_*).
+//   After the packet's last set-up result it writes the four rays' 1/d on each axis (invwr_*,
+//   axes x, y, z in three cycles), then offers the start entry.
 // - Set-up: SetupUnits instances of rc_ray_setup (each one ray per 3 cycles) take the rays in
 //   rotation, so the unit sets up SetupUnits rays per 3 cycles (3: one ray per cycle, a packet
 //   per 4 cycles); results are gathered in the same rotation, so in order.
@@ -24,7 +24,8 @@
 //   (root_node_i, checked: malformed when the node section is empty), the active rays (a ray is
 //   active when it exists and tmin <= tmax) and their intervals. It is offered after the last
 //   1/d word is written and held until taken.
-// - Status: all_free_o = every thread free and nothing in the feeder (the core is idle).
+// - Status: all_free_o = every thread free and nothing in the input register or the feeder (the
+//   core is idle).
 // - Parameters: Threads, SetupUnits (1 to 3).
 // - Reset: rst_ni (active low, asynchronous) frees every thread and clears control state.
 module rc_setup_unit #(
@@ -122,7 +123,7 @@ module rc_setup_unit #(
   logic               feed_busy_q;
 
   // The free-thread choice (from registers at more than 32 threads: rc_rr_pick's candidates) is
-  // taken as it is: pkt_ready_o is its valid and the feeder's idle flag. A taken thread leaves
+  // taken as it is (acc_take: its valid, the feeder idle, a packet waiting). A taken thread leaves
   // the free set a cycle after the take (gacc_q); the feeder stays busy for the packet's four
   // rays meanwhile, and the pick leaves out the requester it took a cycle before.
   rc_rr_pick #(
@@ -149,13 +150,41 @@ module rc_setup_unit #(
       free_q    <= (free_q & ~gacc_q) | h_free | h_free0;
     end
   end
-  assign pkt_ready_o = acc_any & ~feed_busy_q;
   logic [Threads-1:0] h_free, h_free0;
   rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_free (.valid_i(free_valid_i), .idx_i(free_thr_i),
                                                    .hot_o(h_free));
   rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_free0 (.valid_i(free0_valid_i), .idx_i(free0_thr_i),
                                                     .hot_o(h_free0));
-  assign acc_take    = pkt_valid_i & pkt_ready_o;
+
+  // The packet input register: pkt_ready_o is its empty flag (a flip-flop), so neither the
+  // free-thread choice nor the feeder reaches the port's ready, and the take (a thread free, the
+  // feeder idle, a packet here) is local to this unit. It refills while the feeder works on the
+  // packet before, so a packet is still taken every 4 cycles.
+  logic            pin_v_q;
+  logic [3:0]      pin_mask_q;
+  logic [12*W-1:0] pin_org_q, pin_dir_q;
+  logic [4*W-1:0]  pin_ilen_q;
+  logic [127:0]    pin_pix_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pin_v_q <= 1'b0;
+    end else if (pkt_valid_i && !pin_v_q) begin
+      pin_v_q <= 1'b1;
+    end else if (acc_take) begin
+      pin_v_q <= 1'b0;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (!pin_v_q) begin
+      pin_mask_q <= pkt_mask_i;
+      pin_org_q  <= pkt_org_i;
+      pin_dir_q  <= pkt_dir_i;
+      pin_ilen_q <= pkt_inv_len_i;
+      pin_pix_q  <= pkt_pixel_i;
+    end
+  end
+  assign pkt_ready_o = ~pin_v_q;
+  assign acc_take    = pin_v_q & acc_any & ~feed_busy_q;
 
   ////////////
   // Feeder //
@@ -195,13 +224,15 @@ module rc_setup_unit #(
       if (su_take) in_u_q <= (in_u_q == UW'(NU - 1)) ? '0 : in_u_q + UW'(1);
     end
   end
+  // The feeder's copy of the packet follows the input register while the feeder is idle (so the
+  // take is not the enable of its 700 flip-flops): it holds the taken packet from the take on.
   always_ff @(posedge clk_i) begin
-    if (acc_take) begin
-      feed_org_q   <= pkt_org_i;
-      feed_dir_q   <= pkt_dir_i;
-      feed_ilen_q  <= pkt_inv_len_i;
-      feed_pix_q   <= pkt_pixel_i;
-      feed_vmask_q <= pkt_mask_i;
+    if (!feed_busy_q) begin
+      feed_org_q   <= pin_org_q;
+      feed_dir_q   <= pin_dir_q;
+      feed_ilen_q  <= pin_ilen_q;
+      feed_pix_q   <= pin_pix_q;
+      feed_vmask_q <= pin_mask_q;
     end
   end
 
@@ -213,26 +244,51 @@ module rc_setup_unit #(
   logic [3*W-1:0] feed_org_r, feed_dir_r;
   assign feed_org_r      = lane_3w(feed_org_q, feed_r_q);
   assign feed_dir_r      = lane_3w(feed_dir_q, feed_r_q);
-  assign raywr_valid_o   = su_take;
-  assign raywr_thr_o     = feed_thr_q;
-  assign raywr_ray_o     = feed_r_q;
-  assign raywr_orgdir_o  = {feed_dir_r, feed_org_r};
-  assign raywr_lenpix_o  = {rc_pkg::lane32(feed_pix_q, feed_r_q), lane_w(feed_ilen_q, feed_r_q)};
-  assign axwr_valid_o    = su_take & (feed_r_q != 2'd3);
-  assign axwr_thr_o      = feed_thr_q;
-  assign axwr_axis_o     = feed_r_q;
+  // The ray store's per-ray and per-axis writes leave through registers (a cycle after the ray
+  // is taken; the words are read only after the packet's set-up, tens of cycles later).
+  logic            rw_v_q, aw_v_q;
+  logic [ThrW-1:0] rw_thr_q;
+  logic [1:0]      rw_r_q;
+  logic [6*W-1:0]  rw_orgdir_q;
+  logic [W+31:0]   rw_lenpix_q;
+  logic [4*W+3:0]  aw_data_q, aw_data;
   always_comb begin
     for (int unsigned r = 0; r < 4; r++) begin
-      axwr_data_o[r*W +: W] = '0;
-      axwr_data_o[4*W + r]  = 1'b0;
+      aw_data[r*W +: W] = '0;
+      aw_data[4*W + r]  = 1'b0;
       for (int unsigned a = 0; a < 3; a++) begin
         if (feed_r_q == 2'(a)) begin
-          axwr_data_o[r*W +: W] = feed_org_q[(3*r+a)*W +: W];
-          axwr_data_o[4*W + r]  = feed_dir_q[(3*r+a)*W + W-1];
+          aw_data[r*W +: W] = feed_org_q[(3*r+a)*W +: W];
+          aw_data[4*W + r]  = feed_dir_q[(3*r+a)*W + W-1];
         end
       end
     end
   end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      rw_v_q <= 1'b0;
+      aw_v_q <= 1'b0;
+    end else begin
+      rw_v_q <= su_take;
+      aw_v_q <= su_take & (feed_r_q != 2'd3);
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    rw_thr_q    <= feed_thr_q;
+    rw_r_q      <= feed_r_q;
+    rw_orgdir_q <= {feed_dir_r, feed_org_r};
+    rw_lenpix_q <= {rc_pkg::lane32(feed_pix_q, feed_r_q), lane_w(feed_ilen_q, feed_r_q)};
+    aw_data_q   <= aw_data;
+  end
+  assign raywr_valid_o  = rw_v_q;
+  assign raywr_thr_o    = rw_thr_q;
+  assign raywr_ray_o    = rw_r_q;
+  assign raywr_orgdir_o = rw_orgdir_q;
+  assign raywr_lenpix_o = rw_lenpix_q;
+  assign axwr_valid_o   = aw_v_q;
+  assign axwr_thr_o     = rw_thr_q;
+  assign axwr_axis_o    = rw_r_q;
+  assign axwr_data_o    = aw_data_q;
 
   ////////////////////
   // Set-up units   //
@@ -422,9 +478,9 @@ module rc_setup_unit #(
   // Status //
   ////////////
 
-  assign all_free_o    = (&free_q) & ~feed_busy_q;
+  assign all_free_o    = (&free_q) & ~feed_busy_q & ~pin_v_q;
   assign perf_packet_o = acc_take;
-  assign perf_rays_o   = acc_take ? rc_pkg::ray_count(pkt_mask_i) : 3'd0;
+  assign perf_rays_o   = acc_take ? rc_pkg::ray_count(pin_mask_q) : 3'd0;
   assign perf_setup_o  = su_take;
 
 `ifndef SYNTHESIS
@@ -434,9 +490,9 @@ module rc_setup_unit #(
     .rst_ni,
     .on_o (checks_on)
   );
-  // The free-thread choice is a free thread when the packet input offers it.
+  // A packet is taken into a free thread.
   AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                    pkt_ready_o |-> free_q[acc_thr] && gacc_q[acc_thr] == 1'b0);
+                                    acc_take |-> free_q[acc_thr] && gacc_q[acc_thr] == 1'b0);
   // Results come back in the rotation's order: ray r of a packet after ray r - 1 of the same one.
   logic [ThrW-1:0] last_thr_q;
   logic [1:0]      last_r_q;

@@ -493,21 +493,25 @@ module rc_shade_seq #(
   // (registered first: fbt_*), the last one frees the thread (a packet without rays is freed at
   // st1). A thread's count is set only after its last write has freed it, so the two never meet.
   logic [Threads*3-1:0] fbw_q;
-  logic [Threads-1:0]   h_done, h_fb;
+  logic [Threads-1:0]   h_done, h_fb, fbt_hot_q;
   logic                 fbt_v_q;
   logic [ThrW-1:0]      fbt_thr_q;
+  // The write's thread is registered one-hot (fbt_hot_q), so the per-thread counts and their
+  // read start at flip-flops.
+  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_fb (.valid_i(fb_take), .idx_i(oq_thr), .hot_o(h_fb));
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       fbt_v_q   <= 1'b0;
       fbt_thr_q <= '0;
+      fbt_hot_q <= '0;
     end else begin
       fbt_v_q   <= fb_take;
       fbt_thr_q <= oq_thr;
+      fbt_hot_q <= h_fb;
     end
   end
   rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_done (.valid_i(done_valid_i), .idx_i(done_thr_i),
                                                    .hot_o(h_done));
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_fb (.valid_i(1'b1), .idx_i(fbt_thr_q), .hot_o(h_fb));
   logic                 free_v, free0_v;
   logic [ThrW-1:0]      free_thr, free0_thr;
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -517,7 +521,7 @@ module rc_shade_seq #(
       for (int unsigned t = 0; t < Threads; t++) begin
         if (st1_hot_q[t]) begin
           fbw_q[t*3 +: 3] <= rc_pkg::ray_count(st1_vm_q);
-        end else if (fbt_v_q && h_fb[t]) begin
+        end else if (fbt_hot_q[t]) begin
           fbw_q[t*3 +: 3] <= fbw_q[t*3 +: 3] - 3'd1;
         end
       end
@@ -529,7 +533,7 @@ module rc_shade_seq #(
     for (genvar t = 0; t < Threads; t++) begin : g_t
       assign fbw_b[t] = fbw_q[t*3 + b];
     end
-    assign fb_cnt[b] = |(h_fb & fbw_b);
+    assign fb_cnt[b] = |(fbt_hot_q & fbw_b);
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

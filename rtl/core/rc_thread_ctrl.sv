@@ -103,23 +103,28 @@ module rc_thread_ctrl #(
   ////////////////////////////////
 
   logic [Threads-1:0]   err_q;
-  logic [Threads*4-1:0] hit_q;
-  logic [3:0]           ray_hot;
-  assign ray_hot = 4'd1 << hit_ray_i;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       err_q <= '0;
-      hit_q <= '0;
     end else begin
       err_q <= (err_q & ~h_acc) | h_e0 | h_e1 | h_e2 | h_e3 | h_e4;
-      for (int unsigned t = 0; t < Threads; t++) begin
-        hit_q[t*4 +: 4] <= h_acc[t] ? 4'd0 : (hit_q[t*4 +: 4] | ({4{h_hit[t]}} & ray_hot));
-      end
     end
   end
   assign err_o = err_q;
-  assign hit_o = hit_q;
+
+  rc_hit_bits #(
+    .Threads(Threads)
+  ) u_hits (
+    .clk_i,
+    .rst_ni,
+    .acc_valid_i,
+    .acc_thr_i,
+    .hit_valid_i,
+    .hit_thr_i,
+    .hit_ray_i,
+    .hit_o
+  );
 
   /////////////////
   // Stack depth //
