@@ -17,7 +17,6 @@ rtl/core/rc_isect_unit.sv
 rtl/core/rc_rr_pick_flat.sv
 rtl/core/rc_rr_pick.sv
 rtl/core/rc_onehot.sv
-rtl/core/rc_onehot_idx.sv
 rtl/core/rc_ram.sv
 rtl/core/rc_fifo.sv
 rtl/core/rc_hit_bits.sv

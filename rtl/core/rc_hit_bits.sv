@@ -1,7 +1,7 @@
 // rc_hit_bits: the per-ray "has a best hit" bits of every packet thread (docs/architecture.md,
 // "Thread control"), as flip-flops updated by the two events that change them. rc_thread_ctrl
-// keeps the copy the pop unit and the shading sequencer read; the intersection issue keeps its
-// own beside it (rc_isect_issue), so its read by thread number does not cross the chip.
+// keeps the copy the pop unit, the shading sequencer and the hit store read; the intersection
+// issue keeps its own (rc_isect_issue), so its read by thread number does not load those.
 //
 // Contract
 // - hit_o[4t + r]: ray r of thread t has a best hit. Set by the write-back's commit (hit_valid_i

@@ -125,7 +125,8 @@ module rc_setup_unit #(
   // The free-thread choice (from registers at more than 32 threads: rc_rr_pick's candidates) is
   // taken as it is (acc_take: its valid, the feeder idle, a packet waiting). A taken thread leaves
   // the free set a cycle after the take (gacc_q); the feeder stays busy for the packet's four
-  // rays meanwhile, and the pick leaves out the requester it took a cycle before.
+  // rays meanwhile (and above 32 threads the pick leaves out the requester it took a cycle
+  // before).
   rc_rr_pick #(
     .N   (Threads),
     .IdxW(ThrW)
