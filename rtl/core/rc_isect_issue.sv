@@ -10,12 +10,12 @@
 //   address for its thread (err_*) and finishes its entry (fin_te_*).
 // - Tests: from the issue register one ray per IsectInterval cycles (the intersection unit's
 //   rate), lowest ray first: the ray's origin and direction (rc_ray_store, per {thread, ray}) and
-//   its best hit (t and triangle, the hit store's copy for this unit) are read from block RAMs, the
-//   ray's hit bit (this unit's copy of the hit bits, rc_hit_bits) is sampled at the same edge (the best hit is +inf and triangle -1 without it; a
-//   bit and word sampled together are the same commit's, or the word is newer and the bit older,
-//   which only lets through a test the write-back rejects), and two cycles later the test enters
-//   rc_isect_unit, which is then always ready (its results are always taken, and the tests are
-//   spaced by its interval).
+//   its best hit (t and triangle, the hit store's copy for this unit) are read from block RAMs,
+//   the ray's hit bit (this unit's copy of the hit bits, rc_hit_bits) is sampled at the same
+//   edge (the best hit is +inf and triangle -1 without it; a bit and word sampled together are
+//   the same commit's, or the word is newer and the bit older, which only lets through a test
+//   the write-back rejects), and two cycles later the test enters rc_isect_unit, which is then
+//   always ready (its results are always taken, and the tests are spaced by its interval).
 // - Results (res_*): every test's result, one per cycle at most, never refused: {thread, ray, last
 //   (its list entry's last ray), triangle, hit, t, u, v, dz}.
 // - Counters: perf_test_o, a test issued.
