@@ -12,10 +12,12 @@
 //   rate), lowest ray first: the ray's origin and direction (rc_ray_store, per {thread, ray}) and
 //   its best hit (t and triangle, the hit store's copy for this unit) are read from block RAMs,
 //   the ray's hit bit (this unit's copy of the hit bits, rc_hit_bits) is sampled at the same
-//   edge (the best hit is +inf and triangle -1 without it; a bit and word sampled together are
-//   the same commit's, or the word is newer and the bit older, which only lets through a test
-//   the write-back rejects), and two cycles later the test enters rc_isect_unit, which is then
-//   always ready (its results are always taken, and the tests are spaced by its interval).
+//   edge (the multiplexer by thread number split by a register: within each group of 16
+//   threads before the edge, between the groups after it) (the best hit is +inf and triangle -1
+//   without it; a bit and word sampled together are the same commit's, or the word is newer and
+//   the bit older, which only lets through a test the write-back rejects), and two cycles later
+//   the test enters rc_isect_unit, which is then always ready (its results are always taken,
+//   and the tests are spaced by its interval).
 // - Results (res_*): every test's result, one per cycle at most, never refused: {thread, ray, last
 //   (its list entry's last ray), triangle, hit, t, u, v, dz}.
 // - Counters: perf_test_o, a test issued.
@@ -187,17 +189,23 @@ module rc_isect_issue #(
 
   // The ray's words and best hit are read at is_take (block RAMs with a fabric register), the hit
   // bit sampled at the same edge; the test's own values travel beside them (i1, i2).
-  logic              i1_v_q, i2_v_q, i1_hit_q, i2_hit_q, i1_last_q, i2_last_q;
+  logic              i1_v_q, i2_v_q, i1_hit, i2_hit_q, i1_last_q, i2_last_q;
   logic [ThrW-1:0]   i1_thr_q, i2_thr_q;
   logic [1:0]        i1_r_q, i2_r_q;
   logic [31:0]       i1_tri_q, i2_tri_q;
   logic [12*W-1:0]   i1_m_q, i2_m_q;
-  logic [3:0]        ti_hits;
 
   // The hit bits: this unit's copy of rc_thread_ctrl's (rc_hit_bits, the same events), placed
-  // beside the unit; the thread's bits by its number (bit selects: balanced multiplexer trees).
+  // beside the unit. The read by thread number is split at the sampling edge: at is_take every
+  // group of 2^GrpW threads gives the bits of its thread ti_thr_q[GrpW-1:0] (hg_q, a register),
+  // and in i1 the group and the ray choose among them. The bit is the one the edge sampled, as a
+  // single multiplexer would have given it.
+  localparam int unsigned GrpW = (ThrW > 4) ? 4 : ThrW;
+  localparam int unsigned HiW  = ThrW - GrpW;
+  localparam int unsigned NGrp = 1 << HiW;
   logic [Threads*4-1:0]   hit_bits;
   logic [(4 << ThrW)-1:0] hit_pad;
+  logic [NGrp*4-1:0]      hg_q;
   rc_hit_bits #(
     .Threads(Threads)
   ) u_hit_bits (
@@ -211,8 +219,19 @@ module rc_isect_issue #(
     .hit_o      (hit_bits)
   );
   assign hit_pad = (4 << ThrW)'(hit_bits);
-  for (genvar r = 0; r < 4; r++) begin : g_hits
-    assign ti_hits[r] = hit_pad[{ti_thr_q, 2'(r)}];
+  for (genvar k = 0; k < NGrp; k++) begin : g_hit_grp
+    logic [(4 << GrpW)-1:0] grp;
+    assign grp = hit_pad[k*(4 << GrpW) +: (4 << GrpW)];
+    for (genvar r = 0; r < 4; r++) begin : g_r
+      always_ff @(posedge clk_i) begin
+        hg_q[k*4 + r] <= grp[{ti_thr_q[GrpW-1:0], 2'(r)}];
+      end
+    end
+  end
+  if (HiW > 0) begin : g_hit_hi
+    assign i1_hit = hg_q[{i1_thr_q[ThrW-1:GrpW], i1_r_q}];
+  end else begin : g_hit_lo
+    assign i1_hit = hg_q[i1_r_q];
   end
 
   assign ray_re_o  = is_take;
@@ -234,13 +253,12 @@ module rc_isect_issue #(
     i1_last_q <= ti_last_q;
     i1_tri_q  <= ti_tri_q;
     i1_m_q    <= ti_m_q;
-    i1_hit_q  <= ti_hits[ti_r];
     i2_thr_q  <= i1_thr_q;
     i2_r_q    <= i1_r_q;
     i2_last_q <= i1_last_q;
     i2_tri_q  <= i1_tri_q;
     i2_m_q    <= i1_m_q;
-    i2_hit_q  <= i1_hit_q;
+    i2_hit_q  <= i1_hit;
   end
 
   logic              iu_ready, ix_v, ix_hit;
