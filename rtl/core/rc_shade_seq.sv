@@ -187,15 +187,16 @@ module rc_shade_seq #(
   assign vm_rd_thr_o = shp_thr_q;
   assign shp_vm      = vm_rd_i;
 
-  logic adv, to_shd, to_miss, sreq_free, miss_free, miss_v_q, shd_req_valid_q;
+  logic adv, to_shd, to_miss, sreq_free, miss_free, miss_v;
   logic sh_valid_r, sh_hit_r;
-  logic [RidW-1:0] shd_req_rid_q, miss_rid_q;
-  logic [31:0]     shd_req_index_q;
+  logic [RidW-1:0] shd_req_rid, miss_rid;
   logic            miss_take;
 
+  // The sequencer's two outputs, shading requests and misses, are two-entry queues whose room is
+  // a flip-flop (rc_credit_fifo's credit): a ray's step depends on this unit's registers only,
+  // never on the shading port's ready or the framebuffer stage.
   assign sh_valid_r = sh_vm_q[sh_r_q];
   assign sh_hit_r   = sh_hm_q[sh_r_q];
-  assign sreq_free  = ~shd_req_valid_q | shd_req_ready_i;
   assign to_shd     = sh_busy_q & sh_valid_r & sh_hit_r & sreq_free;
   assign to_miss    = sh_busy_q & sh_valid_r & ~sh_hit_r & miss_free;
   assign adv        = sh_busy_q & (~sh_valid_r | to_shd | to_miss);
@@ -212,11 +213,6 @@ module rc_shade_seq #(
       sh_busy_q       <= 1'b0;
       sh_thr_q        <= '0;
       sh_r_q          <= '0;
-      shd_req_valid_q <= 1'b0;
-      shd_req_rid_q   <= '0;
-      shd_req_index_q <= '0;
-      miss_v_q        <= 1'b0;
-      miss_rid_q      <= '0;
     end else begin
       done_q    <= (done_q & ~gshp_q) | h_done;
       shp_v_q   <= shp_any & shp_room;
@@ -238,17 +234,6 @@ module rc_shade_seq #(
         sh_busy_q <= 1'b1;
         sh_thr_q  <= nb_thr_q;
         sh_r_q    <= '0;
-      end
-      if (shd_req_valid_q && shd_req_ready_i) shd_req_valid_q <= 1'b0;
-      if (to_shd) begin
-        shd_req_valid_q <= 1'b1;
-        shd_req_rid_q   <= {sh_thr_q, sh_r_q};
-        shd_req_index_q <= rc_pkg::lane32(sh_btri_q, sh_r_q);
-      end
-      if (miss_take) miss_v_q <= 1'b0;
-      if (to_miss) begin
-        miss_v_q   <= 1'b1;
-        miss_rid_q <= {sh_thr_q, sh_r_q};
       end
     end
   end
@@ -275,9 +260,36 @@ module rc_shade_seq #(
   assign tri_re_o  = shp_v_q;
   assign tri_thr_o = shp_thr_q;
 
-  assign shd_req_valid_o = shd_req_valid_q;
-  assign shd_req_tag_o   = TagW'(shd_req_rid_q);
-  assign shd_req_index_o = shd_req_index_q;
+  rc_credit_fifo #(
+    .Width(RidW + 32),
+    .Depth(2)
+  ) u_shd_req_q (
+    .clk_i,
+    .rst_ni,
+    .take_i    (to_shd),
+    .credit_o  (sreq_free),
+    .wr_valid_i(to_shd),
+    .wr_data_i ({rc_pkg::lane32(sh_btri_q, sh_r_q), sh_thr_q, sh_r_q}),
+    .valid_o   (shd_req_valid_o),
+    .ready_i   (shd_req_ready_i),
+    .data_o    ({shd_req_index_o, shd_req_rid})
+  );
+  assign shd_req_tag_o = TagW'(shd_req_rid);
+
+  rc_credit_fifo #(
+    .Width(RidW),
+    .Depth(2)
+  ) u_miss_q (
+    .clk_i,
+    .rst_ni,
+    .take_i    (to_miss),
+    .credit_o  (miss_free),
+    .wr_valid_i(to_miss),
+    .wr_data_i ({sh_thr_q, sh_r_q}),
+    .valid_o   (miss_v),
+    .ready_i   (miss_take),
+    .data_o    (miss_rid)
+  );
 
   ////////////////////////////////////
   // Shading record -> material     //
@@ -435,13 +447,12 @@ module rc_shade_seq #(
   logic [W-1:0]    rec_t, rec_u, rec_v;
   logic [31:0]     rec_tri;
 
-  assign f_take    = (sho_v | miss_v_q) & f_room_q;
+  assign f_take    = (sho_v | miss_v) & f_room_q;
   assign f_hit     = sho_v;
-  assign f_rid     = sho_v ? sho_rid : miss_rid_q;
+  assign f_rid     = sho_v ? sho_rid : miss_rid;
   assign f_rgb     = sho_v ? sho_rgb : background_i;
   assign sho_ready = f_room_q;
-  assign miss_take = miss_v_q & f_room_q & ~sho_v;
-  assign miss_free = ~miss_v_q | miss_take;
+  assign miss_take = miss_v & f_room_q & ~sho_v;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -559,7 +570,7 @@ module rc_shade_seq #(
   assign pick_thr_o   = shp_thr_q;
   assign perf_shade_o = iq_valid & sh_ready;
   assign perf_fb_o    = fb_take;
-  assign wd_o         = (shd_req_valid_q & shd_req_ready_i) | sr_take |
+  assign wd_o         = (shd_req_valid_o & shd_req_ready_i) | sr_take |
                         (mat_req_valid_q & mat_req_ready_i) | ma_take | fb_take;
 
   logic unused_bits;
