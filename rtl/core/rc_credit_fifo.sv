@@ -118,11 +118,13 @@ module rc_credit_fifo #(
     end
   end
 
+  // The head register loads whenever it is free, from the storage if that holds an entry, else
+  // from the write port (the entry if there is a write, a value out_v_q marks empty otherwise):
+  // its enable is out_free alone and its select a register compare, so neither the write's valid
+  // nor the bypass decision reaches the head's Width clock enables.
   always_ff @(posedge clk_i) begin
-    if (ram_rd) begin
-      out_q <= ram_data;
-    end else if (bypass) begin
-      out_q <= wr_data_i;
+    if (out_free) begin
+      out_q <= ram_any ? ram_data : wr_data_i;
     end
   end
 

@@ -207,20 +207,28 @@ module rc_setup_unit #(
   end
   assign su_take = feed_busy_q & su_ready;
 
+  // feed_hold_q is a copy of feed_busy_q that only enables the feeder's copy of the packet (700
+  // flip-flops), so the busy flag's own fan-out stays with the take and the feeder's step.
+  (* keep *) logic feed_hold_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       feed_busy_q <= 1'b0;
+      feed_hold_q <= 1'b0;
       feed_thr_q  <= '0;
       feed_r_q    <= '0;
       in_u_q      <= '0;
     end else begin
       if (acc_take) begin
         feed_busy_q <= 1'b1;
+        feed_hold_q <= 1'b1;
         feed_thr_q  <= acc_thr;
         feed_r_q    <= '0;
       end else if (su_take) begin
         feed_r_q <= feed_r_q + 2'd1;
-        if (feed_r_q == 2'd3) feed_busy_q <= 1'b0;
+        if (feed_r_q == 2'd3) begin
+          feed_busy_q <= 1'b0;
+          feed_hold_q <= 1'b0;
+        end
       end
       if (su_take) in_u_q <= (in_u_q == UW'(NU - 1)) ? '0 : in_u_q + UW'(1);
     end
@@ -228,7 +236,7 @@ module rc_setup_unit #(
   // The feeder's copy of the packet follows the input register while the feeder is idle (so the
   // take is not the enable of its 700 flip-flops): it holds the taken packet from the take on.
   always_ff @(posedge clk_i) begin
-    if (!feed_busy_q) begin
+    if (!feed_hold_q) begin
       feed_org_q   <= pin_org_q;
       feed_dir_q   <= pin_dir_q;
       feed_ilen_q  <= pin_ilen_q;
@@ -491,6 +499,9 @@ module rc_setup_unit #(
     .rst_ni,
     .on_o (checks_on)
   );
+  // The copy of the busy flag is the flag.
+  FeedHold_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               feed_hold_q == feed_busy_q);
   // A packet is taken into a free thread.
   AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     acc_take |-> free_q[acc_thr] && gacc_q[acc_thr] == 1'b0);

@@ -10,8 +10,9 @@
 //   pick) and its rays' triangles read (the hit store's shade copy); a packet that met an error
 //   has no hits (every ray gets the background). A packet without rays is freed at once.
 // - The sequencer then takes the packet's rays 0..3 in turn, one per cycle: a ray with a hit
-//   sends a shading request {tag = {thread, ray}, index = its triangle} (shd_req_*, from a
-//   register), a ray without one goes to the miss register; an absent ray is skipped.
+//   sends a shading request {tag = {thread, ray}, index = its triangle} (shd_req_*, from the
+//   head register of a two-entry queue), a ray without one goes to the two-entry miss queue; an
+//   absent ray is skipped. A ray waits while its queue has no room (a flip-flop).
 // - A shading response stores the ray's |n| and whether it failed (per {thread, ray}) and sends
 //   the material request {same tag, the record's material index; 0 after an error response}
 //   (mat_req_*). A material response (taken while the shading input queue has room for every
