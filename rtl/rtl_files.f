@@ -19,6 +19,7 @@ rtl/core/rc_rr_pick.sv
 rtl/core/rc_onehot.sv
 rtl/core/rc_ram.sv
 rtl/core/rc_fifo.sv
+rtl/core/rc_bit_read.sv
 rtl/core/rc_hit_bits.sv
 rtl/core/rc_thread_ctrl.sv
 rtl/core/rc_setup_unit.sv

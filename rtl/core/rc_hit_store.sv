@@ -80,7 +80,7 @@ module rc_hit_store #(
 
   logic               iu_v_q, io1_v_q, io2_v_q, wb_v_q, wc_we_q, wd_we_q, we_we_q;
   rc_pkg::isect_res_t iu_q, io1_q, io2_q, wb_q;
-  logic               io1_hit_q, io2_hit_q;
+  logic               io2_hit_q;
   logic [W+31:0]      bw_rd;     // {tri, t}
   logic [RidW-1:0]    iu_rid, io2_rid, wb_rid_q, wc_rid_q, wd_rid_q, we_rid_q;
   logic [W-1:0]       wc_t_q, wd_t_q, we_t_q, wb_bt_q;
@@ -111,19 +111,26 @@ module rc_hit_store #(
   assign iu_rid  = {ThrW'(iu_q.thr), iu_q.ray};
   assign io2_rid = {ThrW'(io2_q.thr), io2_q.ray};
 
-  // The hit bit of the result's ray, sampled at the read's edge (a bit select by the ray's number:
-  // a balanced multiplexer tree, not a chain of compares).
-  logic                  iu_hit;
-  logic [(4 << ThrW)-1:0] hit_pad;
-  assign hit_pad = (4 << ThrW)'(hit_i);
-  assign iu_hit  = hit_pad[iu_rid];
+  // The hit bit of the result's ray, sampled at the read's edge (rc_bit_read: the multiplexer by
+  // {thread, ray} split by a register, within each group of 16 threads before the edge, between
+  // the groups after it), given in io1.
+  logic io1_hit;
+  rc_bit_read #(
+    .N   (Threads * 4),
+    .IdxW(RidW),
+    .LoW (6)
+  ) u_hit_read (
+    .clk_i,
+    .bits_i(hit_i),
+    .idx_i (iu_rid),
+    .bit_o (io1_hit)
+  );
 
   always_ff @(posedge clk_i) begin
     iu_q      <= res_i;
     io1_q     <= iu_q;
-    io1_hit_q <= iu_hit;
     io2_q     <= io1_q;
-    io2_hit_q <= io1_hit_q;
+    io2_hit_q <= io1_hit;
   end
 
   // wb: the result with its ray's best; the commits the read missed (now in wc, wd, we: the

@@ -12,8 +12,7 @@
 //   rate), lowest ray first: the ray's origin and direction (rc_ray_store, per {thread, ray}) and
 //   its best hit (t and triangle, the hit store's copy for this unit) are read from block RAMs,
 //   the ray's hit bit (this unit's copy of the hit bits, rc_hit_bits) is sampled at the same
-//   edge (the multiplexer by thread number split by a register: within each group of 16
-//   threads before the edge, between the groups after it) (the best hit is +inf and triangle -1
+//   edge (rc_bit_read: the multiplexer split by a register) (the best hit is +inf and triangle -1
 //   without it; a bit and word sampled together are the same commit's, or the word is newer and
 //   the bit older, which only lets through a test the write-back rejects), and two cycles later
 //   the test enters rc_isect_unit, which is then always ready (its results are always taken,
@@ -196,16 +195,10 @@ module rc_isect_issue #(
   logic [12*W-1:0]   i1_m_q, i2_m_q;
 
   // The hit bits: this unit's copy of rc_thread_ctrl's (rc_hit_bits, the same events), placed
-  // beside the unit. The read by thread number is split at the sampling edge: at is_take every
-  // group of 2^GrpW threads gives the bits of its thread ti_thr_q[GrpW-1:0] (hg_q, a register),
-  // and in i1 the group and the ray choose among them. The bit is the one the edge sampled, as a
-  // single multiplexer would have given it.
-  localparam int unsigned GrpW = (ThrW > 4) ? 4 : ThrW;
-  localparam int unsigned HiW  = ThrW - GrpW;
-  localparam int unsigned NGrp = 1 << HiW;
-  logic [Threads*4-1:0]   hit_bits;
-  logic [(4 << ThrW)-1:0] hit_pad;
-  logic [NGrp*4-1:0]      hg_q;
+  // beside the unit, read by {thread, ray} through a multiplexer split by a register
+  // (rc_bit_read: within each group of 16 threads before the edge, between the groups after it):
+  // the bit the edge at is_take sampled, given in i1.
+  logic [Threads*4-1:0] hit_bits;
   rc_hit_bits #(
     .Threads(Threads)
   ) u_hit_bits (
@@ -218,21 +211,16 @@ module rc_isect_issue #(
     .hit_ray_i  (hitset_ray_i),
     .hit_o      (hit_bits)
   );
-  assign hit_pad = (4 << ThrW)'(hit_bits);
-  for (genvar k = 0; k < NGrp; k++) begin : g_hit_grp
-    logic [(4 << GrpW)-1:0] grp;
-    assign grp = hit_pad[k*(4 << GrpW) +: (4 << GrpW)];
-    for (genvar r = 0; r < 4; r++) begin : g_r
-      always_ff @(posedge clk_i) begin
-        hg_q[k*4 + r] <= grp[{ti_thr_q[GrpW-1:0], 2'(r)}];
-      end
-    end
-  end
-  if (HiW > 0) begin : g_hit_hi
-    assign i1_hit = hg_q[{i1_thr_q[ThrW-1:GrpW], i1_r_q}];
-  end else begin : g_hit_lo
-    assign i1_hit = hg_q[i1_r_q];
-  end
+  rc_bit_read #(
+    .N   (Threads * 4),
+    .IdxW(ThrW + 2),
+    .LoW (6)
+  ) u_hit_read (
+    .clk_i,
+    .bits_i(hit_bits),
+    .idx_i ({ti_thr_q, ti_r}),
+    .bit_o (i1_hit)
+  );
 
   assign ray_re_o  = is_take;
   assign ray_thr_o = ti_thr_q;
