@@ -61,9 +61,12 @@ void run(int n, int idx_w, const char* what) {
     for (int k = 0; k < 66; ++k) {
       std::vector<bool> bits(static_cast<size_t>(n));
       for (int i = 0; i < n; ++i) {
-        if (k == 0) bits[i] = (i == idx);        // one-hot
-        else if (k == 1) bits[i] = (i != idx);   // its complement
-        else bits[i] = (rng() & 1u) != 0;
+        if (k == 0)
+          bits[i] = (i == idx);  // one-hot
+        else if (k == 1)
+          bits[i] = (i != idx);  // its complement
+        else
+          bits[i] = (rng() & 1u) != 0;
       }
       samples.push_back({std::move(bits), idx});
     }
