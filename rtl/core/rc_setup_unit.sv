@@ -140,15 +140,22 @@ module rc_setup_unit #(
     .grant_o(g_acc)
   );
 
+  // every_free_q is &free_q, computed from free_q's next value into its own flip-flop, so the
+  // core's idle output is an AND of three flip-flops, not a 128-input AND at the far end.
+  logic [Threads-1:0] free_d;
+  logic               every_free_q;
+  assign free_d = (free_q & ~gacc_q) | h_free | h_free0;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      acc_v_q   <= 1'b0;
-      gacc_q    <= '0;
-      free_q    <= '1;
+      acc_v_q      <= 1'b0;
+      gacc_q       <= '0;
+      free_q       <= '1;
+      every_free_q <= 1'b1;
     end else begin
-      acc_v_q   <= acc_take;
-      gacc_q    <= acc_take ? g_acc : '0;
-      free_q    <= (free_q & ~gacc_q) | h_free | h_free0;
+      acc_v_q      <= acc_take;
+      gacc_q       <= acc_take ? g_acc : '0;
+      free_q       <= free_d;
+      every_free_q <= &free_d;
     end
   end
   logic [Threads-1:0] h_free, h_free0;
@@ -487,7 +494,7 @@ module rc_setup_unit #(
   // Status //
   ////////////
 
-  assign all_free_o    = (&free_q) & ~feed_busy_q & ~pin_v_q;
+  assign all_free_o    = every_free_q & ~feed_busy_q & ~pin_v_q;
   assign perf_packet_o = acc_take;
   assign perf_rays_o   = acc_take ? rc_pkg::ray_count(pin_mask_q) : 3'd0;
   assign perf_setup_o  = su_take;
@@ -499,6 +506,9 @@ module rc_setup_unit #(
     .rst_ni,
     .on_o (checks_on)
   );
+  // every_free_q is the AND of the free bits.
+  EveryFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                every_free_q == (&free_q));
   // The copy of the busy flag is the flag.
   FeedHold_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                feed_hold_q == feed_busy_q);
