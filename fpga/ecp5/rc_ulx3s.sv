@@ -30,7 +30,7 @@ module rc_ulx3s #(
   parameter int unsigned CoreHz      = 100_000_000,
   parameter int unsigned Baud        = 115_200,
   // rc_board.
-  parameter int unsigned Threads   = rc_pkg::CoreThreads,
+  parameter int unsigned Threads   = rc_pkg::BoardThreads,
   parameter int unsigned NodeDepth = 1,
   parameter int unsigned ListDepth = 1,
   parameter int unsigned TriDepth  = 1,

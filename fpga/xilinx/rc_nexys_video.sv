@@ -43,7 +43,7 @@ module rc_nexys_video #(
   parameter int unsigned Baud              = 115_200,
   parameter int unsigned DebounceCycles    = ClkHz / 100,
   parameter int unsigned HostTimeoutCycles = ClkHz / 4,
-  parameter int unsigned Threads           = rc_pkg::CoreThreads,
+  parameter int unsigned Threads           = rc_pkg::BoardThreads,
   parameter int unsigned NodeDepth         = 1,
   parameter int unsigned ListDepth         = 1,
   parameter int unsigned TriDepth          = 1,

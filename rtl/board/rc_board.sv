@@ -37,6 +37,9 @@
 //   (simulation checks them; a board top leaves them open).
 // - Status: busy_o (a frame is starting or running), done_o, error_o = rc_core's error_o
 //   (sticky until reset), size_error_o.
+// - Parameters: the fp format (ExpW, FracW); Threads, the core's packet threads (default
+//   rc_pkg::BoardThreads, docs/spec.toml [board] threads: fewer than the core alone, chosen for
+//   the ROMs' short latency); the ROM depths and hex files; FbPixels.
 // - Illegal input: none on the register port (writes while busy are ignored); reading registers
 //   that do not exist returns 0.
 // - Reset: rst_ni (active low, asynchronous) clears control state; the register file, ROMs and
@@ -44,7 +47,7 @@
 module rc_board #(
   parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW     = rc_pkg::Fp24FracW,
-  parameter int unsigned Threads   = rc_pkg::CoreThreads,
+  parameter int unsigned Threads   = rc_pkg::BoardThreads,
   parameter int unsigned NodeDepth = 1,
   parameter int unsigned ListDepth = 1,
   parameter int unsigned TriDepth  = 1,
