@@ -64,7 +64,7 @@ module rc_stack_unit #(
   input  logic [Threads-1:0]         err_i,
   input  logic [Threads*4-1:0]       hit_i,
   output logic [ThrW-1:0]            sp_rd_thr_o,    // the picked thread's depth, read
-  input  logic [SpW-1:0]             sp_rd_i,        // a cycle after sp_rd_thr_o
+  input  logic [SpW-1:0]             sp_rd_i,
   output logic                       sp_pop_valid_o, // a pop: the thread's new depth
   output logic [ThrW-1:0]            sp_pop_thr_o,
   output logic [SpW-1:0]             sp_pop_sp_o,
@@ -211,13 +211,14 @@ module rc_stack_unit #(
     end
     assign pp_hit[r] = |(gpp_q & hit_r);   // a reduction OR: balanced, not a chain
   end
-  // The depth is read a cycle early, by the choice's thread number (pk): rc_thread_ctrl's read
-  // takes a cycle (a register inside it), so the distributed RAMs' read and the end decision are
-  // in different cycles. (A thread's depth was written at least a cycle before its pop request,
-  // so before the read.)
+  // The depth is read a cycle early, by the choice's thread number (pk), and registered: the
+  // distributed RAMs' read and the end decision are in different cycles. (A thread's depth was
+  // written at least a cycle before its pop request, so before the read.)
+  logic [SpW-1:0] pp_sp_q;
+  always_ff @(posedge clk_i) pp_sp_q <= sp_rd_i;
   assign pp_err      = |(gpp_q & err_i);
   assign sp_rd_thr_o = pk_thr_q;
-  assign pp_sp       = sp_rd_i;
+  assign pp_sp       = pp_sp_q;
   assign pp_end      = pp_err | (pp_sp == '0);
 
   // The new depth and an ended walk leave through registers (the thread's next pop, or its shading,

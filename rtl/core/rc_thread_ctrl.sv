@@ -9,12 +9,10 @@
 // - hit_o[4t + r]: ray r of thread t has a best hit (the best-hit stores' words count only where
 //   this bit is set); set by the write-back's commit (hit_*), cleared at acc_*. Flip-flops.
 // - Stack depth: 0 after acc_*; the traversal decision's push writes sp + 1 (sp_tr_*), a pop
-//   writes sp - 1 (sp_pop_*). Read port sp_rd_thr_i -> sp_rd_o, one cycle: sp_rd_o is the depth
-//   of the thread given in the cycle before, as the clock edge ending that cycle sampled it (the
-//   read split by a register: within each group of 16 threads before the edge, between the
-//   groups after it). The depths live in two distributed RAMs, one per writer, and a flip-flop
-//   pair per thread says which holds its depth or that it is 0 (a live-value table): two writers
-//   without a second write port.
+//   writes sp - 1 (sp_pop_*). Read port sp_rd_thr_i -> sp_rd_o (asynchronous, from distributed
+//   RAM). The depths live in two distributed RAMs, one per writer, and a flip-flop pair per
+//   thread says which holds its depth or that it is 0 (a live-value table): two writers without a
+//   second write port.
 // - Rays that exist: written at acc_*; read port vm_rd_thr_i -> vm_rd_o (asynchronous, from
 //   distributed RAM).
 // - Every event is for a thread in its unit's hands: the two depth writers never meet on one
@@ -132,14 +130,14 @@ module rc_thread_ctrl #(
   // Stack depth //
   /////////////////
 
-  // Two distributed RAMs (one per writer) and which holds the depth, per thread. Both are split
-  // into groups of 16 threads (one distributed-RAM bank each), and the read by thread number is
-  // split by a register as in rc_bit_read: each group resolves the depth of its thread
-  // sp_rd_thr_i[SgW-1:0] before the edge (sp_grp_q), the group's number chooses after it.
-  localparam int unsigned SgW = (ThrW > 4) ? 4 : ThrW;   // threads per group: 2^SgW
-  localparam int unsigned ShW = ThrW - SgW;
-  localparam int unsigned SgN = 1 << ShW;
+  // Two distributed RAMs (one per writer) and which holds the depth, per thread.
+  logic [SpW-1:0]       sp_tr_m  [0:Depth-1];
+  logic [SpW-1:0]       sp_pop_m [0:Depth-1];
   logic [2*Threads-1:0] sp_sel_q;
+  always_ff @(posedge clk_i) begin
+    if (sp_tr_valid_i) sp_tr_m[sp_tr_thr_i] <= sp_tr_sp_i;
+    if (sp_pop_valid_i) sp_pop_m[sp_pop_thr_i] <= sp_pop_sp_i;
+  end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       sp_sel_q <= '0;
@@ -155,6 +153,9 @@ module rc_thread_ctrl #(
       end
     end
   end
+  // The thread's selector by its number: bit selects of the two selector bits (balanced
+  // multiplexer trees, not a chain of compares).
+  logic [1:0]       sp_rd_sel;
   logic [Depth-1:0] sel0, sel1;
   always_comb begin
     sel0 = '0;
@@ -164,37 +165,9 @@ module rc_thread_ctrl #(
       sel1[t] = sp_sel_q[2*t + 1];
     end
   end
-
-  logic [SgN*SpW-1:0] sp_grp_q;
-  for (genvar k = 0; k < SgN; k++) begin : g_sp_grp
-    logic [SpW-1:0]        tr_m  [0:(1 << SgW)-1];
-    logic [SpW-1:0]        pop_m [0:(1 << SgW)-1];
-    logic [(1 << SgW)-1:0] gsel0, gsel1;
-    logic [1:0]            rsel;
-    logic                  tr_we, pop_we;
-    assign tr_we  = sp_tr_valid_i && (sp_tr_thr_i >> SgW) == ThrW'(k);
-    assign pop_we = sp_pop_valid_i && (sp_pop_thr_i >> SgW) == ThrW'(k);
-    always_ff @(posedge clk_i) begin
-      if (tr_we) tr_m[sp_tr_thr_i[SgW-1:0]] <= sp_tr_sp_i;
-      if (pop_we) pop_m[sp_pop_thr_i[SgW-1:0]] <= sp_pop_sp_i;
-    end
-    assign gsel0 = sel0[k*(1 << SgW) +: (1 << SgW)];
-    assign gsel1 = sel1[k*(1 << SgW) +: (1 << SgW)];
-    assign rsel  = {gsel1[sp_rd_thr_i[SgW-1:0]], gsel0[sp_rd_thr_i[SgW-1:0]]};
-    always_ff @(posedge clk_i) begin
-      sp_grp_q[k*SpW +: SpW] <= (rsel == SpFromTr)  ? tr_m[sp_rd_thr_i[SgW-1:0]] :
-                                (rsel == SpFromPop) ? pop_m[sp_rd_thr_i[SgW-1:0]] : '0;
-    end
-  end
-  if (ShW > 0) begin : g_sp_hi
-    logic [ShW-1:0] rd_hi_q;
-    always_ff @(posedge clk_i) begin
-      rd_hi_q <= sp_rd_thr_i[ThrW-1:SgW];
-    end
-    assign sp_rd_o = sp_grp_q[rd_hi_q*SpW +: SpW];
-  end else begin : g_sp_one
-    assign sp_rd_o = sp_grp_q;
-  end
+  assign sp_rd_sel = {sel1[sp_rd_thr_i], sel0[sp_rd_thr_i]};
+  assign sp_rd_o = (sp_rd_sel == SpFromTr)  ? sp_tr_m[sp_rd_thr_i] :
+                   (sp_rd_sel == SpFromPop) ? sp_pop_m[sp_rd_thr_i] : '0;
 
   //////////////////////
   // Rays that exist  //
