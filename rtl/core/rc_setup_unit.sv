@@ -140,22 +140,27 @@ module rc_setup_unit #(
     .grant_o(g_acc)
   );
 
-  // every_free_q is &free_q, computed from free_q's next value into its own flip-flop, so the
-  // core's idle output is an AND of three flip-flops, not a 128-input AND at the far end.
-  logic [Threads-1:0] free_d;
-  logic               every_free_q;
-  assign free_d = (free_q & ~gacc_q) | h_free | h_free0;
+  // every_free_q is &free_q without a 128-input AND: busy_cnt_q counts the threads not free (a
+  // take clears a bit a cycle later, with acc_v_q; each free event sets one that was clear), and
+  // every_free_q registers its next value's compare with 0. (The AND built from free_q's next
+  // value instead was folded by Yosys into the free pick's logic, a nanosecond deeper.)
+  localparam int unsigned BcW = $clog2(Threads + 1);
+  logic [BcW-1:0] busy_cnt_q, busy_cnt_d;
+  logic           every_free_q;
+  assign busy_cnt_d = busy_cnt_q + BcW'(acc_v_q) - BcW'(free_valid_i) - BcW'(free0_valid_i);
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       acc_v_q      <= 1'b0;
       gacc_q       <= '0;
       free_q       <= '1;
+      busy_cnt_q   <= '0;
       every_free_q <= 1'b1;
     end else begin
       acc_v_q      <= acc_take;
       gacc_q       <= acc_take ? g_acc : '0;
-      free_q       <= free_d;
-      every_free_q <= &free_d;
+      free_q       <= (free_q & ~gacc_q) | h_free | h_free0;
+      busy_cnt_q   <= busy_cnt_d;
+      every_free_q <= busy_cnt_d == '0;
     end
   end
   logic [Threads-1:0] h_free, h_free0;
@@ -206,44 +211,52 @@ module rc_setup_unit #(
   logic [3:0]      feed_vmask_q;
   logic [NU-1:0]   su_ready_all, su_valid_all;
   logic [UW-1:0]   in_u_q, out_u_q;
-  logic            su_ready, su_take;
+  logic            su_take;
 
+  // The feeder's flags, so that no one flip-flop drives everything: feed_busy_q for the take and
+  // the step; feed_idle_q, its inverse (a different function, so synthesis does not merge the
+  // two), enables the feeder's copy of the packet (700 flip-flops); su_v_q[u], set-up unit u's
+  // input valid (the feeder busy and the rotation at u), registered from the next values, drives
+  // that unit only (its input registers, 450 flip-flops each).
+  logic          feed_idle_q, feed_busy_d;
+  logic [UW-1:0] in_u_d;
+  logic [NU-1:0] su_v_q;
+  assign su_take = |(su_v_q & su_ready_all);
   always_comb begin
-    su_ready = 1'b0;
-    for (int unsigned u = 0; u < NU; u++) if (in_u_q == UW'(u)) su_ready = su_ready_all[u];
+    feed_busy_d = feed_busy_q;
+    if (acc_take) begin
+      feed_busy_d = 1'b1;
+    end else if (su_take && feed_r_q == 2'd3) begin
+      feed_busy_d = 1'b0;
+    end
+    in_u_d = in_u_q;
+    if (su_take) in_u_d = (in_u_q == UW'(NU - 1)) ? '0 : in_u_q + UW'(1);
   end
-  assign su_take = feed_busy_q & su_ready;
-
-  // feed_hold_q is a copy of feed_busy_q that only enables the feeder's copy of the packet (700
-  // flip-flops), so the busy flag's own fan-out stays with the take and the feeder's step.
-  (* keep *) logic feed_hold_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       feed_busy_q <= 1'b0;
-      feed_hold_q <= 1'b0;
+      feed_idle_q <= 1'b1;
+      su_v_q      <= '0;
       feed_thr_q  <= '0;
       feed_r_q    <= '0;
       in_u_q      <= '0;
     end else begin
+      feed_busy_q <= feed_busy_d;
+      feed_idle_q <= ~feed_busy_d;
+      in_u_q      <= in_u_d;
+      for (int unsigned u = 0; u < NU; u++) su_v_q[u] <= feed_busy_d && in_u_d == UW'(u);
       if (acc_take) begin
-        feed_busy_q <= 1'b1;
-        feed_hold_q <= 1'b1;
-        feed_thr_q  <= acc_thr;
-        feed_r_q    <= '0;
+        feed_thr_q <= acc_thr;
+        feed_r_q   <= '0;
       end else if (su_take) begin
         feed_r_q <= feed_r_q + 2'd1;
-        if (feed_r_q == 2'd3) begin
-          feed_busy_q <= 1'b0;
-          feed_hold_q <= 1'b0;
-        end
       end
-      if (su_take) in_u_q <= (in_u_q == UW'(NU - 1)) ? '0 : in_u_q + UW'(1);
     end
   end
   // The feeder's copy of the packet follows the input register while the feeder is idle (so the
   // take is not the enable of its 700 flip-flops): it holds the taken packet from the take on.
   always_ff @(posedge clk_i) begin
-    if (!feed_hold_q) begin
+    if (feed_idle_q) begin
       feed_org_q   <= pin_org_q;
       feed_dir_q   <= pin_dir_q;
       feed_ilen_q  <= pin_ilen_q;
@@ -326,7 +339,7 @@ module rc_setup_unit #(
     ) u_setup (
       .clk_i,
       .rst_ni,
-      .valid_i (feed_busy_q && in_u_q == UW'(u)),
+      .valid_i (su_v_q[u]),
       .ready_o (su_ready_all[u]),
       .tag_i   ({feed_vmask_q[feed_r_q], feed_thr_q, feed_r_q}),
       .org_i   (feed_org_r),
@@ -509,9 +522,11 @@ module rc_setup_unit #(
   // every_free_q is the AND of the free bits.
   EveryFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 every_free_q == (&free_q));
-  // The copy of the busy flag is the flag.
-  FeedHold_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               feed_hold_q == feed_busy_q);
+  // The feeder's flags agree.
+  FeedIdle_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               feed_idle_q == !feed_busy_q);
+  SuValid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              su_v_q == (feed_busy_q ? NU'(1) << in_u_q : '0));
   // A packet is taken into a free thread.
   AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     acc_take |-> free_q[acc_thr] && gacc_q[acc_thr] == 1'b0);
