@@ -15,11 +15,12 @@
 //   taken (node_rsp_ready_o = 1: nothing behind them can stall). A response carries the two
 //   children's records (docs/architecture.md, "Memory ports"); an error response ends the packet
 //   with bad address (err_nr_*, pop request req_nr_*).
-// - Step: two cycles after a response (its thread's waiting entry and its rays' origins, 1/d and
-//   direction signs on the split axis read from block RAMs: rc_ray_store's per-axis words,
-//   ax_*), the children's checks are made (rc_pkg::node_check: node_count_i, list_count_i), and
-//   the four sub-units take the step (rc::trav_step() for each active ray; the inactive ones'
-//   results are ignored).
+// - Step: three cycles after a response's cycle (its thread's waiting entry and its rays'
+//   origins, 1/d and direction signs on the split axis are read from block RAMs in that cycle,
+//   addressed by the response's tag: rc_ray_store's per-axis words, ax_*; each word passes a
+//   fabric register after the read's two), the children's checks are made (rc_pkg::node_check:
+//   node_count_i, list_count_i), and the four sub-units take the step (rc::trav_step() for each
+//   active ray; the inactive ones' results are ignored).
 // - Decision (docs/architecture.md, "Traversal"): the packet's first child is the lead ray's near
 //   child; the rays and intervals of each child follow the step's cases; with rays in both the
 //   second is pushed (push_*: depth sp + 1, the stack depth sp_tr_*) unless the stack holds
@@ -139,7 +140,11 @@ module rc_trav_unit #(
   assign iss_thr   = ThrW'(iss_item.thr);
 
   // The waiting store: the entry and stack depth of each thread that waits for its children.
-  logic [WaitW-1:0] wait_rd;
+  // Read in the response's cycle (a response comes at least a cycle after its request, so never
+  // in the cycle its entry is written); the word passes a third register (wait_q) in the fabric,
+  // so the sub-units' first stages start from flip-flops the placer can put beside them, not
+  // from the read's output register next to the block RAM.
+  logic [WaitW-1:0] wait_rd, wait_q;
   logic [ThrW-1:0]  nq_thr_q;
   logic             nq_v_q;
   rc_ram #(
@@ -151,8 +156,8 @@ module rc_trav_unit #(
     .we_i   (iss_v),
     .waddr_i(iss_thr),
     .wdata_i({iss_item.sp, iss_item.entry}),
-    .re_i   (nq_v_q),
-    .raddr_i(nq_thr_q),
+    .re_i   (node_rsp_valid_i),
+    .raddr_i(ThrW'(node_rsp_tag_i)),
     .rdata_o(wait_rd)
   );
 
@@ -187,9 +192,9 @@ module rc_trav_unit #(
   // Response //
   //////////////
 
-  // The response is registered (nq), then the thread's waiting entry and its rays on the split
-  // axis are read (block RAMs with a fabric register: two cycles, r1 and r2 hold the response
-  // meanwhile).
+  // The response is registered (nq) while the thread's waiting entry and its rays on the split
+  // axis are read (block RAMs, a fabric register after each read, then wait_q and ax_*_q: three
+  // cycles; nq, r1 and r2 hold the response meanwhile).
   logic         nq_err_q, r1_v_q, r1_err_q, r2_v_q, r2_err_q;
   logic [127:0] nq_data_q, r1_data_q, r2_data_q;
   logic [ThrW-1:0] r1_thr_q, r2_thr_q;
@@ -219,9 +224,18 @@ module rc_trav_unit #(
     r2_err_q  <= r1_err_q;
   end
 
-  assign ax_re_o   = nq_v_q;
-  assign ax_thr_o  = nq_thr_q;
-  assign ax_axis_o = axis_m[nq_thr_q];
+  // The rays are read in the response's cycle too, and their words pass a third register here.
+  logic [4*W-1:0] ax_org_q, ax_inv_q;
+  logic [3:0]     ax_sign_q;
+  assign ax_re_o   = node_rsp_valid_i;
+  assign ax_thr_o  = ThrW'(node_rsp_tag_i);
+  assign ax_axis_o = axis_m[ThrW'(node_rsp_tag_i)];
+  always_ff @(posedge clk_i) begin
+    wait_q    <= wait_rd;
+    ax_org_q  <= ax_org_i;
+    ax_inv_q  <= ax_inv_i;
+    ax_sign_q <= ax_sign_i;
+  end
 
   // The step's operands (r2).
   rc_pkg::walk_entry_t w_entry;
@@ -234,12 +248,12 @@ module rc_trav_unit #(
   rc_pkg::trav_com_t   w_com;
   logic                step_v;
 
-  assign {w_sp, w_entry} = wait_rd;
+  assign {w_sp, w_entry} = wait_q;
   assign w_left  = w_entry.node.rec[rc_pkg::KdNodeIndexLsb +: NodeW];
   assign w_split = w_entry.node.rec[rc_pkg::KdNodeValueLsb +: W];
   assign w_lead  = rc_pkg::ray_lowest(w_entry.mask);
-  assign w_lsign = ax_sign_i[w_lead];
-  assign w_same  = ax_sign_i ^ {4{~w_lsign}};
+  assign w_lsign = ax_sign_q[w_lead];
+  assign w_same  = ax_sign_q ^ {4{~w_lsign}};
   assign step_v  = r2_v_q & ~r2_err_q;
 
   always_comb begin
@@ -288,8 +302,8 @@ module rc_trav_unit #(
       .ready_o(trav_ready_all[r]),
       .tag_i  (tag_in),
       .split_i(w_split),
-      .org_i  (ax_org_i[r*W +: W]),
-      .inv_i  (ax_inv_i[r*W +: W]),
+      .org_i  (ax_org_q[r*W +: W]),
+      .inv_i  (ax_inv_q[r*W +: W]),
       .tmin_i (w_entry.tmin[r]),
       .tmax_i (w_entry.tmax[r]),
       .valid_o(trav_v_all[r]),
@@ -492,15 +506,11 @@ module rc_trav_unit #(
   // The request queue holds each thread once at most, so it never overflows.
   ReqRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               iss_v |-> 32'(rq_cnt) < ReqQD);
-  // A step's thread is the one whose waiting entry was read (the store is not written for a
-  // thread between its issue and its response).
-  logic [ThrW-1:0] wait_thr_q1, wait_thr_q2;
-  always_ff @(posedge clk_i) begin
-    wait_thr_q1 <= nq_thr_q;
-    wait_thr_q2 <= wait_thr_q1;
-  end
-  StepThread_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                 r2_v_q |-> wait_thr_q2 == r2_thr_q);
+  // The waiting store is read in the response's cycle: never the word its issue writes then (a
+  // thread has one request outstanding, answered at least a cycle after it was taken).
+  WaitNoCollide_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                    node_rsp_valid_i |->
+                                    !(iss_v && iss_thr == ThrW'(node_rsp_tag_i)));
 `endif
 
 endmodule
