@@ -182,6 +182,7 @@ module rc_core #(
   logic               acc_valid, raywr_valid, axwr_valid, invwr_valid, start_valid, start_ready;
   logic [ThrW-1:0]    acc_thr, raywr_thr, axwr_thr, invwr_thr;
   logic [3:0]         acc_vmask;
+  logic [Threads-1:0] acc_hot;
   logic [1:0]         raywr_ray, axwr_axis, invwr_axis;
   logic [6*W-1:0]     raywr_orgdir;
   logic [W+31:0]      raywr_lenpix;
@@ -216,6 +217,7 @@ module rc_core #(
     .free0_thr_i   (shd_free0_thr),
     .acc_valid_o   (acc_valid),
     .acc_thr_o     (acc_thr),
+    .acc_hot_o     (acc_hot),
     .acc_vmask_o   (acc_vmask),
     .raywr_valid_o (raywr_valid),
     .raywr_thr_o   (raywr_thr),
@@ -308,6 +310,7 @@ module rc_core #(
     .rst_ni,
     .acc_valid_i   (acc_valid),
     .acc_thr_i     (acc_thr),
+    .acc_hot_i     (acc_hot),
     .acc_vmask_i   (acc_vmask),
     .err0_valid_i  (trav_err_valid),
     .err0_thr_i    (trav_err_thr),
@@ -569,8 +572,7 @@ module rc_core #(
     .ray_ray_o     (isect_ray_ray),
     .ray_orgdir_i  (rays_od),
     .best_i        (hits_isect_best),
-    .acc_valid_i   (acc_valid),
-    .acc_thr_i     (acc_thr),
+    .acc_hot_i     (acc_hot),
     .hitset_valid_i(hits_hit_valid),
     .hitset_thr_i  (hits_hit_thr),
     .hitset_ray_i  (hits_hit_ray),

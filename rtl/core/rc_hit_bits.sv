@@ -6,7 +6,8 @@
 // Contract
 // - hit_o[4t + r]: ray r of thread t has a best hit. Set by the write-back's commit (hit_valid_i
 //   for ray hit_ray_i of thread hit_thr_i), cleared when a packet is taken into the thread
-//   (acc_valid_i, acc_thr_i); a clear wins over a set in the same cycle.
+//   (acc_hot_i[t], the take's thread one-hot: a register in rc_setup_unit, so no thread number
+//   is decoded here); a clear wins over a set in the same cycle.
 // - Timing: an event changes the bits at the clock edge that ends its cycle.
 // - Parameters: Threads (>= 1).
 // - Reset: rst_ni (active low, asynchronous) clears every bit.
@@ -17,19 +18,16 @@ module rc_hit_bits #(
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
-  input  logic                 acc_valid_i,
-  input  logic [ThrW-1:0]      acc_thr_i,
+  input  logic [Threads-1:0]   acc_hot_i,
   input  logic                 hit_valid_i,
   input  logic [ThrW-1:0]      hit_thr_i,
   input  logic [1:0]           hit_ray_i,
   output logic [Threads*4-1:0] hit_o
 );
 
-  logic [Threads-1:0]   h_acc, h_hit;
+  logic [Threads-1:0]   h_hit;
   logic [Threads*4-1:0] hit_q;
   logic [3:0]           ray_hot;
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_acc (.valid_i(acc_valid_i), .idx_i(acc_thr_i),
-                                                  .hot_o(h_acc));
   rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_hit (.valid_i(hit_valid_i), .idx_i(hit_thr_i),
                                                   .hot_o(h_hit));
   assign ray_hot = 4'd1 << hit_ray_i;
@@ -39,7 +37,7 @@ module rc_hit_bits #(
       hit_q <= '0;
     end else begin
       for (int unsigned t = 0; t < Threads; t++) begin
-        hit_q[t*4 +: 4] <= h_acc[t] ? 4'd0 : (hit_q[t*4 +: 4] | ({4{h_hit[t]}} & ray_hot));
+        hit_q[t*4 +: 4] <= acc_hot_i[t] ? 4'd0 : (hit_q[t*4 +: 4] | ({4{h_hit[t]}} & ray_hot));
       end
     end
   end

@@ -59,8 +59,7 @@ module rc_isect_issue #(
   // The best hits (the hit store's copy, per {thread, ray}; 2 cycles).
   input  logic [W+31:0]       best_i,         // {tri, t}
   // The events that change the hit bits (rc_thread_ctrl's): this unit keeps its own copy.
-  input  logic                acc_valid_i,    // a packet taken into thread acc_thr_i
-  input  logic [ThrW-1:0]     acc_thr_i,
+  input  logic [Threads-1:0]  acc_hot_i,      // bit t: a packet taken into thread t
   input  logic                hitset_valid_i, // the write-back's commit of a new best hit
   input  logic [ThrW-1:0]     hitset_thr_i,
   input  logic [1:0]          hitset_ray_i,
@@ -204,8 +203,7 @@ module rc_isect_issue #(
   ) u_hit_bits (
     .clk_i,
     .rst_ni,
-    .acc_valid_i,
-    .acc_thr_i,
+    .acc_hot_i,
     .hit_valid_i(hitset_valid_i),
     .hit_thr_i  (hitset_thr_i),
     .hit_ray_i  (hitset_ray_i),

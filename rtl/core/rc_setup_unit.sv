@@ -10,7 +10,9 @@
 // - Packet input (rc_core's pkt_* ports, valid/ready): a packet enters an input register when it
 //   is empty (pkt_ready_o: its empty flag, a flip-flop), and is taken from there into a thread
 //   when a thread is free (the free-thread choice, rc_rr_pick) and the feeder is idle.
-//   acc_valid_o/acc_thr_o/acc_vmask_o announce the take in the cycle after it.
+//   acc_valid_o/acc_thr_o/acc_vmask_o announce the take in the cycle after it, and acc_hot_o
+//   the same as a one-hot vector (the free pick's grant registered: each bit drives one thread's
+//   state in rc_thread_ctrl and rc_isect_issue, so no unit decodes the thread number).
 // - Ray stores: the feeder offers the packet's rays 0..3, one per cycle while the set-up units
 //   take them, and writes per ray r, from registers in the cycle after it is taken, the ray
 //   store's per-ray words (raywr_*: origin and direction; ilen and pixel id) and, for r = axis
@@ -62,6 +64,7 @@ module rc_setup_unit #(
   // A packet taken (a cycle after the take).
   output logic                  acc_valid_o,
   output logic [ThrW-1:0]       acc_thr_o,
+  output logic [Threads-1:0]    acc_hot_o,      // acc_valid_o && acc_thr_o == t, a register
   output logic [3:0]            acc_vmask_o,
 
   // Ray store writes.
@@ -267,6 +270,7 @@ module rc_setup_unit #(
 
   assign acc_valid_o = acc_v_q;
   assign acc_thr_o   = feed_thr_q;
+  assign acc_hot_o   = gacc_q;
   assign acc_vmask_o = feed_vmask_q;
 
   // The ray store's words of the ray being taken.
@@ -519,6 +523,9 @@ module rc_setup_unit #(
     .rst_ni,
     .on_o (checks_on)
   );
+  // acc_hot_o is the announced take's thread, one-hot.
+  AccHot_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            acc_hot_o == (acc_valid_o ? Threads'(1) << acc_thr_o : '0));
   // every_free_q is the AND of the free bits.
   EveryFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 every_free_q == (&free_q));

@@ -31,9 +31,10 @@ module rc_thread_ctrl #(
   input  logic                 clk_i,
   input  logic                 rst_ni,
 
-  // A packet taken into thread acc_thr_i.
+  // A packet taken into thread acc_thr_i (acc_hot_i: the same, one-hot).
   input  logic                 acc_valid_i,
   input  logic [ThrW-1:0]      acc_thr_i,
+  input  logic [Threads-1:0]   acc_hot_i,     // acc_valid_i && acc_thr_i == t (a register)
   input  logic [3:0]           acc_vmask_i,
 
   // Errors met, from five units.
@@ -79,8 +80,9 @@ module rc_thread_ctrl #(
 
   // Each event's thread one-hot (rc_onehot: shared predecoders, not a compare per thread).
   logic [Threads-1:0] h_acc, h_e0, h_e1, h_e2, h_e3, h_e4, h_sp, h_pop, h_hit;
-  rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_acc (.valid_i(acc_valid_i),    .idx_i(acc_thr_i),
-                                                  .hot_o(h_acc));
+  // The take's one-hot comes as a register from rc_setup_unit (its bit t drives thread t's
+  // state only, where a decode here made each bit of the thread number drive all of it).
+  assign h_acc = acc_hot_i;
   rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e0  (.valid_i(err0_valid_i),   .idx_i(err0_thr_i),
                                                   .hot_o(h_e0));
   rc_onehot #(.N(Threads), .IdxW(ThrW)) u_h_e1  (.valid_i(err1_valid_i),   .idx_i(err1_thr_i),
@@ -118,8 +120,7 @@ module rc_thread_ctrl #(
   ) u_hits (
     .clk_i,
     .rst_ni,
-    .acc_valid_i,
-    .acc_thr_i,
+    .acc_hot_i,
     .hit_valid_i,
     .hit_thr_i,
     .hit_ray_i,
