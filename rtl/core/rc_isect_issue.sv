@@ -195,8 +195,9 @@ module rc_isect_issue #(
 
   // The hit bits: this unit's copy of rc_thread_ctrl's (rc_hit_bits, the same events), placed
   // beside the unit, read by {thread, ray} through a multiplexer split by a register
-  // (rc_bit_read: within each group of 16 threads before the edge, between the groups after it):
-  // the bit the edge at is_take sampled, given in i1.
+  // (rc_bit_read: within each group of 8 threads before the edge, between the groups after it;
+  // 8, not 16 as in the hit store, because ti_r comes from the issue's own update logic): the bit
+  // the edge at is_take sampled, given in i1.
   logic [Threads*4-1:0] hit_bits;
   rc_hit_bits #(
     .Threads(Threads)
@@ -212,7 +213,7 @@ module rc_isect_issue #(
   rc_bit_read #(
     .N   (Threads * 4),
     .IdxW(ThrW + 2),
-    .LoW (6)
+    .LoW (5)
   ) u_hit_read (
     .clk_i,
     .bits_i(hit_bits),
