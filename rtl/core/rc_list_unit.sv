@@ -162,7 +162,7 @@ module rc_list_unit #(
   // search's loop has no encoder in it.
   logic [ListTags-1:0] tf_rest, tag_first_all, tag_first_rest, tag_first_q;
   logic [LtW-1:0]      tag_new;
-  logic                tag_avail_q;
+  logic                tag_avail_q, tag_avail_d;
   function automatic logic [LtW-1:0] tag_index(input logic [ListTags-1:0] one_hot);
     tag_index = '0;
     for (int unsigned i = 0; i < ListTags; i++) begin
@@ -178,7 +178,7 @@ module rc_list_unit #(
       tag_avail_q <= 1'b1;
       tag_first_q <= ListTags'(1);
     end else begin
-      tag_avail_q <= li_take ? |tf_rest : |tf_q;
+      tag_avail_q <= tag_avail_d;
       tag_first_q <= li_take ? tag_first_rest : tag_first_all;
     end
   end
@@ -200,7 +200,32 @@ module rc_list_unit #(
   // only.
   assign lout_free = ~list_req_valid_q | list_req_ready_i;
   assign lreq_free = ~lsk_v_q;
-  assign li_take   = lu_busy_q & tag_avail_q & lreq_free;
+
+  // The issue of a list entry (lu_busy_q & tag_avail_q & lreq_free) drives some 250 enables and
+  // selects in both halves of this unit, so it is registered from the next values, twice:
+  // li_take_q for the tag pool (tag_first_q, tf_q, the pool's writes) and li_wait_q, its inverse
+  // (a different function, so synthesis keeps both), for the request side (lu_*, the request
+  // registers, the in-flight counts). Both equal the expression above (LiTake_A).
+  logic lu_busy_d, lsk_v_d, li_take_d, li_take_q, li_wait_q, li_take_r;
+  assign li_take   = li_take_q;
+  assign li_take_r = ~li_wait_q;
+  always_comb begin
+    lu_busy_d = lu_busy_q;
+    if (lp_take) lu_busy_d = 1'b1;
+    if (li_take_r && lu_left_q == 32'd1) lu_busy_d = 1'b0;
+  end
+  assign lsk_v_d     = lsk_v_q ? ~lout_free : (li_take_r & ~lout_free);
+  assign tag_avail_d = li_take ? |tf_rest : |tf_q;
+  assign li_take_d   = lu_busy_d & tag_avail_d & ~lsk_v_d;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      li_take_q <= 1'b0;
+      li_wait_q <= 1'b1;
+    end else begin
+      li_take_q <= li_take_d;
+      li_wait_q <= ~li_take_d;
+    end
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -217,8 +242,8 @@ module rc_list_unit #(
       lsk_tag_q        <= '0;
       lsk_index_q      <= '0;
     end else begin
+      lu_busy_q <= lu_busy_d;
       if (lp_take) begin
-        lu_busy_q <= 1'b1;
         turn_b_q  <= ~take_b;
         lu_thr_q  <= ThrW'(lp_item.thr);
         lu_mask_q <= lp_item.mask;
@@ -226,19 +251,18 @@ module rc_list_unit #(
         lu_left_q <= lp_item.count;
       end
       if (lout_free) begin
-        list_req_valid_q <= lsk_v_q | li_take;
+        list_req_valid_q <= lsk_v_q | li_take_r;
         list_req_tag_q   <= lsk_v_q ? lsk_tag_q : tag_new;
         list_req_index_q <= lsk_v_q ? lsk_index_q : lu_idx_q;
       end
-      lsk_v_q <= lsk_v_q ? ~lout_free : (li_take & ~lout_free);
+      lsk_v_q <= lsk_v_d;
       if (!lsk_v_q) begin
         lsk_tag_q   <= tag_new;
         lsk_index_q <= lu_idx_q;
       end
-      if (li_take) begin
+      if (li_take_r) begin
         lu_idx_q  <= lu_idx_q + 32'd1;
         lu_left_q <= lu_left_q - 32'd1;
-        if (lu_left_q == 32'd1) lu_busy_q <= 1'b0;
       end
     end
   end
@@ -380,7 +404,7 @@ module rc_list_unit #(
     for (int unsigned t = 0; t < Threads; t++) begin
       logic issuing;
       logic [1:0] dec;
-      lf_inc_d[t] = li_take & h_lu[t];
+      lf_inc_d[t] = li_take_r & h_lu[t];
       issuing = h_lu[t] || lf_inc_q[t];
       pend_dec_d[2*t +: 2] = 2'(h_lb[t]) + 2'(h_te[t]) + 2'(h_io[t]);
       dec = pend_dec_q[2*t +: 2];
@@ -443,6 +467,10 @@ module rc_list_unit #(
   // A leaf has triangles and rays.
   LeafWork_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                lp_take |-> lp_item.count != 32'd0 && lp_item.mask != 4'd0);
+  // The registered issue and its inverse are the issue's expression.
+  LiTake_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             li_take == (lu_busy_q & tag_avail_q & lreq_free) &&
+                             li_take_r == li_take);
   // A list entry waits in the skid buffer only behind a request the port has not taken.
   ListSkid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                lsk_v_q |-> list_req_valid_q);
