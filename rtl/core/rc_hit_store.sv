@@ -110,6 +110,8 @@ module rc_hit_store #(
 
   assign iu_rid  = {ThrW'(iu_q.thr), iu_q.ray};
   assign io2_rid = {ThrW'(io2_q.thr), io2_q.ray};
+  logic [RidW-1:0] io1_rid;
+  assign io1_rid = {ThrW'(io1_q.thr), io1_q.ray};
 
   // The hit bit of the result's ray, sampled at the read's edge (rc_bit_read: the multiplexer by
   // {thread, ray} split by a register, within each group of 16 threads before the edge, between
@@ -143,9 +145,24 @@ module rc_hit_store #(
   assign io2_bt   = io2_hit_q ? bw_rd[W-1:0] : FpInf;
   assign io2_btri = io2_hit_q ? bw_rd[W +: 32] : '1;
   assign wb_fwd   = wb_v_q & (wb_rid_q == io2_rid);
-  assign wc_fwd   = wc_we_q & (wc_rid_q == io2_rid);
-  assign wd_fwd   = wd_we_q & (wd_rid_q == io2_rid);
-  assign we_fwd   = we_we_q & (we_rid_q == io2_rid);
+  // The three forwarding decisions are registered a cycle ahead, from io1 and the stages that
+  // become wc, wd and we at the next edge (wb's decision, wc, wd), so the best's multiplexer in
+  // front of wb_bt_q and wb_btri_q starts from flip-flops, not from three {thread, ray} compares.
+  logic wc_fwd_q, wd_fwd_q, we_fwd_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      wc_fwd_q <= 1'b0;
+      wd_fwd_q <= 1'b0;
+      we_fwd_q <= 1'b0;
+    end else begin
+      wc_fwd_q <= wb_better & (wb_rid_q == io1_rid);
+      wd_fwd_q <= wc_we_q & (wc_rid_q == io1_rid);
+      we_fwd_q <= wd_we_q & (wd_rid_q == io1_rid);
+    end
+  end
+  assign wc_fwd   = wc_fwd_q;
+  assign wd_fwd   = wd_fwd_q;
+  assign we_fwd   = we_fwd_q;
 
   always_ff @(posedge clk_i) begin
     if (io2_v_q) begin
@@ -272,6 +289,11 @@ module rc_hit_store #(
     .rst_ni,
     .on_o (checks_on)
   );
+  // The forwarding decisions registered a cycle ahead are the ones io2 would compute.
+  FwdAhead_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               wc_fwd_q == (wc_we_q & (wc_rid_q == io2_rid)) &&
+                               wd_fwd_q == (wd_we_q & (wd_rid_q == io2_rid)) &&
+                               we_fwd_q == (we_we_q & (we_rid_q == io2_rid)));
   // A shadow of the committed bests, to check the forwarding: every commit improves its ray's
   // committed best, and the compare sees the ray's best as it will be after this cycle's commit.
   logic [W-1:0]  sh_t   [0:(4 << ThrW)-1];
