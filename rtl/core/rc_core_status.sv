@@ -9,14 +9,19 @@
 //   ORed in four groups), so error_o shows the bit from the edge WatchdogCycles + 2 after the last
 //   handshake's.
 // - Counters: counter k counts perf_inc_i[3k +: 3] per cycle (registered first: a counter lags
-//   its events by a cycle); counter CorePerfMaxStack instead keeps the largest perf_depth_i seen
-//   with perf_inc_i's CorePerfStackPushes field non-zero. perf_o = counter perf_sel_i (64 bits,
-//   zero for numbers >= CorePerfCount), combinational from registers.
-// - Parameters: WatchdogCycles (>= 2), EvW (watchdog events, >= 4).
+//   its events by a cycle, and its bits 63..PerfLoW (32) by two: the low half's carry is
+//   registered, so no 64-bit carry chain ends at a counter); counter CorePerfMaxStack instead
+//   keeps the largest perf_depth_i seen with perf_inc_i's CorePerfStackPushes field non-zero.
+//   perf_o = counter perf_sel_i (64 bits, zero for numbers >= CorePerfCount), combinational from
+//   registers; it is exact from the second cycle after the last event on.
+// - Parameters: WatchdogCycles (>= 2), EvW (watchdog events, >= 4), PerfLoW (the counters' low
+//   half, 3 .. 61; 32 in the core, small in tests/core/units/core_status_test.cpp so the carry
+//   into the high half is exercised).
 // - Reset: rst_ni (active low, asynchronous) clears the counters, the count and the status.
 module rc_core_status #(
   parameter int unsigned WatchdogCycles = rc_pkg::CoreWatchdogCycles,
   parameter int unsigned EvW            = 16,
+  parameter int unsigned PerfLoW        = 32,   // the counters' low half (tests make it small)
   // Derived (do not override).
   parameter int unsigned NPerf          = rc_pkg::CorePerfCount,
   parameter int unsigned StatusW        = rc_pkg::CoreStatusBits,
@@ -34,8 +39,9 @@ module rc_core_status #(
   output logic [63:0]          perf_o
 );
 
-  if (WatchdogCycles < 2 || EvW < 4 || StatusW != 4) begin : g_param_check
-    $error("rc_core_status: need WatchdogCycles >= 2, EvW >= 4 and four status bits");
+  if (WatchdogCycles < 2 || EvW < 4 || StatusW != 4 || PerfLoW < 3 ||
+      PerfLoW > 61) begin : g_param_check
+    $error("rc_core_status: need WatchdogCycles >= 2, EvW >= 4, 4 status bits, PerfLoW 3..61");
   end
 
   localparam int unsigned G = (EvW + 3) / 4;   // events per group
@@ -84,31 +90,49 @@ module rc_core_status #(
   // Counters //
   //////////////
 
-  logic [NPerf*64-1:0] perf_q;
-  logic [3*NPerf-1:0]  perf_inc_q;
-  logic [SpW-1:0]      depth_q;
-
+  // Each counter as two halves, PerfLoW bits and 64 - PerfLoW: the low half's carry out is
+  // registered (perf_cy_q) and added to the high half a cycle later. The largest stack depth has
+  // a register of its own.
+  localparam int unsigned HiW = 64 - PerfLoW;
+  logic [NPerf*64-1:0]      perf_q;
+  logic [NPerf*PerfLoW-1:0] perf_lo_q;
+  logic [NPerf*HiW-1:0]     perf_hi_q;
+  logic [NPerf-1:0]         perf_cy_q;
+  logic [3*NPerf-1:0]       perf_inc_q;
+  logic [SpW-1:0]           depth_q, max_sp_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       perf_inc_q <= '0;
       depth_q    <= '0;
-      perf_q     <= '0;
+      max_sp_q   <= '0;
+      perf_lo_q  <= '0;
+      perf_hi_q  <= '0;
+      perf_cy_q  <= '0;
     end else begin
       perf_inc_q <= perf_inc_i;
       depth_q    <= perf_depth_i;
+      if (perf_inc_q[3*rc_pkg::CorePerfStackPushes +: 3] != 3'd0 && depth_q > max_sp_q) begin
+        max_sp_q <= depth_q;
+      end
       for (int unsigned k = 0; k < NPerf; k++) begin
-        if (k == rc_pkg::CorePerfMaxStack) begin
-          if (perf_inc_q[3*rc_pkg::CorePerfStackPushes +: 3] != 3'd0 &&
-              64'(depth_q) > perf_q[k*64 +: 64]) begin
-            perf_q[k*64 +: 64] <= 64'(depth_q);
-          end
-        end else begin
-          perf_q[k*64 +: 64] <= perf_q[k*64 +: 64] + 64'(perf_inc_q[3*k +: 3]);
+        if (k != rc_pkg::CorePerfMaxStack) begin
+          {perf_cy_q[k], perf_lo_q[k*PerfLoW +: PerfLoW]} <=
+              (PerfLoW + 1)'(perf_lo_q[k*PerfLoW +: PerfLoW]) +
+              (PerfLoW + 1)'(perf_inc_q[3*k +: 3]);
+          perf_hi_q[k*HiW +: HiW] <= perf_hi_q[k*HiW +: HiW] + HiW'(perf_cy_q[k]);
         end
       end
     end
   end
-
+  always_comb begin
+    for (int unsigned k = 0; k < NPerf; k++) begin
+      if (k == rc_pkg::CorePerfMaxStack) begin
+        perf_q[k*64 +: 64] = 64'(max_sp_q);
+      end else begin
+        perf_q[k*64 +: 64] = {perf_hi_q[k*HiW +: HiW], perf_lo_q[k*PerfLoW +: PerfLoW]};
+      end
+    end
+  end
   assign perf_o = (32'(perf_sel_i) < NPerf) ? perf_q[32'(perf_sel_i)*64 +: 64] : 64'd0;
 
 endmodule

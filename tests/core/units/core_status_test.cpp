@@ -1,0 +1,140 @@
+// rc_core_status's performance counters (rtl/core/rc_core_status.sv): each counter is two halves
+// with the low half's carry registered, so its high bits follow a cycle after its low bits.
+// Verilated with the low half at 4 bits (the carry into the high half every few cycles) and at the
+// core's 32 (where a frame never carries, so the split is exercised only by the small one).
+//
+// The contract, as a model: with S(e) the sum of a counter's increments sampled at edges <= e,
+// after edge k the counter reads floor(S(k-2) / 2^L) * 2^L + (S(k-1) mod 2^L) (L = PerfLoW), so
+// it is exact from the second edge after the last event; the largest stack depth reads the
+// largest perf_depth_i sampled with the stack-pushes field non-zero at edges <= k-1; numbers >=
+// CorePerfCount read 0. Seeded random increments (biased to large ones so the small low half
+// wraps often) and a random counter number read after every edge; then a quiet tail where every
+// counter must read its exact total.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <type_traits>
+#include <vector>
+
+#include "Vcore_status_lo32.h"
+#include "Vcore_status_lo4.h"
+#include "fp_cases.hpp"
+#include "rc_constants.hpp"
+#include "verilated.h"
+
+namespace rc::test {
+namespace {
+
+constexpr int kN = static_cast<int>(spec::kCorePerfCount);
+constexpr int kMaxStack = static_cast<int>(spec::kCorePerfMaxStack);
+constexpr int kPushes = static_cast<int>(spec::kCorePerfStackPushes);
+
+template <class Wide>
+void clear_wide(Wide& w) {
+  for (size_t i = 0; i < sizeof(w) / sizeof(w[0]); ++i) w[i] = 0;
+}
+
+template <class V>
+void run(int low_bits, const char* what) {
+  auto ctx = std::make_unique<VerilatedContext>();
+  ctx->assertOn(true);
+  auto m = std::make_unique<V>(ctx.get());
+  std::mt19937 rng(0x5a7u + static_cast<uint32_t>(low_bits));
+  const uint64_t low_mod = uint64_t{1} << low_bits;
+
+  // S[e][k]: counter k's sum over the edges <= e (index e + 1; S[0] before any edge).
+  std::vector<std::array<uint64_t, kN>> sum(1);
+  sum[0].fill(0);
+  std::vector<uint32_t> max_sp(1, 0);  // the largest depth over the edges <= e (index e + 1)
+
+  m->clk_i = 0;
+  m->rst_ni = 0;
+  m->idle_i = 1;
+  m->wd_ev_i = 0;
+  m->err_i = 0;
+  m->perf_depth_i = 0;
+  m->perf_sel_i = 0;
+  clear_wide(m->perf_inc_i);
+  m->eval();
+  m->rst_ni = 1;
+  m->eval();
+
+  const int busy = 3000, quiet = 3;
+  uint64_t cases = 0, bad = 0;
+  for (int e = 0; e < busy + quiet; ++e) {
+    // The inputs sampled at edge e.
+    std::array<uint32_t, kN> inc{};
+    uint32_t depth = rng() % 64u;
+    for (int k = 0; k < kN; ++k) {
+      if (e < busy) inc[k] = (rng() % 4u == 0) ? rng() % 8u : 7u - rng() % 2u;
+    }
+    if (e >= busy) depth = 0;
+    clear_wide(m->perf_inc_i);
+    for (int k = 0; k < kN; ++k) {
+      const int bit = 3 * k;
+      m->perf_inc_i[bit / 32] |= inc[k] << (bit % 32);
+      if (bit % 32 > 29) m->perf_inc_i[bit / 32 + 1] |= inc[k] >> (32 - bit % 32);
+    }
+    m->perf_depth_i = static_cast<std::remove_reference_t<decltype(m->perf_depth_i)>>(depth);
+    std::array<uint64_t, kN> next = sum.back();
+    for (int k = 0; k < kN; ++k) next[k] += inc[k];
+    sum.push_back(next);
+    max_sp.push_back(inc[kPushes] != 0 ? std::max(max_sp.back(), depth) : max_sp.back());
+
+    m->clk_i = 1;
+    m->eval();
+    m->clk_i = 0;
+    m->eval();
+
+    // After edge e: read counters (a random one while busy, every one in the quiet tail).
+    std::vector<int> sels;
+    if (e < busy) {
+      sels.push_back(static_cast<int>(rng() % 32u));
+    } else {
+      for (int k = 0; k < 32; ++k) sels.push_back(k);
+    }
+    for (int sel : sels) {
+      m->perf_sel_i = static_cast<std::remove_reference_t<decltype(m->perf_sel_i)>>(sel);
+      m->eval();
+      const auto at = [&](int edge, int k) -> uint64_t {
+        return edge < 0 ? 0 : sum[static_cast<size_t>(edge) + 1][k];
+      };
+      uint64_t want = 0;
+      if (sel >= kN) {
+        want = 0;  // no such counter
+      } else if (sel == kMaxStack) {
+        want = e >= 1 ? max_sp[static_cast<size_t>(e)] : 0;  // edges <= e - 1
+      } else {
+        want = (at(e - 2, sel) / low_mod) * low_mod + at(e - 1, sel) % low_mod;
+      }
+      if (e >= busy + 1 && sel < kN && sel != kMaxStack) {
+        // Two edges after the last event the counter is exact.
+        EXPECT_EQ(want, at(busy - 1, sel)) << "model";
+      }
+      ++cases;
+      if (static_cast<uint64_t>(m->perf_o) != want) {
+        if (bad < 8)
+          ADD_FAILURE() << what << ": after edge " << e << " counter " << sel << " reads "
+                        << static_cast<uint64_t>(m->perf_o) << ", want " << want;
+        ++bad;
+      }
+    }
+  }
+  // The small low half wrapped: its carries were exercised.
+  if (low_bits < 32) {
+    EXPECT_GT(sum.back()[0], 64 * low_mod) << what;
+  }
+  m->final();
+  report_cases(what, cases, bad);
+  EXPECT_EQ(bad, 0u) << what;
+}
+
+TEST(CoreStatus, CountersLowHalf4) { run<Vcore_status_lo4>(4, "rc_core_status PerfLoW=4"); }
+TEST(CoreStatus, CountersLowHalf32) { run<Vcore_status_lo32>(32, "rc_core_status PerfLoW=32"); }
+
+}  // namespace
+}  // namespace rc::test
