@@ -240,7 +240,6 @@ module rc_trav_unit #(
   // The step's operands (r2).
   rc_pkg::walk_entry_t w_entry;
   logic [SpW-1:0]      w_sp;
-  logic [NodeW-1:0]    w_left;
   logic [W-1:0]        w_split;
   logic [1:0]          w_lead;
   logic                w_lsign;
@@ -249,7 +248,22 @@ module rc_trav_unit #(
   logic                step_v;
 
   assign {w_sp, w_entry} = wait_q;
-  assign w_left  = w_entry.node.rec[rc_pkg::KdNodeIndexLsb +: NodeW];
+
+  // The children's checks are made a cycle early, in r1, where the response and the waiting
+  // entry's word (the left child's index) are both at hand, and registered for the step: their
+  // 33-bit compares do not sit in front of the sub-units' input registers.
+  rc_pkg::walk_entry_t r1_entry;
+  logic [NodeW-1:0]    r1_left;
+  logic [1:0]          chk_l_q, chk_r_q;
+  logic                unused_r1;
+  assign r1_entry  = wait_rd[WaitW-SpW-1:0];   // {sp, entry}: the entry
+  assign r1_left   = r1_entry.node.rec[rc_pkg::KdNodeIndexLsb +: NodeW];
+  assign unused_r1 = ^r1_entry;                // only the left child's index is used here
+  always_ff @(posedge clk_i) begin
+    chk_l_q <= rc_pkg::node_check(r1_data_q[63:0], r1_left, node_count_i, list_count_i);
+    chk_r_q <= rc_pkg::node_check(r1_data_q[127:64], r1_left + NodeW'(1), node_count_i,
+                                  list_count_i);
+  end
   assign w_split = w_entry.node.rec[rc_pkg::KdNodeValueLsb +: W];
   assign w_lead  = rc_pkg::ray_lowest(w_entry.mask);
   assign w_lsign = ax_sign_q[w_lead];
@@ -264,10 +278,9 @@ module rc_trav_unit #(
     w_com.lsign     = w_lsign;
     w_com.sp        = w_sp;
     w_com.kid_l.rec = r2_data_q[63:0];
-    w_com.kid_l.chk = rc_pkg::node_check(r2_data_q[63:0], w_left, node_count_i, list_count_i);
+    w_com.kid_l.chk = chk_l_q;
     w_com.kid_r.rec = r2_data_q[127:64];
-    w_com.kid_r.chk = rc_pkg::node_check(r2_data_q[127:64], w_left + NodeW'(1), node_count_i,
-                                         list_count_i);
+    w_com.kid_r.chk = chk_r_q;
   end
 
   ///////////////
