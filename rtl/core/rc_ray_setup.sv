@@ -115,10 +115,11 @@ module rc_ray_setup #(
   // Axis a enters the slice in cycle a x AxisGap. The register takes the next ray in the last
   // cycle (the ray's z has then entered, or enters in that very cycle when AxisGap = 1).
   logic [Interval-1:0] slot_q;
-  logic                credit, take, busy, issue, first, last;
+  logic                credit, take, busy, in_free, issue, first, last;
 
   assign busy    = |slot_q;
-  assign ready_o = credit & (~busy | slot_q[Interval-1]);
+  assign in_free = ~busy | slot_q[Interval-1];
+  assign ready_o = credit & in_free;
   assign take    = valid_i & ready_o;
   assign first   = slot_q[0];
   assign last    = slot_q[2*AxisGap];
@@ -136,7 +137,10 @@ module rc_ray_setup #(
 
   // The ray's axes as {org, dir, lo, hi}; ax_q[0 +: AxW] is the next axis to enter the slice,
   // the rest move down one place whenever one enters (no read multiplexer in front of the
-  // arithmetic).
+  // arithmetic). The register loads whenever it is free (empty, or in its ray's last cycle),
+  // taken or not: its enables come from slot_q, this unit's own flip-flops, and valid_i reaches
+  // only slot_q and the credits (the feeder's valid comes from across the chip). A load without a
+  // take is never used: the ray's axes and tag are read only in its three cycles.
   logic [3*AxW-1:0] ax_in, ax_q;
   logic [TagW-1:0]  tag_q;
   for (genvar a = 0; a < 3; a++) begin : g_ax_in
@@ -145,7 +149,7 @@ module rc_ray_setup #(
   end
 
   always_ff @(posedge clk_i) begin
-    if (take) begin
+    if (in_free) begin
       ax_q  <= ax_in;
       tag_q <= tag_i;
     end else if (issue) begin
