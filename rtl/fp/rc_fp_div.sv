@@ -28,6 +28,14 @@
 // (round to nearest even, with the sticky bit of a nonzero final remainder); slot N + 1 adds
 // it, adjusts the exponent and packs.
 //
+// Slots in one cycle do not chain their subtractions: a slot k >= 3 in the same cycle as slot
+// k - 1 subtracts from slot k - 1's input remainder R for both of slot k - 1's outcomes side by
+// side, 2R - D (slot k - 1 kept R) and 2R - 3D (it kept R - D), with D the divisor and 3D made
+// once in slot 0 and carried in the state, and slot k - 1's quotient bit only selects. The
+// selected difference is bit for bit the one a chained subtraction gives, so only the depth
+// changes: one carry chain per cycle and a select per further slot (run 47: the two chained
+// subtractions of a cycle failed 100 MHz by up to 0.65 ns in the set-up and intersection units).
+//
 // Pipeline: the N + 2 slots are spread evenly over Se = min(Stages, N + 2) cycles, the longer
 // cycles first: with Base = (N + 2) / Se and Rem = (N + 2) % Se, the first Rem cycles take
 // Base + 1 consecutive slots and the others Base; a register sits in front of every slot that
@@ -81,8 +89,10 @@ module rc_fp_div #(
   // Per-operation flags carried down the pipeline: {spec_nan, spec_inf, spec_zero, sign}.
   localparam int unsigned MetaW = 4;
   localparam int unsigned HdrW  = MetaW + ExW;
-  // Iteration state: {hdr, divisor fraction, partial remainder, quotient bits so far}.
-  localparam int unsigned StW   = HdrW + FracW + RemW + N;
+  localparam int unsigned D3W   = ManW + 2;           // three times the divisor's significand
+  // Iteration state: {hdr, divisor fraction, 3 x divisor, partial remainder, quotient bits so
+  // far}.
+  localparam int unsigned StW   = HdrW + FracW + D3W + RemW + N;
   // State after the last iteration: the divisor and the final remainder are no longer needed;
   // the rounding increment is (round_up, in the place of the remainder).
   localparam int unsigned FinW  = HdrW + 1 + N;
@@ -100,6 +110,7 @@ module rc_fp_div #(
   logic [ManW-1:0] d_hi;
   logic [RemW-1:0] rem0;
   logic [ExW-1:0]  exp0, exp_hi, exp_lo;
+  logic [D3W-1:0]  d3;
 
   assign a_exp  = a_i[W-2 -: ExpW];
   assign b_exp  = b_i[W-2 -: ExpW];
@@ -130,6 +141,8 @@ module rc_fp_div #(
   assign exp_hi  = ExW'(a_exp) - ExW'(b_exp) + ExW'(Bias);
   assign exp_lo  = ExW'(a_exp) - ExW'(b_exp) + ExW'(Bias - 1);
   assign exp0    = a_below ? exp_lo : exp_hi;
+  // 3D for the slots that subtract for both outcomes of the slot before (see Algorithm).
+  assign d3      = D3W'(b_man) + D3W'({b_man, 1'b0});
 
   ///////////////////////////////////////////
   // Slots 1..N: one quotient bit each     //
@@ -140,9 +153,13 @@ module rc_fp_div #(
   logic [N*StW-1:0] st_out /* verilator split_var */;
   logic [N*StW-1:0] st_in /* verilator split_var */;
   logic [FinW-1:0]  fin_d, fin_q;
+  // Each slot's quotient bit, for the slot after it (read only where the two share a cycle).
+  logic [N:1]       q_s /* verilator split_var */;
+  logic             unused_q_s;
+  assign unused_q_s = ^q_s;
 
   assign st_out[StW-1:0] = {spec_nan, spec_inf, spec_zero, a_i[W-1] ^ b_i[W-1], exp0,
-                            b_i[FracW-1:0], rem0, {N{1'b0}}};
+                            b_i[FracW-1:0], d3, rem0, {N{1'b0}}};
 
   for (genvar k = 1; k <= N; k++) begin : g_iter
     // The register (or wire) in front of slot k.
@@ -158,12 +175,13 @@ module rc_fp_div #(
 
     logic [HdrW-1:0]  hdr;
     logic [FracW-1:0] dvs_frac;
+    logic [D3W-1:0]   dvs3;
     logic [RemW-1:0]  rem;
     logic [N-1:0]     quo, quo_next;
     logic             q_bit;
     logic [ManW-1:0]  rem_kept;  // the kept remainder: below the divisor, so ManW bits
 
-    assign {hdr, dvs_frac, rem, quo} = st_in[(k-1)*StW +: StW];
+    assign {hdr, dvs_frac, dvs3, rem, quo} = st_in[(k-1)*StW +: StW];
     if (k == 1) begin : g_first
       // Slot 1's bit is always 1 and its subtraction was made in slot 0 (rem0).
       logic unused_top;
@@ -173,10 +191,27 @@ module rc_fp_div #(
     end else begin : g_next
       // Restoring step: subtract the divisor if it fits (the bit dropped by the cast is 0).
       logic [RemW:0] diff;
-      assign diff     = {1'b0, rem} - {3'b001, dvs_frac};
+      if (k >= 3 && cycle_of(k) == cycle_of(k - 1)) begin : g_both
+        // Slot k - 1 runs in this cycle: subtract from its input remainder R for both of its
+        // outcomes, and let its quotient bit select. Kept R: this slot's remainder is 2R;
+        // kept R - D: it is 2R - 2D, so the difference is 2R - 3D (both modulo 2^(RemW+1),
+        // like the chained subtraction).
+        // (When R is kept it is below the divisor, so its top bit is 0 and not needed.)
+        logic [RemW-1:0] rem_prev;
+        logic [RemW:0]   diff_kept, diff_sub;
+        assign rem_prev  = st_in[(k-2)*StW + N +: RemW];
+        assign diff_kept = {1'b0, rem_prev[ManW-1:0], 1'b0} - {3'b001, dvs_frac};
+        assign diff_sub  = {rem_prev, 1'b0} - dvs3;
+        assign diff      = q_s[k-1] ? diff_sub : diff_kept;
+      end else begin : g_chain
+        logic unused_dvs3;
+        assign unused_dvs3 = ^dvs3;
+        assign diff        = {1'b0, rem} - {3'b001, dvs_frac};
+      end
       assign q_bit    = ~diff[RemW];
       assign rem_kept = ManW'(q_bit ? diff[RemW-1:0] : rem);
     end
+    assign q_s[k] = q_bit;
     // Quotient bits are placed MSB first, bit N - k in slot k.
     always_comb begin
       quo_next          = quo;
@@ -185,7 +220,7 @@ module rc_fp_div #(
 
     if (k < N) begin : g_mid
       // The next slot's partial remainder is the kept one doubled.
-      assign st_out[k*StW +: StW] = {hdr, dvs_frac, rem_kept, 1'b0, quo_next};
+      assign st_out[k*StW +: StW] = {hdr, dvs_frac, dvs3, rem_kept, 1'b0, quo_next};
     end else begin : g_last
       // The rounding increment is decided here, before the register, so the rounding cycle
       // starts from it. The final remainder is nonzero (the sticky bit) if the divisor did not
