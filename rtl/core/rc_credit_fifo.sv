@@ -7,10 +7,10 @@
 //   the FIFO; the FIFO drives the downstream handshake (valid_o, ready_i, data_o).
 // - Credits: cnt_q counts operations in flight in the pipeline plus entries held in the FIFO.
 //   credit_o = cnt_q < Depth, itself a register (credit_q, loaded with cnt_d != Depth: the count
-//   never exceeds Depth), so the owner's ready fans out from a flip-flop and no compare sits
-//   before it; credit_o never depends on ready_i or valid_i in the same cycle. Since
-//   every operation in flight has a FIFO slot reserved, a write always finds room and nothing is
-//   dropped, whatever ready_i does.
+//   never exceeds Depth; checked by CreditIsCount_A), so the owner's ready fans out from a
+//   flip-flop and no compare sits before it; credit_o never depends on ready_i or valid_i in the
+//   same cycle. Since every operation in flight has a FIFO slot reserved, a write always finds
+//   room and nothing is dropped, whatever ready_i does.
 // - Handshake (downstream): valid_o/ready_i; an entry is popped when valid_o & ready_i. valid_o
 //   and data_o are flip-flops (an output register at the head, loaded from the storage or
 //   straight from a write) and stay stable until popped (valid_o never depends on ready_i).
@@ -71,15 +71,16 @@ module rc_credit_fifo #(
   localparam logic [CntW-1:0] DepthCnt = CntW'(Depth);
   localparam logic [PtrW-1:0] LastPtr  = PtrW'(RamDepth - 1);
 
-  logic             pop, credit_q, out_v_q, out_free, ram_any, ram_rd, ram_wr, bypass;
+  logic             pop, credit_q, credit_d, out_v_q, out_free, ram_any, ram_rd, ram_wr, bypass;
   logic [CntW-1:0]  cnt_d, cnt_q;  // credits in use: in flight + stored (storage + head)
   logic [CntW-1:0]  occ_d, occ_q;  // entries in the storage behind the head
+  logic             ram_any_q, ram_any_d;  // occ_q != 0
   logic [PtrW-1:0]  wr_ptr_d, wr_ptr_q, rd_ptr_d, rd_ptr_q;
   logic [Width-1:0] ram_data, out_q;
 
   assign pop      = out_v_q & ready_i;
   assign out_free = ~out_v_q | ready_i;
-  assign ram_any  = occ_q != '0;
+  assign ram_any  = ram_any_q;
   assign ram_rd   = out_free & ram_any;
   assign bypass   = out_free & ~ram_any & wr_valid_i;
   assign ram_wr   = wr_valid_i & ~bypass;
@@ -87,13 +88,30 @@ module rc_credit_fifo #(
   assign valid_o  = out_v_q;
   assign data_o   = out_q;
 
+  // The counts move by at most one a cycle: the count one up and one down are made from the
+  // registers, beside the handshakes, which only select (no adder behind ready_i). The flags
+  // derived from the counts (credit_q: cnt_q != Depth; ram_any_q: occ_q != 0) are registered
+  // from the same selection, with their compares against the registers too (run 47: the ray
+  // generator's FIFO, occ_q -> occ_q, -1.04 ns, and credit_q, -0.40 ns).
   always_comb begin
-    cnt_d = cnt_q;
-    if (take_i) cnt_d = cnt_d + CntW'(1);
-    if (pop)    cnt_d = cnt_d - CntW'(1);
-    occ_d = occ_q;
-    if (ram_wr) occ_d = occ_d + CntW'(1);
-    if (ram_rd) occ_d = occ_d - CntW'(1);
+    cnt_d    = cnt_q;
+    credit_d = credit_q;
+    if (take_i && !pop) begin
+      cnt_d    = cnt_q + CntW'(1);
+      credit_d = cnt_q != DepthCnt - CntW'(1);
+    end else if (pop && !take_i) begin
+      cnt_d    = cnt_q - CntW'(1);
+      credit_d = 1'b1;
+    end
+    occ_d     = occ_q;
+    ram_any_d = ram_any_q;
+    if (ram_wr && !ram_rd) begin
+      occ_d     = occ_q + CntW'(1);
+      ram_any_d = 1'b1;
+    end else if (ram_rd && !ram_wr) begin
+      occ_d     = occ_q - CntW'(1);
+      ram_any_d = occ_q != CntW'(1);
+    end
     wr_ptr_d = wr_ptr_q;
     if (ram_wr) wr_ptr_d = (wr_ptr_q == LastPtr) ? '0 : wr_ptr_q + PtrW'(1);
     rd_ptr_d = rd_ptr_q;
@@ -102,16 +120,18 @@ module rc_credit_fifo #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      cnt_q    <= '0;
-      credit_q <= 1'b1;
-      occ_q    <= '0;
+      cnt_q     <= '0;
+      credit_q  <= 1'b1;
+      occ_q     <= '0;
+      ram_any_q <= 1'b0;
       wr_ptr_q <= '0;
       rd_ptr_q <= '0;
       out_v_q  <= 1'b0;
     end else begin
-      cnt_q    <= cnt_d;
-      credit_q <= cnt_d != DepthCnt;
-      occ_q    <= occ_d;
+      cnt_q     <= cnt_d;
+      credit_q  <= credit_d;
+      occ_q     <= occ_d;
+      ram_any_q <= ram_any_d;
       wr_ptr_q <= wr_ptr_d;
       rd_ptr_q <= rd_ptr_d;
       if (out_free) out_v_q <= ram_any | wr_valid_i;
@@ -198,6 +218,9 @@ module rc_credit_fifo #(
   // flight).
   OccWithinCredits_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                        occ_q + CntW'(out_v_q) <= cnt_q && cnt_q <= DepthCnt);
+  // The storage's flag always equals its count's compare (both are loaded from the same case).
+  RamAnyIsOcc_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  ram_any_q == (occ_q != '0));
   // Handshake outputs must be known once out of reset.
   HandshakeKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                      !$isunknown({valid_o, credit_o}));
