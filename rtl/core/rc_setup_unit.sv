@@ -121,9 +121,9 @@ module rc_setup_unit #(
   //////////////////////////
 
   logic [Threads-1:0] free_q, g_acc, gacc_q;
-  logic               acc_any, acc_take, acc_v_q;
+  logic               acc_any, acc_take, acc_take_f, acc_v_q;
   logic [ThrW-1:0]    acc_thr;
-  logic               feed_busy_q;
+  logic               feed_busy_q, feed_busy_d;
 
   // The free-thread choice (from registers at more than 32 threads: rc_rr_pick's candidates) is
   // taken as it is (acc_take: its valid, the feeder idle, a packet waiting). A taken thread leaves
@@ -181,13 +181,13 @@ module rc_setup_unit #(
   logic [12*W-1:0] pin_org_q, pin_dir_q;
   logic [4*W-1:0]  pin_ilen_q;
   logic [127:0]    pin_pix_q;
+  logic            pin_v_d;
+  assign pin_v_d = pin_v_q ? ~acc_take_f : pkt_valid_i;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       pin_v_q <= 1'b0;
-    end else if (pkt_valid_i && !pin_v_q) begin
-      pin_v_q <= 1'b1;
-    end else if (acc_take) begin
-      pin_v_q <= 1'b0;
+    end else begin
+      pin_v_q <= pin_v_d;
     end
   end
   always_ff @(posedge clk_i) begin
@@ -200,7 +200,26 @@ module rc_setup_unit #(
     end
   end
   assign pkt_ready_o = ~pin_v_q;
-  assign acc_take    = pin_v_q & acc_any & ~feed_busy_q;
+
+  // The take's condition beside the pick (a packet waiting, the feeder idle) is registered from
+  // the next values, twice: take_ok_q makes the take for the pick and the taken thread's
+  // registers, and take_no_q, its inverse (a different function, so synthesis does not merge
+  // the two), makes the feeder's copy for the feeder and the input register. So neither
+  // feed_busy_q nor one net drives both sides (run 47: feed_busy_q -> su_v_q, -1.12 ns, and
+  // into the pick's candidates, -0.57 ns).
+  logic take_ok_q, take_no_q, take_ok_d;
+  assign acc_take   = take_ok_q & acc_any;
+  assign acc_take_f = ~take_no_q & acc_any;
+  assign take_ok_d  = pin_v_d & ~feed_busy_d;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      take_ok_q <= 1'b0;
+      take_no_q <= 1'b1;
+    end else begin
+      take_ok_q <= take_ok_d;
+      take_no_q <= ~take_ok_d;
+    end
+  end
 
   ////////////
   // Feeder //
@@ -221,13 +240,13 @@ module rc_setup_unit #(
   // two), enables the feeder's copy of the packet (700 flip-flops); su_v_q[u], set-up unit u's
   // input valid (the feeder busy and the rotation at u), registered from the next values, drives
   // that unit only (its input registers, 450 flip-flops each).
-  logic          feed_idle_q, feed_busy_d;
+  logic          feed_idle_q;
   logic [UW-1:0] in_u_d;
   logic [NU-1:0] su_v_q;
   assign su_take = |(su_v_q & su_ready_all);
   always_comb begin
     feed_busy_d = feed_busy_q;
-    if (acc_take) begin
+    if (acc_take_f) begin
       feed_busy_d = 1'b1;
     end else if (su_take && feed_r_q == 2'd3) begin
       feed_busy_d = 1'b0;
@@ -248,7 +267,7 @@ module rc_setup_unit #(
       feed_idle_q <= ~feed_busy_d;
       in_u_q      <= in_u_d;
       for (int unsigned u = 0; u < NU; u++) su_v_q[u] <= feed_busy_d && in_u_d == UW'(u);
-      if (acc_take) begin
+      if (acc_take_f) begin
         feed_thr_q <= acc_thr;
         feed_r_q   <= '0;
       end else if (su_take) begin
@@ -532,6 +551,8 @@ module rc_setup_unit #(
   // The feeder's flags agree.
   FeedIdle_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                feed_idle_q == !feed_busy_q);
+  TakeOk_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            take_ok_q == (pin_v_q & ~feed_busy_q) && take_no_q == !take_ok_q);
   SuValid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               su_v_q == (feed_busy_q ? NU'(1) << in_u_q : '0));
   // A packet is taken into a free thread.
