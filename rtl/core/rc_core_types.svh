@@ -96,24 +96,45 @@ localparam logic [1:0] RoutePop  = 2'd2;  // no active ray, an empty leaf or an 
 
 // The checks of a node's record read at index own (Node*) (docs/architecture.md, "Errors"): an
 // inner node must have its children after itself and inside the node section and a finite split
-// of the format's width; a leaf's list range must lie inside the list section.
+// of the format's width; a leaf's list range must lie inside the list section. In two parts, so
+// a caller may register between them: node_sums, the sums and flags of the record alone, and
+// node_decide, their compares with own and the section sizes. The sums travel as a vector
+// {leaf, bad_split, index[29:0], list_end[32:0], next[32:0]} (Yosys 0.23 reads no functions
+// of struct type): leaf, a leaf (else an inner node); bad_split, an inner node's split wider
+// than the format or not finite; index, the child or list index; list_end, index + the leaf's
+// triangle count; next, index + 1.
+localparam int unsigned NodeSumsW = 2 + 30 + 33 + 33;
+
+function automatic logic [NodeSumsW-1:0] node_sums(input logic [63:0] rec);
+  logic [29:0] index;
+  logic [31:0] upper;
+  index     = rec[KdNodeIndexLsb +: 30];
+  upper     = rec[KdNodeValueLsb +: 32];
+  node_sums = {rec[KdNodeKindLsb +: 2] == 2'(KdNodeKindLeaf),
+               ((upper >> CoreFpW) != 32'd0) || (&upper[CoreFpW-2 -: Fp24ExpW]), index,
+               {3'd0, index} + {1'b0, upper}, {3'd0, index} + 33'd1};
+endfunction
+
+function automatic logic [1:0] node_decide(input logic [NodeSumsW-1:0] sums,
+                                          input logic [29:0] own,
+                                          input logic [31:0] node_count,
+                                          input logic [31:0] list_count);
+  logic        leaf, bad_split;
+  logic [29:0] index;
+  logic [32:0] list_end, next;
+  {leaf, bad_split, index, list_end, next} = sums;
+  if (leaf) begin
+    node_decide = (list_end > {1'b0, list_count}) ? NodeBadList : NodeOk;
+  end else begin
+    node_decide = (bad_split || index <= own || next >= {1'b0, node_count}) ? NodeMalformed :
+                                                                              NodeOk;
+  end
+endfunction
+
 function automatic logic [1:0] node_check(input logic [63:0] rec, input logic [29:0] own,
                                          input logic [31:0] node_count,
                                          input logic [31:0] list_count);
-  logic [1:0]  kind;
-  logic [29:0] index;
-  logic [31:0] upper;
-  logic        wide;
-  kind  = rec[KdNodeKindLsb +: 2];
-  index = rec[KdNodeIndexLsb +: 30];
-  upper = rec[KdNodeValueLsb +: 32];
-  wide  = (upper >> CoreFpW) != 32'd0;
-  if (kind == 2'(KdNodeKindLeaf)) begin
-    node_check = ({3'd0, index} + {1'b0, upper} > {1'b0, list_count}) ? NodeBadList : NodeOk;
-  end else begin
-    node_check = (wide || (&upper[CoreFpW-2 -: Fp24ExpW]) || index <= own ||
-                  {3'd0, index} + 33'd1 >= {1'b0, node_count}) ? NodeMalformed : NodeOk;
-  end
+  node_check = node_decide(node_sums(rec), own, node_count, list_count);
 endfunction
 
 // The error bits (rc_pkg::CoreStatus*) that visiting a node with these checks and these active

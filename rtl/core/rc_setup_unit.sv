@@ -491,24 +491,27 @@ module rc_setup_unit #(
   // Start //
   ///////////
 
-  // The root's checks, from the quasi-static configuration through two registers (its inputs,
-  // then the checks): a packet's start leaves the set-up pipeline tens of cycles after the packet
-  // is offered, long after a configuration change has reached root_chk_q. An empty node section
-  // makes the root malformed (rc::trace_packet: the root index is outside the section).
-  logic [1:0]  root_chk_q;
-  logic [63:0] root_cfg_q;
-  logic [31:0] node_count_q, list_count_q;
+  // The root's checks, from the quasi-static configuration through three registers (its inputs,
+  // the record's sums, then the checks): a packet's start leaves the set-up pipeline tens of
+  // cycles after the packet is offered, long after a configuration change has reached
+  // root_chk_q. An empty node section makes the root malformed (rc::trace_packet: the root index
+  // is outside the section). (Run 47: the checks in one cycle, -0.30 ns.)
+  logic [1:0]                     root_chk_q;
+  logic [63:0]                    root_cfg_q;
+  logic [rc_pkg::NodeSumsW-1:0]   root_sums_q;
+  logic [31:0]                    node_count_q, list_count_q;
   always_ff @(posedge clk_i) begin
     root_cfg_q   <= root_node_i;
     node_count_q <= node_count_i;
     list_count_q <= list_count_i;
+    root_sums_q  <= rc_pkg::node_sums(root_cfg_q);
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       root_chk_q <= rc_pkg::NodeOk;
     end else begin
       root_chk_q <= (node_count_q == 32'd0) ? rc_pkg::NodeMalformed :
-                    rc_pkg::node_check(root_cfg_q, 30'd0, node_count_q, list_count_q);
+                    rc_pkg::node_decide(root_sums_q, 30'd0, node_count_q, list_count_q);
     end
   end
 
