@@ -8,8 +8,10 @@
 //   (docs/architecture.md, "Intersection"; tb/golden/trace.hpp intersect()). With translate = 0
 //   there is no final add at all (adding +0 would turn a -0 row result into +0).
 // - Packing: a word is {sign, exp[ExpW-1:0], frac[FracW-1:0]}, W = 1 + ExpW + FracW bits.
-//   m_i[k*W +: W] = m_k (k = 0..11, row-major), v_i[c*W +: W] = component c (x, y, z),
-//   r_o[r*W +: W] = row r. tag_i is carried unchanged to tag_o.
+//   m_i[k*W +: W] = m_k (k = 0..11, row-major), v_i[(3*r+c)*W +: W] = component c (x, y, z)
+//   of the vector for row r: one copy per row, so that a caller can place a register beside
+//   each row's multipliers (every caller passes the same vector three times; the rows use only
+//   their own copy). r_o[r*W +: W] = row r. tag_i is carried unchanged to tag_o.
 // - Handshake (Backpressure = 1): valid_i/ready_o at the input, valid_o/ready_i at the output,
 //   AXI-style (a transfer happens on a clock edge where valid and ready are both 1). valid_o never
 //   depends on ready_i, ready_o depends only on registered state, and once valid_o is 1 it stays
@@ -54,7 +56,7 @@ module rc_xform_unit #(
   input  logic                         valid_i,
   output logic                         ready_o,
   input  logic [12*(1+ExpW+FracW)-1:0] m_i,
-  input  logic [3*(1+ExpW+FracW)-1:0]  v_i,
+  input  logic [9*(1+ExpW+FracW)-1:0]  v_i,
   input  logic                         translate_i,
   input  logic [TagW-1:0]              tag_i,
   // Output
@@ -119,15 +121,15 @@ module rc_xform_unit #(
     assign unused_mul_valid = mul1_valid ^ mul2_valid;
 
     rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(MulStages)) u_mul0 (
-      .clk_i, .rst_ni, .valid_i(in_fire), .a_i(m_i[(4*r+0)*W +: W]), .b_i(v_i[0*W +: W]),
+      .clk_i, .rst_ni, .valid_i(in_fire), .a_i(m_i[(4*r+0)*W +: W]), .b_i(v_i[(3*r+0)*W +: W]),
       .valid_o(mul_valid[r]), .res_o(p0)
     );
     rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(MulStages)) u_mul1 (
-      .clk_i, .rst_ni, .valid_i(in_fire), .a_i(m_i[(4*r+1)*W +: W]), .b_i(v_i[1*W +: W]),
+      .clk_i, .rst_ni, .valid_i(in_fire), .a_i(m_i[(4*r+1)*W +: W]), .b_i(v_i[(3*r+1)*W +: W]),
       .valid_o(mul1_valid), .res_o(p1)
     );
     rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(MulStages)) u_mul2 (
-      .clk_i, .rst_ni, .valid_i(in_fire), .a_i(m_i[(4*r+2)*W +: W]), .b_i(v_i[2*W +: W]),
+      .clk_i, .rst_ni, .valid_i(in_fire), .a_i(m_i[(4*r+2)*W +: W]), .b_i(v_i[(3*r+2)*W +: W]),
       .valid_o(mul2_valid), .res_o(p2)
     );
 

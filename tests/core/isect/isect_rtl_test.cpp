@@ -640,7 +640,12 @@ struct XformDrv {
     d.tag_i = tag;
     d.translate_i = it.translate;
     for (int k = 0; k < 12; ++k) put_field(d.m_i, k * kW, kW, it.m[static_cast<size_t>(k)].bits());
-    for (int k = 0; k < 3; ++k) put_field(d.v_i, k * kW, kW, it.v[static_cast<size_t>(k)].bits());
+    // One copy of the vector per row (the port's contract); every caller passes the same one.
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 3; ++k) {
+        put_field(d.v_i, (3 * r + k) * kW, kW, it.v[static_cast<size_t>(k)].bits());
+      }
+    }
   }
   template <class V>
   static uint32_t tag(const V& d) {
