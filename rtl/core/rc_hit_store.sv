@@ -139,7 +139,7 @@ module rc_hit_store #(
   // commits of this cycle and the two before, the read's cycle among them) are forwarded, newest
   // first. The decision being made now (wb_better, committed next cycle) is not forwarded: wb_pf_q
   // records that it is the same ray's, and the compare in wb compares against it beside the best.
-  logic wc_fwd, wd_fwd, we_fwd, wb_fwd;
+  logic wb_fwd;
   logic [W-1:0]  io2_bt;
   logic [31:0]   io2_btri;
   assign io2_bt   = io2_hit_q ? bw_rd[W-1:0] : FpInf;
@@ -160,17 +160,14 @@ module rc_hit_store #(
       we_fwd_q <= wd_we_q & (wd_rid_q == io1_rid);
     end
   end
-  assign wc_fwd   = wc_fwd_q;
-  assign wd_fwd   = wd_fwd_q;
-  assign we_fwd   = we_fwd_q;
 
   always_ff @(posedge clk_i) begin
     if (io2_v_q) begin
       wb_q      <= io2_q;
       wb_rid_q  <= io2_rid;
       wb_pf_q   <= wb_fwd;
-      wb_bt_q   <= wc_fwd ? wc_t_q : wd_fwd ? wd_t_q : we_fwd ? we_t_q : io2_bt;
-      wb_btri_q <= wc_fwd ? wc_tri_q : wd_fwd ? wd_tri_q : we_fwd ? we_tri_q : io2_btri;
+      wb_bt_q   <= wc_fwd_q ? wc_t_q : wd_fwd_q ? wd_t_q : we_fwd_q ? we_t_q : io2_bt;
+      wb_btri_q <= wc_fwd_q ? wc_tri_q : wd_fwd_q ? wd_tri_q : we_fwd_q ? we_tri_q : io2_btri;
     end
     // Loaded every cycle (only wc_we_q says whether they commit).
     wc_rid_q <= wb_rid_q;
