@@ -170,11 +170,11 @@ fpga-vivado: $(GEN_PKG)
 # fpga/ecp5/ulx3s.lpf), ecppack; writes rc_ulx3s.bit and report.md (utilisation, Fmax against the
 # target with PASS/FAIL, critical path, step times) to $(BUILD)/fpga/ecp5/. FPGA_ARGS passes more
 # options (e.g. FPGA_ARGS="--param Threads=1" for a quick reduced build). On the default build
-# (the unit core, 128 threads) Yosys takes about 5 minutes and nextpnr over two hours (static
-# placer, FPGA_SEED, about 40 minutes; router1 with its timing-driven rip-up, over 90 on a design
-# that does not yet close 100 MHz; FPGA_ARGS=--no-tmg-ripup routes in a fraction of the time, to
-# a lower Fmax; FPGA_ARGS=--no-route stops after placement and lists every endpoint the placement's
-# estimates fail, in sta.txt).
+# (the unit core, 64 threads on the board) Yosys takes about 5 minutes and nextpnr 20 to 50
+# (static placer, FPGA_SEED, 10 to 35 minutes; router1 without its timing-driven rip-up, 6 to
+# 11: FPGA_ARGS=--tmg-ripup adds the rip-up, whose rounds ran for hours on the unit core;
+# FPGA_ARGS=--no-route stops after placement and lists every endpoint the placement's estimates
+# fail, in sta.txt).
 FPGA_SCENE ?= scenes/cornell.json
 FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100

