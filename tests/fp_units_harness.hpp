@@ -17,15 +17,13 @@
 #include <cstdio>
 #include <ctime>
 #include <deque>
-#include <memory>
 #include <random>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "fp.hpp"
 #include "fp_cases.hpp"
-#include "verilated.h"
+#include "verilated_tb.hpp"
 
 namespace rc::test {
 
@@ -33,42 +31,32 @@ template <class V, class T>
 class UnitsHarness {
  public:
   explicit UnitsHarness(uint64_t seed)
-      : ctx_(std::make_unique<VerilatedContext>()),
-        rng_(seed),
-        start_(std::chrono::steady_clock::now()),
-        cpu_start_(std::clock()) {
-    ctx_->assertOn(true);
-    dut_ = std::make_unique<V>(ctx_.get());
-    dut_->clk_i = 0;
-    dut_->rst_ni = 0;
-    dut_->valid_i = 0;
-    dut_->eval();
-    for (int i = 0; i < 4; ++i) tick();
-    dut_->rst_ni = 1;
+      : rng_(seed), start_(std::chrono::steady_clock::now()), cpu_start_(std::clock()) {
+    tb_->valid_i = 0;
+    tb_.reset(4, [this] { tick(); });
     tick();
   }
-  ~UnitsHarness() { dut_->final(); }
   UnitsHarness(const UnitsHarness&) = delete;
   UnitsHarness& operator=(const UnitsHarness&) = delete;
 
   // Applies one pair (after a random number of bubbles: one cycle in eight is idle).
   void push(T a, T b, bool sub) {
     while ((rng_() & 7) == 0) {
-      dut_->valid_i = 0;
+      tb_->valid_i = 0;
       tick();
     }
-    dut_->valid_i = 1;
-    dut_->sub_i = sub;
+    tb_->valid_i = 1;
+    tb_->sub_i = sub;
     // port width = the format's
-    dut_->a_i = static_cast<std::remove_reference_t<decltype(dut_->a_i)>>(a.bits());
-    dut_->b_i = static_cast<std::remove_reference_t<decltype(dut_->b_i)>>(b.bits());
+    put(tb_->a_i, a.bits());
+    put(tb_->b_i, b.bits());
     add_q_.push_back({a, b, sub ? (a - b).bits() : (a + b).bits(), sub ? 1u : 0u});
     mul_q_.push_back({a, b, (a * b).bits(), 0});
     div_q_.push_back({a, b, (a / b).bits(), 0});
     sqrt_q_.push_back({a, b, sqrt(a).bits(), 0});
     cmp_q_.push_back({a, b, 0, 0});
     tick();
-    dut_->valid_i = 0;
+    tb_->valid_i = 0;
     ++pairs_;
   }
 
@@ -80,7 +68,7 @@ class UnitsHarness {
 
   uint64_t pairs() const { return pairs_; }
   uint64_t mismatches() const { return mismatches_; }
-  uint64_t cycles() const { return cycles_; }
+  uint64_t cycles() const { return tb_.cycles(); }
   // Wall time and this process's CPU time since the harness was made (the CPU time is the
   // figure that holds on a loaded machine; the tests run single-threaded).
   double seconds() const {
@@ -119,52 +107,45 @@ class UnitsHarness {
 
   std::string pair_text(const Expect& e) const { return "(" + e.a.hex() + ", " + e.b.hex() + ")"; }
 
+  // The outputs are checked right after the rising edge.
   void tick() {
-    dut_->clk_i = 1;
-    dut_->eval();
-    ctx_->timeInc(1);
-    check_outputs();
-    dut_->clk_i = 0;
-    dut_->eval();
-    ctx_->timeInc(1);
-    ++cycles_;
+    tb_.tick([this] { check_outputs(); });
   }
 
   void check_outputs() {
     Expect e;
-    if (dut_->add_valid_o && pop(add_q_, "add", e) && dut_->add_res_o != e.res)
+    if (tb_->add_valid_o && pop(add_q_, "add", e) && tb_->add_res_o != e.res)
       fail(std::string(e.sub ? "sub" : "add") + pair_text(e) + ": rtl " +
-           T::from_bits(dut_->add_res_o).hex() + ", model " + T::from_bits(e.res).hex());
-    if (dut_->mul_valid_o && pop(mul_q_, "mul", e) && dut_->mul_res_o != e.res)
-      fail("mul" + pair_text(e) + ": rtl " + T::from_bits(dut_->mul_res_o).hex() + ", model " +
+           T::from_bits(tb_->add_res_o).hex() + ", model " + T::from_bits(e.res).hex());
+    if (tb_->mul_valid_o && pop(mul_q_, "mul", e) && tb_->mul_res_o != e.res)
+      fail("mul" + pair_text(e) + ": rtl " + T::from_bits(tb_->mul_res_o).hex() + ", model " +
            T::from_bits(e.res).hex());
-    if (dut_->div_valid_o && pop(div_q_, "div", e) && dut_->div_res_o != e.res)
-      fail("div" + pair_text(e) + ": rtl " + T::from_bits(dut_->div_res_o).hex() + ", model " +
+    if (tb_->div_valid_o && pop(div_q_, "div", e) && tb_->div_res_o != e.res)
+      fail("div" + pair_text(e) + ": rtl " + T::from_bits(tb_->div_res_o).hex() + ", model " +
            T::from_bits(e.res).hex());
-    if (dut_->sqrt_valid_o && pop(sqrt_q_, "sqrt", e) && dut_->sqrt_res_o != e.res)
-      fail("sqrt(" + e.a.hex() + "): rtl " + T::from_bits(dut_->sqrt_res_o).hex() + ", model " +
+    if (tb_->sqrt_valid_o && pop(sqrt_q_, "sqrt", e) && tb_->sqrt_res_o != e.res)
+      fail("sqrt(" + e.a.hex() + "): rtl " + T::from_bits(tb_->sqrt_res_o).hex() + ", model " +
            T::from_bits(e.res).hex());
-    if (dut_->cmp_valid_o && pop(cmp_q_, "cmp", e)) {
+    if (tb_->cmp_valid_o && pop(cmp_q_, "cmp", e)) {
       const bool want_lt = lt(e.a, e.b), want_le = le(e.a, e.b), want_eq = eq(e.a, e.b);
       const uint32_t want_min = min(e.a, e.b).bits(), want_max = max(e.a, e.b).bits();
-      if (dut_->lt_o != want_lt || dut_->le_o != want_le || dut_->eq_o != want_eq)
-        fail("cmp" + pair_text(e) + ": rtl lt/le/eq " + std::to_string(dut_->lt_o) +
-             std::to_string(dut_->le_o) + std::to_string(dut_->eq_o) + ", model " +
+      if (tb_->lt_o != want_lt || tb_->le_o != want_le || tb_->eq_o != want_eq)
+        fail("cmp" + pair_text(e) + ": rtl lt/le/eq " + std::to_string(tb_->lt_o) +
+             std::to_string(tb_->le_o) + std::to_string(tb_->eq_o) + ", model " +
              std::to_string(want_lt) + std::to_string(want_le) + std::to_string(want_eq));
-      if (dut_->min_o != want_min || dut_->max_o != want_max)
-        fail("min/max" + pair_text(e) + ": rtl " + T::from_bits(dut_->min_o).hex() + "/" +
-             T::from_bits(dut_->max_o).hex() + ", model " + T::from_bits(want_min).hex() + "/" +
+      if (tb_->min_o != want_min || tb_->max_o != want_max)
+        fail("min/max" + pair_text(e) + ": rtl " + T::from_bits(tb_->min_o).hex() + "/" +
+             T::from_bits(tb_->max_o).hex() + ", model " + T::from_bits(want_min).hex() + "/" +
              T::from_bits(want_max).hex());
     }
   }
 
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<V> dut_;
+  VerilatedTb<V> tb_;
   std::mt19937_64 rng_;
   std::chrono::steady_clock::time_point start_;
   std::clock_t cpu_start_;
   std::deque<Expect> add_q_, mul_q_, div_q_, sqrt_q_, cmp_q_;
-  uint64_t pairs_ = 0, mismatches_ = 0, cycles_ = 0;
+  uint64_t pairs_ = 0, mismatches_ = 0;
 };
 
 // Drains the pipelines, prints the [cases] line (what + the number of pairs pushed and the

@@ -12,15 +12,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <deque>
-#include <memory>
 #include <random>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "../verilated_tb.hpp"
 #include "Vrc_board_host_tb.h"
 #include "rc_constants.hpp"
-#include "verilated.h"
 
 namespace {
 
@@ -39,46 +38,33 @@ struct Write {
 
 class Bench {
  public:
-  Bench() : ctx_(std::make_unique<VerilatedContext>()) {
-    ctx_->assertOn(true);
-    ctx_->fatalOnError(false);
-    m_ = std::make_unique<Vrc_board_host_tb>(ctx_.get(), "tb");
+  // Not fatal on error: a failing RTL assertion fails the test (the wrapper's TbError).
+  Bench() : tb_("tb", /*fatal_on_error=*/false) {
     for (uint32_t a = 0; a < kRegs; ++a) regs_.push_back(reg_init(a));
     fb_.assign(kFbPixels, 0);
-    m_->clk_i = 0;
-    m_->rst_ni = 0;
-    m_->lb_valid_i = 0;
-    m_->lb_data_i = 0;
-    m_->rx_i = 1;
-    m_->fb_we_i = 0;
-    m_->eval();
-    for (int i = 0; i < 3; ++i) tick();
-    m_->rst_ni = 1;
-    m_->eval();
+    tb_->lb_valid_i = 0;
+    tb_->lb_data_i = 0;
+    tb_->rx_i = 1;
+    tb_->fb_we_i = 0;
+    tb_.reset(3, [this] { tick(); });
     tick();
   }
-  ~Bench() { m_->final(); }
 
-  Vrc_board_host_tb& m() { return *m_; }
-  uint64_t cycle() const { return cycle_; }
+  Vrc_board_host_tb& m() { return tb_.m(); }
+  uint64_t cycle() const { return tb_.cycles(); }
 
   // One clock cycle: the serial encoder drives rx_i, then a rising edge; then the decoder and the
   // monitors look at the outputs after the edge.
   void tick() {
     drive_rx();
-    m_->clk_i = 1;
-    m_->eval();
-    m_->clk_i = 0;
-    m_->eval();
-    ++cycle_;
-    ASSERT_FALSE(ctx_->gotError()) << "an RTL assertion failed at cycle " << cycle_;
+    tb_.tick();
     decode_tx();
-    if (m_->mon_we_o) {
-      writes_.push_back({m_->mon_addr_o, m_->mon_wdata_o});
-      regs_[m_->mon_addr_o] = m_->mon_wdata_o;
+    if (tb_->mon_we_o) {
+      writes_.push_back({tb_->mon_addr_o, tb_->mon_wdata_o});
+      regs_[tb_->mon_addr_o] = tb_->mon_wdata_o;
     }
-    drops_ += m_->drop_o;
-    rx_frame_errors_ += m_->rx_frame_error_o;
+    drops_ += tb_->drop_o;
+    rx_frame_errors_ += tb_->rx_frame_error_o;
   }
 
   // Queue bytes on the host's serial line (8N1, 8 clocks per bit); gap = idle bit times before.
@@ -115,9 +101,9 @@ class Bench {
   void settle() {
     while (sending()) tick();
     uint64_t quiet = 0;
-    const uint64_t limit = cycle_ + 2000 * 10 * kClksPerBit;
+    const uint64_t limit = cycle() + 2000 * 10 * kClksPerBit;
     while (quiet < 30 * kClksPerBit) {
-      if (cycle_ > limit) {
+      if (cycle() > limit) {
         ADD_FAILURE() << "the host still answers after 2000 byte times";
         return;
       }
@@ -142,20 +128,20 @@ class Bench {
   void fill_fb(std::mt19937& rng) {
     for (uint32_t p = 0; p < kFbPixels; ++p) {
       fb_[p] = static_cast<uint32_t>(rng() & 0xffffffu);
-      m_->fb_we_i = 1;
-      m_->fb_waddr_i = static_cast<uint8_t>(p);
-      m_->fb_wdata_i = fb_[p];
+      tb_->fb_we_i = 1;
+      tb_->fb_waddr_i = static_cast<uint8_t>(p);
+      tb_->fb_wdata_i = fb_[p];
       tick();
     }
-    m_->fb_we_i = 0;
+    tb_->fb_we_i = 0;
   }
 
  private:
   void drive_rx() {
     if (line_.empty()) {
-      m_->rx_i = 1;
+      tb_->rx_i = 1;
     } else {
-      m_->rx_i = static_cast<uint8_t>(line_.front());
+      tb_->rx_i = static_cast<uint8_t>(line_.front());
       line_.pop_front();
     }
   }
@@ -163,7 +149,7 @@ class Bench {
   // 8N1 decoder of tx_o: a falling edge starts a frame; every bit must hold for exactly
   // kClksPerBit clocks (the start bit counted from the edge); the stop bit must be 1.
   void decode_tx() {
-    const int level = m_->tx_o;
+    const int level = tb_->tx_o;
     if (!decoding_) {
       if (level == 0) {
         decoding_ = true;
@@ -192,9 +178,7 @@ class Bench {
     }
   }
 
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<Vrc_board_host_tb> m_;
-  uint64_t cycle_ = 0;
+  rc::test::VerilatedTb<Vrc_board_host_tb> tb_;
   std::deque<int> line_;
   int jitter_ = 0;
   std::mt19937 jitter_rng_{7};

@@ -20,13 +20,12 @@
 #include <cstdio>
 #include <deque>
 #include <fstream>
-#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "../verilated_tb.hpp"
 #include "Vrc_board_rom_tb.h"
-#include "verilated.h"
 
 namespace {
 
@@ -41,40 +40,36 @@ struct Expect {
   uint64_t data;
 };
 
+// The ROM's records (seeded random, 40 bits each) and the hex file of them for +rom=.
+std::vector<uint64_t> make_rom(std::mt19937& rng) {
+  std::vector<uint64_t> rom;
+  for (uint32_t i = 0; i < kDepth; ++i) rom.push_back(rng() & kDataMask);
+  return rom;
+}
+std::string write_hex(uint32_t seed, const std::vector<uint64_t>& rom) {
+  const std::string file = ::testing::TempDir() + "board_rom_test_" + std::to_string(seed) + ".hex";
+  std::ofstream out(file);
+  char line[32];
+  for (uint64_t v : rom) {
+    std::snprintf(line, sizeof line, "%010llx\n", static_cast<unsigned long long>(v));
+    out << line;
+  }
+  return file;
+}
+
 class Bench {
  public:
-  explicit Bench(uint32_t seed) : rng_(seed) {
-    for (uint32_t i = 0; i < kDepth; ++i) rom_.push_back(rng_() & kDataMask);
-    file_ = ::testing::TempDir() + "board_rom_test_" + std::to_string(seed) + ".hex";
-    {
-      std::ofstream out(file_);
-      char line[32];
-      for (uint64_t v : rom_) {
-        std::snprintf(line, sizeof line, "%010llx\n", static_cast<unsigned long long>(v));
-        out << line;
-      }
-    }
-    ctx_ = std::make_unique<VerilatedContext>();
-    ctx_->assertOn(true);
-    ctx_->fatalOnError(false);
-    const std::string arg = "+rom=" + file_;
-    const char* argv[] = {"board_rom_test", arg.c_str()};
-    ctx_->commandArgs(2, argv);
-    m_ = std::make_unique<Vrc_board_rom_tb>(ctx_.get(), "rom");
-    m_->clk_i = 0;
-    m_->rst_ni = 0;
-    m_->req_valid_i = 0;
-    m_->rsp_ready_i = 0;
-    m_->eval();
-    edge();
-    edge();
-    m_->rst_ni = 1;
-    m_->eval();
+  // Not fatal on error: a failing RTL assertion fails the test (the wrapper's TbError).
+  explicit Bench(uint32_t seed)
+      : rng_(seed),
+        rom_(make_rom(rng_)),
+        file_(write_hex(seed, rom_)),
+        tb_("rom", /*fatal_on_error=*/false, {"board_rom_test", "+rom=" + file_}) {
+    tb_->req_valid_i = 0;
+    tb_->rsp_ready_i = 0;
+    tb_.reset(2);
   }
-  ~Bench() {
-    m_->final();
-    std::remove(file_.c_str());
-  }
+  ~Bench() { std::remove(file_.c_str()); }
 
   // Runs `cycles` cycles: a new request starts with probability p_req when none is waiting
   // (index below 4096, a fifth of them out of range), the consumer is ready with probability
@@ -102,7 +97,7 @@ class Bench {
     EXPECT_TRUE(expect_.empty()) << expect_.size() << " responses never came";
   }
 
-  uint64_t cycles() const { return cycles_; }
+  uint64_t cycles() const { return tb_.cycles(); }
 
   // Offers a request on every cycle for `cycles` cycles while the consumer stalls; returns how
   // many were accepted.
@@ -125,88 +120,77 @@ class Bench {
   // One clock cycle. Drives the inputs, checks the outputs before the edge, then clocks.
   uint64_t cycle(bool rsp_ready) {
     drive(req_valid_, req_index_, req_tag_, rsp_ready);
-    const bool req_ready = m_->req_ready_o;
+    const bool req_ready = tb_->req_ready_o;
     // req_ready_o must not follow anything driven in this cycle.
     drive(!req_valid_, ~req_index_ & kIdxMask, ~req_tag_ & kTagMask, !rsp_ready);
-    EXPECT_EQ(bool(m_->req_ready_o), req_ready)
-        << "req_ready_o changed with this cycle's inputs at cycle " << cycles_;
+    EXPECT_EQ(bool(tb_->req_ready_o), req_ready)
+        << "req_ready_o changed with this cycle's inputs at cycle " << tb_.cycles();
     drive(req_valid_, req_index_, req_tag_, rsp_ready);
-    const bool a0_free = m_->dbg_a0_free_o;
-    const bool s1_free = m_->dbg_s1_free_o;
-    const bool adv = m_->dbg_adv_o;
+    const bool a0_free = tb_->dbg_a0_free_o;
+    const bool s1_free = tb_->dbg_s1_free_o;
+    const bool adv = tb_->dbg_adv_o;
     drive(req_valid_, req_index_, req_tag_, !rsp_ready);
-    EXPECT_EQ(bool(m_->dbg_a0_free_o), a0_free)
-        << "the address stage's enable changed with rsp_ready_i at cycle " << cycles_;
-    EXPECT_EQ(bool(m_->dbg_s1_free_o), s1_free)
-        << "the read enable changed with rsp_ready_i at cycle " << cycles_;
-    EXPECT_EQ(bool(m_->dbg_adv_o), adv)
-        << "the read stage's advance changed with rsp_ready_i at cycle " << cycles_;
+    EXPECT_EQ(bool(tb_->dbg_a0_free_o), a0_free)
+        << "the address stage's enable changed with rsp_ready_i at cycle " << tb_.cycles();
+    EXPECT_EQ(bool(tb_->dbg_s1_free_o), s1_free)
+        << "the read enable changed with rsp_ready_i at cycle " << tb_.cycles();
+    EXPECT_EQ(bool(tb_->dbg_adv_o), adv)
+        << "the read stage's advance changed with rsp_ready_i at cycle " << tb_.cycles();
     drive(req_valid_, req_index_, req_tag_, rsp_ready);
 
-    const bool rsp_valid = m_->rsp_valid_o;
+    const bool rsp_valid = tb_->rsp_valid_o;
     if (held_) {
-      EXPECT_TRUE(rsp_valid) << "a response held back disappeared at cycle " << cycles_;
-      EXPECT_EQ(uint32_t(m_->rsp_tag_o), held_tag_) << "at cycle " << cycles_;
-      EXPECT_EQ(uint64_t(m_->rsp_data_o), held_data_) << "at cycle " << cycles_;
-      EXPECT_EQ(bool(m_->rsp_error_o), held_error_) << "at cycle " << cycles_;
+      EXPECT_TRUE(rsp_valid) << "a response held back disappeared at cycle " << tb_.cycles();
+      EXPECT_EQ(uint32_t(tb_->rsp_tag_o), held_tag_) << "at cycle " << tb_.cycles();
+      EXPECT_EQ(uint64_t(tb_->rsp_data_o), held_data_) << "at cycle " << tb_.cycles();
+      EXPECT_EQ(bool(tb_->rsp_error_o), held_error_) << "at cycle " << tb_.cycles();
     }
     uint64_t taken = 0;
     if (rsp_valid && rsp_ready) {
       if (expect_.empty()) {
-        ADD_FAILURE() << "a response without a request at cycle " << cycles_;
+        ADD_FAILURE() << "a response without a request at cycle " << tb_.cycles();
       } else {
         const Expect e = expect_.front();
         expect_.pop_front();
-        EXPECT_EQ(uint32_t(m_->rsp_tag_o), e.tag) << "at cycle " << cycles_;
-        EXPECT_EQ(bool(m_->rsp_error_o), e.error) << "at cycle " << cycles_;
+        EXPECT_EQ(uint32_t(tb_->rsp_tag_o), e.tag) << "at cycle " << tb_.cycles();
+        EXPECT_EQ(bool(tb_->rsp_error_o), e.error) << "at cycle " << tb_.cycles();
         if (!e.error) {
-          EXPECT_EQ(uint64_t(m_->rsp_data_o), e.data) << "at cycle " << cycles_;
+          EXPECT_EQ(uint64_t(tb_->rsp_data_o), e.data) << "at cycle " << tb_.cycles();
         }
       }
       taken = 1;
     }
     held_ = rsp_valid && !rsp_ready;
-    held_tag_ = m_->rsp_tag_o;
-    held_data_ = m_->rsp_data_o;
-    held_error_ = m_->rsp_error_o;
+    held_tag_ = tb_->rsp_tag_o;
+    held_data_ = tb_->rsp_data_o;
+    held_error_ = tb_->rsp_error_o;
     if (req_valid_ && req_ready) {
       const bool error = req_index_ >= kDepth;
       expect_.push_back({req_tag_, error, error ? 0 : rom_[req_index_]});
       req_valid_ = false;
     }
-    edge();
-    EXPECT_FALSE(ctx_->gotError()) << "an RTL assertion failed at cycle " << cycles_;
-    ++cycles_;
+    tb_.tick();
     return taken;
   }
 
   void drive(bool req_valid, uint32_t index, uint32_t tag, bool rsp_ready) {
-    m_->req_valid_i = req_valid;
-    m_->req_index_i = static_cast<SData>(index);
-    m_->req_tag_i = static_cast<CData>(tag);
-    m_->rsp_ready_i = rsp_ready;
-    m_->eval();
-  }
-
-  void edge() {
-    m_->clk_i = 1;
-    m_->eval();
-    m_->clk_i = 0;
-    m_->eval();
+    tb_->req_valid_i = req_valid;
+    tb_->req_index_i = static_cast<SData>(index);
+    tb_->req_tag_i = static_cast<CData>(tag);
+    tb_->rsp_ready_i = rsp_ready;
+    tb_.eval();
   }
 
   std::mt19937 rng_;
   std::vector<uint64_t> rom_;
   std::string file_;
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<Vrc_board_rom_tb> m_;
+  rc::test::VerilatedTb<Vrc_board_rom_tb> tb_;
   bool req_valid_ = false;
   uint32_t req_index_ = 0, req_tag_ = 0;
   std::deque<Expect> expect_;
   bool held_ = false, held_error_ = false;
   uint32_t held_tag_ = 0;
   uint64_t held_data_ = 0;
-  uint64_t cycles_ = 0;
 };
 
 TEST(BoardRom, RandomGapsAndStalls) {

@@ -12,16 +12,14 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <memory>
 #include <random>
-#include <type_traits>
 #include <vector>
 
 #include "Vbit_read_n20.h"
 #include "Vbit_read_n4.h"
 #include "Vbit_read_n512.h"
 #include "fp_cases.hpp"
-#include "verilated.h"
+#include "verilated_tb.hpp"
 
 namespace rc::test {
 namespace {
@@ -29,25 +27,14 @@ namespace {
 // Write bits into the model's bits_i, whatever type Verilator gave it (an integer or VlWide).
 template <class Port>
 void set_bits(Port& port, const std::vector<bool>& bits) {
-  if constexpr (std::is_integral_v<Port>) {
-    uint64_t v = 0;
-    for (size_t i = 0; i < bits.size(); ++i) v |= static_cast<uint64_t>(bits[i]) << i;
-    port = static_cast<Port>(v);
-  } else {
-    for (size_t w = 0; w < (bits.size() + 31) / 32; ++w) {
-      uint32_t v = 0;
-      for (size_t i = 32 * w; i < bits.size() && i < 32 * w + 32; ++i)
-        v |= static_cast<uint32_t>(bits[i]) << (i - 32 * w);
-      port[w] = v;
-    }
-  }
+  clear(port);
+  for (size_t i = 0; i < bits.size(); ++i)
+    if (bits[i]) put_field(port, static_cast<int>(i), 1, 1);
 }
 
 template <class V>
 void run(int n, int idx_w, const char* what) {
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->assertOn(true);
-  auto m = std::make_unique<V>(ctx.get());
+  VerilatedTb<V> tb;
   std::mt19937 rng(0x6b17u + static_cast<uint32_t>(n));
   const int n_idx = 1 << idx_w;
 
@@ -74,30 +61,26 @@ void run(int n, int idx_w, const char* what) {
   std::shuffle(samples.begin(), samples.end(), rng);
 
   uint64_t cases = 0, bad = 0;
-  m->clk_i = 0;
-  set_bits(m->bits_i, samples[0].bits);
-  m->idx_i = static_cast<std::remove_reference_t<decltype(m->idx_i)>>(samples[0].idx);
-  m->eval();
+  set_bits(tb->bits_i, samples[0].bits);
+  put(tb->idx_i, static_cast<uint64_t>(samples[0].idx));
+  tb.eval();
   for (size_t s = 0; s < samples.size(); ++s) {
     const Sample& cur = samples[s];
     const bool want = cur.idx < n && cur.bits[static_cast<size_t>(cur.idx)];
-    m->clk_i = 1;
-    m->eval();
     // Right after the edge, the next sample's inputs (or the complement of this one's).
     const Sample& next = samples[(s + 1) % samples.size()];
-    m->clk_i = 0;
-    set_bits(m->bits_i, next.bits);
-    m->idx_i = static_cast<std::remove_reference_t<decltype(m->idx_i)>>(next.idx);
-    m->eval();
+    tb.tick([&] {
+      set_bits(tb->bits_i, next.bits);
+      put(tb->idx_i, static_cast<uint64_t>(next.idx));
+    });
     ++cases;
-    if (static_cast<bool>(m->bit_o) != want) {
+    if (static_cast<bool>(tb->bit_o) != want) {
       if (bad < 8)
-        ADD_FAILURE() << what << ": index " << cur.idx << " gave " << int(m->bit_o) << ", want "
+        ADD_FAILURE() << what << ": index " << cur.idx << " gave " << int(tb->bit_o) << ", want "
                       << want;
       ++bad;
     }
   }
-  m->final();
   report_cases(what, cases, bad);
   EXPECT_EQ(bad, 0u) << what;
 }

@@ -15,16 +15,14 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <random>
-#include <type_traits>
 #include <vector>
 
 #include "Vcore_status_lo32.h"
 #include "Vcore_status_lo4.h"
 #include "fp_cases.hpp"
 #include "rc_constants.hpp"
-#include "verilated.h"
+#include "verilated_tb.hpp"
 
 namespace rc::test {
 namespace {
@@ -33,16 +31,9 @@ constexpr int kN = static_cast<int>(spec::kCorePerfCount);
 constexpr int kMaxStack = static_cast<int>(spec::kCorePerfMaxStack);
 constexpr int kPushes = static_cast<int>(spec::kCorePerfStackPushes);
 
-template <class Wide>
-void clear_wide(Wide& w) {
-  for (size_t i = 0; i < sizeof(w) / sizeof(w[0]); ++i) w[i] = 0;
-}
-
 template <class V>
 void run(int low_bits, const char* what) {
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->assertOn(true);
-  auto m = std::make_unique<V>(ctx.get());
+  VerilatedTb<V> tb;
   std::mt19937 rng(0x5a7u + static_cast<uint32_t>(low_bits));
   const uint64_t low_mod = uint64_t{1} << low_bits;
 
@@ -51,17 +42,13 @@ void run(int low_bits, const char* what) {
   sum[0].fill(0);
   std::vector<uint32_t> max_sp(1, 0);  // the largest depth over the edges <= e (index e + 1)
 
-  m->clk_i = 0;
-  m->rst_ni = 0;
-  m->idle_i = 1;
-  m->wd_ev_i = 0;
-  m->err_i = 0;
-  m->perf_depth_i = 0;
-  m->perf_sel_i = 0;
-  clear_wide(m->perf_inc_i);
-  m->eval();
-  m->rst_ni = 1;
-  m->eval();
+  tb->idle_i = 1;
+  tb->wd_ev_i = 0;
+  tb->err_i = 0;
+  tb->perf_depth_i = 0;
+  tb->perf_sel_i = 0;
+  clear(tb->perf_inc_i);
+  tb.reset(0);
 
   const int busy = 3000, quiet = 3;
   uint64_t cases = 0, bad = 0;
@@ -73,22 +60,15 @@ void run(int low_bits, const char* what) {
       if (e < busy) inc[k] = (rng() % 4u == 0) ? rng() % 8u : 7u - rng() % 2u;
     }
     if (e >= busy) depth = 0;
-    clear_wide(m->perf_inc_i);
-    for (int k = 0; k < kN; ++k) {
-      const int bit = 3 * k;
-      m->perf_inc_i[bit / 32] |= inc[k] << (bit % 32);
-      if (bit % 32 > 29) m->perf_inc_i[bit / 32 + 1] |= inc[k] >> (32 - bit % 32);
-    }
-    m->perf_depth_i = static_cast<std::remove_reference_t<decltype(m->perf_depth_i)>>(depth);
+    clear(tb->perf_inc_i);
+    for (int k = 0; k < kN; ++k) put_field(tb->perf_inc_i, 3 * k, 3, inc[k]);
+    put(tb->perf_depth_i, depth);
     std::array<uint64_t, kN> next = sum.back();
     for (int k = 0; k < kN; ++k) next[k] += inc[k];
     sum.push_back(next);
     max_sp.push_back(inc[kPushes] != 0 ? std::max(max_sp.back(), depth) : max_sp.back());
 
-    m->clk_i = 1;
-    m->eval();
-    m->clk_i = 0;
-    m->eval();
+    tb.tick();
 
     // After edge e: read counters (a random one while busy, every one in the quiet tail).
     std::vector<int> sels;
@@ -98,8 +78,8 @@ void run(int low_bits, const char* what) {
       for (int k = 0; k < 32; ++k) sels.push_back(k);
     }
     for (int sel : sels) {
-      m->perf_sel_i = static_cast<std::remove_reference_t<decltype(m->perf_sel_i)>>(sel);
-      m->eval();
+      put(tb->perf_sel_i, static_cast<uint64_t>(sel));
+      tb.eval();
       const auto at = [&](int edge, int k) -> uint64_t {
         return edge < 0 ? 0 : sum[static_cast<size_t>(edge) + 1][k];
       };
@@ -116,10 +96,10 @@ void run(int low_bits, const char* what) {
         EXPECT_EQ(want, at(busy - 1, sel)) << "model";
       }
       ++cases;
-      if (static_cast<uint64_t>(m->perf_o) != want) {
+      if (static_cast<uint64_t>(tb->perf_o) != want) {
         if (bad < 8)
           ADD_FAILURE() << what << ": after edge " << e << " counter " << sel << " reads "
-                        << static_cast<uint64_t>(m->perf_o) << ", want " << want;
+                        << static_cast<uint64_t>(tb->perf_o) << ", want " << want;
         ++bad;
       }
     }
@@ -128,7 +108,6 @@ void run(int low_bits, const char* what) {
   if (low_bits < 32) {
     EXPECT_GT(sum.back()[0], 64 * low_mod) << what;
   }
-  m->final();
   report_cases(what, cases, bad);
   EXPECT_EQ(bad, 0u) << what;
 }

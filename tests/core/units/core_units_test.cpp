@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
-#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
@@ -26,7 +25,7 @@
 #include "fp.hpp"
 #include "fp_cases.hpp"
 #include "trace.hpp"
-#include "verilated.h"
+#include "verilated_tb.hpp"
 
 namespace rc::test {
 namespace {
@@ -43,26 +42,6 @@ constexpr int kW = T::kWidth;  // 24
 constexpr uint32_t kTagMask = 0xffff;
 
 T fb(uint32_t b) { return T::from_bits(b); }
-
-// Packed-array ports wider than 64 bits are VlWide words; element i of a [N][W] packed array sits
-// at bits [i*W +: W].
-template <class Wide>
-void put_bits(Wide& w, int lsb, uint32_t v) {
-  for (int i = 0; i < kW; ++i) {
-    const int b = lsb + i;
-    const uint32_t m = 1u << (b % 32);
-    w[b / 32] = ((v >> i) & 1u) ? (w[b / 32] | m) : (w[b / 32] & ~m);
-  }
-}
-template <class Wide>
-uint32_t get_bits(const Wide& w, int lsb) {
-  uint32_t v = 0;
-  for (int i = 0; i < kW; ++i) {
-    const int b = lsb + i;
-    v |= ((w[b / 32] >> (b % 32)) & 1u) << i;
-  }
-  return v;
-}
 
 ////////////////////////
 // Value generators   //
@@ -119,32 +98,24 @@ class StreamHarness {
   using In = typename U::In;
   using Out = typename U::Out;
 
-  StreamHarness(uint64_t seed, bool stalls)
-      : ctx_(std::make_unique<VerilatedContext>()), rng_(seed), stalls_(stalls) {
-    ctx_->assertOn(true);
-    dut_ = std::make_unique<V>(ctx_.get());
-    U::init(*dut_);
-    dut_->clk_i = 0;
-    dut_->rst_ni = 0;
-    dut_->valid_i = 0;
-    dut_->ready_i = 0;
-    dut_->eval();
-    for (int i = 0; i < 4; ++i) tick();
-    dut_->rst_ni = 1;
+  StreamHarness(uint64_t seed, bool stalls) : rng_(seed), stalls_(stalls) {
+    U::init(tb_.m());
+    tb_->valid_i = 0;
+    tb_->ready_i = 0;
+    tb_.reset(4, [this] { tick(); });
     tick();
   }
-  ~StreamHarness() { dut_->final(); }
 
   // Presents one operation (after a seeded random gap) and holds it until it is taken.
   void push(const In& in) {
     if (stalls_ && (rng_() & 7) == 0) {
       const int gap = 1 + static_cast<int>(rng_() % 6);
-      dut_->valid_i = 0;
+      tb_->valid_i = 0;
       for (int i = 0; i < gap; ++i) tick();
     }
-    dut_->valid_i = 1;
-    dut_->tag_i = static_cast<uint16_t>(seq_ & kTagMask);
-    U::drive(*dut_, in);
+    tb_->valid_i = 1;
+    tb_->tag_i = static_cast<uint16_t>(seq_ & kTagMask);
+    U::drive(tb_.m(), in);
     q_.push_back({in, U::golden(in), static_cast<uint32_t>(seq_ & kTagMask)});
     ++seq_;
     ++cases_;
@@ -155,13 +126,13 @@ class StreamHarness {
         break;
       }
     }
-    dut_->valid_i = 0;
+    tb_->valid_i = 0;
   }
 
   // Idles until every result is out (ready_i keeps its random pattern), then some more cycles to
   // catch spurious outputs.
   void drain() {
-    dut_->valid_i = 0;
+    tb_->valid_i = 0;
     for (int i = 0; i < 100000 && !q_.empty(); ++i) tick();
     if (!q_.empty()) fail(std::to_string(q_.size()) + " results missing after 100000 idle cycles");
     for (int i = 0; i < 200; ++i) tick();
@@ -170,27 +141,21 @@ class StreamHarness {
   // Clock cycle: ready_i pattern, output check and input acceptance (sampled before the edge).
   // Returns whether the presented operation was taken.
   bool tick() {
-    dut_->ready_i = next_ready();
-    dut_->eval();
-    const bool taken = dut_->valid_i && dut_->ready_o;
-    if (dut_->valid_o && dut_->ready_i) check_output();
-    if (dut_->valid_o && first_out_cycle_ < 0) first_out_cycle_ = static_cast<int64_t>(cycle_);
-    if (taken && first_take_cycle_ < 0) first_take_cycle_ = static_cast<int64_t>(cycle_);
-    dut_->clk_i = 1;
-    dut_->eval();
-    ctx_->timeInc(1);
-    dut_->clk_i = 0;
-    dut_->eval();
-    ctx_->timeInc(1);
-    ++cycle_;
+    tb_->ready_i = next_ready();
+    tb_.eval();
+    const bool taken = tb_->valid_i && tb_->ready_o;
+    if (tb_->valid_o && tb_->ready_i) check_output();
+    if (tb_->valid_o && first_out_cycle_ < 0) first_out_cycle_ = static_cast<int64_t>(cycle());
+    if (taken && first_take_cycle_ < 0) first_take_cycle_ = static_cast<int64_t>(cycle());
+    tb_.tick();
     return taken;
   }
 
   void set_ready_mode(int mode) { ready_mode_ = mode; }  // 0 random, 1 always, 2 never
-  V& dut() { return *dut_; }
+  V& dut() { return tb_.m(); }
   uint64_t cases() const { return cases_; }
   uint64_t mismatches() const { return mismatches_; }
-  uint64_t cycle() const { return cycle_; }
+  uint64_t cycle() const { return tb_.cycles(); }
   uint64_t outputs() const { return outputs_; }
   int64_t latency() const { return first_out_cycle_ - first_take_cycle_; }
   size_t pending() const { return q_.size(); }
@@ -226,26 +191,25 @@ class StreamHarness {
     ++outputs_;
     if (q_.empty()) {
       fail("valid_o with nothing pending (spurious or duplicated result), tag " +
-           std::to_string(dut_->tag_o));
+           std::to_string(tb_->tag_o));
       return;
     }
     const Expect e = q_.front();
     q_.pop_front();
-    const Out got = U::read(*dut_);
-    if (dut_->tag_o != e.tag) {
-      fail("tag " + std::to_string(dut_->tag_o) + ", expected " + std::to_string(e.tag) +
+    const Out got = U::read(tb_.m());
+    if (tb_->tag_o != e.tag) {
+      fail("tag " + std::to_string(tb_->tag_o) + ", expected " + std::to_string(e.tag) +
            " (order, loss or duplication)");
     } else if (!(got == e.want)) {
       fail(U::show(e.in, got, e.want));
     }
   }
 
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<V> dut_;
+  VerilatedTb<V> tb_;
   std::mt19937_64 rng_;
   bool stalls_;
   std::deque<Expect> q_;
-  uint64_t seq_ = 0, cases_ = 0, mismatches_ = 0, cycle_ = 0, outputs_ = 0;
+  uint64_t seq_ = 0, cases_ = 0, mismatches_ = 0, outputs_ = 0;
   int64_t first_out_cycle_ = -1, first_take_cycle_ = -1;
   int ready_low_left_ = 0;
   int ready_mode_ = 0;
@@ -346,14 +310,14 @@ struct SetupUnit {
   static void init(Vrc_ray_setup&) {}
   static void drive(Vrc_ray_setup& d, const In& in) {
     for (int a = 0; a < 3; ++a) {
-      put_bits(d.org_i, a * kW, in.org[a].bits());
-      put_bits(d.dir_i, a * kW, in.dir[a].bits());
+      put_field(d.org_i, a * kW, kW, in.org[a].bits());
+      put_field(d.dir_i, a * kW, kW, in.dir[a].bits());
     }
-    for (int i = 0; i < 6; ++i) put_bits(d.bounds_i, i * kW, in.bounds[i].bits());
+    for (int i = 0; i < 6; ++i) put_field(d.bounds_i, i * kW, kW, in.bounds[i].bits());
   }
   static Out read(const Vrc_ray_setup& d) {
     Out o;
-    for (int a = 0; a < 3; ++a) o.inv[a] = get_bits(d.inv_o, a * kW);
+    for (int a = 0; a < 3; ++a) o.inv[a] = static_cast<uint32_t>(get_field(d.inv_o, a * kW, kW));
     o.tmin = d.tmin_o;
     o.tmax = d.tmax_o;
     o.active = d.active_o;
@@ -448,7 +412,7 @@ struct ShadeUnit {
     d.dz_i = in.dz.bits();
     d.nlen_i = in.nlen.bits();
     d.inv_len_i = in.inv_len.bits();
-    for (int k = 0; k < 3; ++k) put_bits(d.kd_i, k * kW, in.kd[k].bits());
+    for (int k = 0; k < 3; ++k) put_field(d.kd_i, k * kW, kW, in.kd[k].bits());
   }
   static Out read(const Vrc_shade_unit& d) {
     return {{d.rgb_o & 0xffu, (d.rgb_o >> 8) & 0xffu, (d.rgb_o >> 16) & 0xffu}};
@@ -620,7 +584,7 @@ TEST(CoreUnits, TravStepTiming) {
   // Subtract, multiply, compare, the output FIFO; the FIFO holds latency + 1 entries.
   constexpr int64_t lat = kAdd + kMul + kCmp + 1;
   run_timing<Vrc_trav_step, TravUnit>("rc_trav_step", lat, static_cast<uint64_t>(lat + 1),
-                                     trav_case);
+                                      trav_case);
 }
 
 TEST(CoreUnits, RaySetupRandom) {
@@ -673,78 +637,62 @@ TEST(CoreUnits, ShadeTiming) {
   // Four multiplies, min, add, to_u8, the output FIFO; the FIFO holds latency + 1 entries.
   constexpr int64_t lat = 4 * kMul + kCmp + kAdd + kToU8Latency + 1;
   run_timing<Vrc_shade_unit, ShadeUnit>("rc_shade_unit", lat, static_cast<uint64_t>(lat + 1),
-                                       shade_case);
+                                        shade_case);
 }
 
 // rc_fp_to_u8 (valid-only, latency kToU8Latency) against to_u8<fp24>() for every fp24 encoding.
 TEST(CoreUnits, ToU8Exhaustive) {
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->assertOn(true);
-  auto dut = std::make_unique<Vrc_fp_to_u8>(ctx.get());
+  VerilatedTb<Vrc_fp_to_u8> tb;
   std::mt19937_64 rng(404);
-  const auto tick = [&] {
-    dut->clk_i = 1;
-    dut->eval();
-    dut->clk_i = 0;
-    dut->eval();
-  };
-  dut->clk_i = 0;
-  dut->rst_ni = 0;
-  dut->valid_i = 0;
-  dut->eval();
-  tick();
-  tick();
-  dut->rst_ni = 1;
-  tick();
+  tb->valid_i = 0;
+  tb.reset(2);
+  tb.tick();
   struct Expect {
     uint32_t x;
     uint8_t want;
     uint64_t due;
   };
   std::deque<Expect> q;
-  uint64_t cycle = 0, cases = 0, mismatches = 0;
+  uint64_t cases = 0, mismatches = 0;
   const auto fail = [&](const std::string& what) {
     if (++mismatches <= 10) ADD_FAILURE() << what;
   };
   const auto check = [&] {
-    dut->eval();
-    if (dut->valid_o) {
+    tb.eval();
+    if (tb->valid_o) {
       if (q.empty()) {
         fail("valid_o with nothing pending");
       } else {
         const Expect e = q.front();
         q.pop_front();
-        if (e.due != cycle) {
+        if (e.due != tb.cycles()) {
           fail("latency: result of " + fb(e.x).hex() + " not " + std::to_string(kToU8Latency) +
                " cycles late");
         }
-        if (dut->byte_o != e.want)
-          fail("to_u8(" + fb(e.x).hex() + "): rtl " + std::to_string(dut->byte_o) + ", golden " +
+        if (tb->byte_o != e.want)
+          fail("to_u8(" + fb(e.x).hex() + "): rtl " + std::to_string(tb->byte_o) + ", golden " +
                std::to_string(e.want));
       }
     }
   };
   for (uint32_t x = 0; x <= T::kMask;) {
     const bool idle = (rng() & 15) == 0;
-    dut->valid_i = !idle;
-    dut->x_i = x;
+    tb->valid_i = !idle;
+    tb->x_i = x;
     if (!idle) {
-      q.push_back({x, to_u8<T>(fb(x)), cycle + kToU8Latency});
+      q.push_back({x, to_u8<T>(fb(x)), tb.cycles() + kToU8Latency});
       ++cases;
       ++x;
     }
     check();
-    tick();
-    ++cycle;
+    tb.tick();
   }
-  dut->valid_i = 0;
+  tb->valid_i = 0;
   for (int i = 0; i < 20; ++i) {
     check();
-    tick();
-    ++cycle;
+    tb.tick();
   }
   if (!q.empty()) fail("results missing");
-  dut->final();
   report_cases("rtl rc_fp_to_u8 vs golden to_u8<fp24>: every fp24 encoding", cases, mismatches);
   EXPECT_EQ(mismatches, 0u);
 }

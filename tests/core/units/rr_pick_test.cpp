@@ -38,11 +38,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
-#include <memory>
 #include <ostream>
 #include <random>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -52,7 +50,7 @@
 #include "Vrr_pick_n40.h"
 #include "Vrr_pick_n5.h"
 #include "fp_cases.hpp"
-#include "verilated.h"
+#include "verilated_tb.hpp"
 
 namespace rc::test {
 namespace {
@@ -70,47 +68,31 @@ template <class V>
 class Picker {
  public:
   explicit Picker(int n) : n_(n) {
-    ctx_ = std::make_unique<VerilatedContext>();
-    ctx_->assertOn(true);
-    m_ = std::make_unique<V>(ctx_.get());
-    m_->clk_i = 0;
-    m_->rst_ni = 0;
-    m_->req_i = 0;
-    m_->take_i = 0;
-    m_->eval();
-    m_->rst_ni = 1;
-    m_->eval();
-    for (int i = 0; i < 4; ++i) tick();
+    tb_->req_i = 0;
+    tb_->take_i = 0;
+    tb_.reset(0);
+    for (int i = 0; i < 4; ++i) tb_.tick();
   }
-  ~Picker() { m_->final(); }
-  Picker(const Picker&) = delete;
-  Picker& operator=(const Picker&) = delete;
 
-  void tick() {
-    m_->clk_i = 1;
-    m_->eval();
-    m_->clk_i = 0;
-    m_->eval();
-  }
   // The choice for req with no take (combinational): the index, or -1 when valid_o is 0.
   int choose(uint32_t req) {
-    m_->req_i = static_cast<std::remove_reference_t<decltype(m_->req_i)>>(req);
-    m_->take_i = 0;
-    m_->eval();
-    grant_ = static_cast<uint32_t>(m_->grant_o);
-    return m_->valid_o ? static_cast<int>(m_->idx_o) : -1;
+    put(tb_->req_i, req);
+    tb_->take_i = 0;
+    tb_.eval();
+    grant_ = static_cast<uint32_t>(tb_->grant_o);
+    return tb_->valid_o ? static_cast<int>(tb_->idx_o) : -1;
   }
   // grant_o at the last choice.
   uint32_t grant() const { return grant_; }
   // Take the current choice for req; returns it (-1 with no request).
   int take(uint32_t req) {
     const int got = choose(req);
-    m_->take_i = 1;
-    m_->eval();
-    tick();
-    m_->take_i = 0;
-    m_->req_i = 0;
-    m_->eval();
+    tb_->take_i = 1;
+    tb_.eval();
+    tb_.tick();
+    tb_->take_i = 0;
+    tb_->req_i = 0;
+    tb_.eval();
     return got;
   }
   // Move the pointer to p: take requester (p - 1) mod N alone.
@@ -119,8 +101,7 @@ class Picker {
  private:
   int n_;
   uint32_t grant_ = 0;
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<V> m_;
+  VerilatedTb<V> tb_;
 };
 
 template <class V>
@@ -215,24 +196,20 @@ std::ostream& operator<<(std::ostream& os, const Bits& b) {
   return os << buf;
 }
 
-// The verilated ports: up to 64 bits a QData, wider a VlWide of 32-bit words.
-void put(QData& port, const Bits& b) { port = (static_cast<QData>(b.w[1]) << 32) | b.w[0]; }
-template <std::size_t W>
-void put(VlWide<W>& port, const Bits& b) {
-  static_assert(W <= kMaxN / 32, "port wider than Bits");
-  for (std::size_t i = 0; i < W; ++i) port[i] = b.w[i];
+// The verilated ports (N > 32): up to 64 bits a QData, wider a VlWide of 32-bit words; either
+// holds sizeof / 4 words.
+template <class Port>
+void put_bits(Port& port, const Bits& b) {
+  static_assert(sizeof(Port) <= sizeof(b.w), "port wider than Bits");
+  for (std::size_t i = 0; i < sizeof(Port) / 4; ++i)
+    put_field(port, static_cast<int>(32 * i), 32, b.w[i]);
 }
-Bits get(QData port) {
+template <class Port>
+Bits get_bits(const Port& port) {
+  static_assert(sizeof(Port) <= sizeof(Bits::w), "port wider than Bits");
   Bits b;
-  b.w[0] = static_cast<uint32_t>(port);
-  b.w[1] = static_cast<uint32_t>(port >> 32);
-  return b;
-}
-template <std::size_t W>
-Bits get(const VlWide<W>& port) {
-  static_assert(W <= kMaxN / 32, "port wider than Bits");
-  Bits b;
-  for (std::size_t i = 0; i < W; ++i) b.w[i] = port[i];
+  for (std::size_t i = 0; i < sizeof(Port) / 4; ++i)
+    b.w[i] = static_cast<uint32_t>(get_field(port, static_cast<int>(32 * i), 32));
   return b;
 }
 
@@ -290,28 +267,18 @@ template <class V>
 class Checked {
  public:
   Checked(int n, const char* what) : n_(n), what_(what), ref_(n) {
-    ctx_ = std::make_unique<VerilatedContext>();
-    ctx_->assertOn(true);
-    m_ = std::make_unique<V>(ctx_.get());
-    m_->clk_i = 0;
-    m_->rst_ni = 0;
-    put(m_->req_i, Bits{});
-    m_->take_i = 0;
-    m_->eval();
-    m_->rst_ni = 1;
-    m_->eval();
-    for (int i = 0; i < 4; ++i) tick();
+    put_bits(tb_->req_i, Bits{});
+    tb_->take_i = 0;
+    tb_.reset(0);
+    for (int i = 0; i < 4; ++i) tb_.tick();
   }
-  ~Checked() { m_->final(); }
-  Checked(const Checked&) = delete;
-  Checked& operator=(const Checked&) = delete;
 
   int n() const { return n_; }
   uint64_t cases() const { return cases_; }
   uint64_t bad() const { return bad_; }
   // A failure found outside cycle() (counted with the mismatches).
   void fail(const std::string& why) {
-    if (bad_ < 8) ADD_FAILURE() << what_ << ": cycle " << cycle_ << ": " << why;
+    if (bad_ < 8) ADD_FAILURE() << what_ << ": cycle " << tb_.cycles() << ": " << why;
     ++bad_;
   }
 
@@ -320,45 +287,36 @@ class Checked {
   int cycle(const Bits& req, bool take) {
     const int want = ref_.choose();
     const Bits want_grant = want < 0 ? Bits{} : Bits::one(want);
-    put(m_->req_i, req);
-    m_->take_i = static_cast<uint8_t>(take);
-    m_->eval();
-    const bool valid = m_->valid_o != 0;
-    const int idx = static_cast<int>(m_->idx_o);
-    const Bits grant = get(m_->grant_o);
+    put_bits(tb_->req_i, req);
+    tb_->take_i = static_cast<uint8_t>(take);
+    tb_.eval();
+    const bool valid = tb_->valid_o != 0;
+    const int idx = static_cast<int>(tb_->idx_o);
+    const Bits grant = get_bits(tb_->grant_o);
     ++cases_;
     if (valid != (want >= 0) || (valid && idx != want) || grant != want_grant) {
       if (bad_ < 8) {
         std::string ptrs = "group ptr " + std::to_string(ref_.outer_ptr()) + ", candidates";
         for (int g = 0; g < ref_.groups(); ++g)
           ptrs += " " + std::to_string(ref_.cand(g)) + "@" + std::to_string(ref_.group_ptr(g));
-        ADD_FAILURE() << what_ << ": cycle " << cycle_ << " (model " << ptrs << ") req " << req
-                      << ": valid " << valid << " idx " << idx << " grant " << grant << ", want "
-                      << (want >= 0) << " idx " << want << " grant " << want_grant;
+        ADD_FAILURE() << what_ << ": cycle " << tb_.cycles() << " (model " << ptrs << ") req "
+                      << req << ": valid " << valid << " idx " << idx << " grant " << grant
+                      << ", want " << (want >= 0) << " idx " << want << " grant " << want_grant;
       }
       ++bad_;
     }
     ref_.edge(req, take);
-    tick();
-    m_->take_i = 0;
-    ++cycle_;
+    tb_.tick();
+    tb_->take_i = 0;
     return valid ? idx : -1;
   }
 
  private:
-  void tick() {
-    m_->clk_i = 1;
-    m_->eval();
-    m_->clk_i = 0;
-    m_->eval();
-  }
-
   int n_;
   const char* what_;
   GroupedRef ref_;
-  uint64_t cases_ = 0, bad_ = 0, cycle_ = 0;
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<V> m_;
+  uint64_t cases_ = 0, bad_ = 0;
+  VerilatedTb<V> tb_;
 };
 
 // Request vectors over n requesters from a seeded generator.
