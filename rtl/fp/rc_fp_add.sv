@@ -89,7 +89,8 @@ module rc_fp_add #(
   logic            a_sign, b_sign;
   logic [ExpW-1:0] a_exp, b_exp;
   logic            a_zero, b_zero, a_nan, b_nan, a_inf, b_inf;
-  logic [MagW-1:0] a_mag, b_mag, big_mag, small_mag;
+  logic [MagW-1:0] a_mag, b_mag, big_mag;
+  logic [FracW-1:0] small_frac;
   logic            swap;
   logic [ExpW-1:0] diff_ab, diff_ba;
   logic [ShW-1:0]  shift_ab, shift_ba, shift_s0;
@@ -117,11 +118,13 @@ module rc_fp_add #(
   // big operand's sign is not used). The zeroing then runs beside the comparison.
   assign swap         = b_i[MagW-1:0] > a_i[MagW-1:0];
   assign big_mag      = swap ? b_mag : a_mag;
-  assign small_mag    = swap ? a_mag : b_mag;
+  assign small_frac   = swap ? a_mag[FracW-1:0] : b_mag[FracW-1:0];
   assign big_sign_s0  = swap ? b_sign : a_sign;
   assign big_exp_s0   = big_mag[MagW-1 -: ExpW];
-  assign big_man_s0   = {|big_exp_s0, big_mag[FracW-1:0]};
-  assign small_man_s0 = {|small_mag[MagW-1 -: ExpW], small_mag[FracW-1:0]};
+  // The hidden bits (a nonzero exponent field) are selected from the operands' own flags, so
+  // the comparison's result only selects (not an OR over the selected exponent behind it).
+  assign big_man_s0   = {swap ? ~b_zero : ~a_zero, big_mag[FracW-1:0]};
+  assign small_man_s0 = {swap ? ~a_zero : ~b_zero, small_frac};
   // Both differences (saturated to the shifter's width) in parallel with the comparison; the
   // ordered one is big - small >= 0.
   assign diff_ab      = a_exp - b_exp;
