@@ -232,7 +232,7 @@ module rc_setup_unit #(
   logic [127:0]    feed_pix_q;
   logic [3:0]      feed_vmask_q;
   logic [NU-1:0]   su_ready_all, su_valid_all;
-  logic [UW-1:0]   in_u_q, out_u_q;
+  logic [UW-1:0]   out_u_q;
   logic            su_take;
 
   // The feeder's flags, so that no one flip-flop drives everything: feed_busy_q for the take and
@@ -240,39 +240,56 @@ module rc_setup_unit #(
   // two), enables the feeder's copy of the packet (700 flip-flops); su_v_q[u], set-up unit u's
   // input valid (the feeder busy and the rotation at u), registered from the next values, drives
   // that unit only (its input registers, 450 flip-flops each).
-  logic          feed_idle_q;
-  logic [UW-1:0] in_u_d;
-  logic [NU-1:0] su_v_q;
+  //
+  // su_v_q[u]'s next value is the feeder busy with the rotation at u after this cycle's take,
+  // written per unit from registers so that a unit's ready (two flip-flops in the unit, across
+  // the chip) meets at most two LUTs (run 48: a unit's slot_q -> su_v_q through four, -3.07 ns):
+  // the valid moves on from unit u - 1 when it takes a ray that is not the packet's last
+  // (last_q: feed_r_q is 3), stays at u while u is not ready, and starts at u when a packet is
+  // taken with the rotation at u (arm_q[u]: the take's condition and the rotation at u, both
+  // registered from the next values; acc_any, the pick's valid, completes the take).
+  logic          feed_idle_q, last_q;
+  logic [NU-1:0] su_v_q, hot_q, hot_d, arm_q, su_v_d;
+  logic [1:0]    feed_r_d;
   assign su_take = |(su_v_q & su_ready_all);
   always_comb begin
     feed_busy_d = feed_busy_q;
     if (acc_take_f) begin
       feed_busy_d = 1'b1;
-    end else if (su_take && feed_r_q == 2'd3) begin
+    end else if (su_take && last_q) begin
       feed_busy_d = 1'b0;
     end
-    in_u_d = in_u_q;
-    if (su_take) in_u_d = (in_u_q == UW'(NU - 1)) ? '0 : in_u_q + UW'(1);
+    feed_r_d = feed_r_q;
+    if (acc_take_f) begin
+      feed_r_d = '0;
+    end else if (su_take) begin
+      feed_r_d = feed_r_q + 2'd1;
+    end
+    for (int unsigned u = 0; u < NU; u++) begin
+      hot_d[u]  = su_take ? hot_q[(u + NU - 1) % NU] : hot_q[u];
+      su_v_d[u] = (su_v_q[(u + NU - 1) % NU] & su_ready_all[(u + NU - 1) % NU] & ~last_q) |
+                  (su_v_q[u] & ~su_ready_all[u]) | (arm_q[u] & acc_any);
+    end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       feed_busy_q <= 1'b0;
       feed_idle_q <= 1'b1;
       su_v_q      <= '0;
+      hot_q       <= NU'(1);
+      arm_q       <= '0;
+      last_q      <= 1'b0;
       feed_thr_q  <= '0;
       feed_r_q    <= '0;
-      in_u_q      <= '0;
     end else begin
       feed_busy_q <= feed_busy_d;
       feed_idle_q <= ~feed_busy_d;
-      in_u_q      <= in_u_d;
-      for (int unsigned u = 0; u < NU; u++) su_v_q[u] <= feed_busy_d && in_u_d == UW'(u);
-      if (acc_take_f) begin
-        feed_thr_q <= acc_thr;
-        feed_r_q   <= '0;
-      end else if (su_take) begin
-        feed_r_q <= feed_r_q + 2'd1;
-      end
+      su_v_q      <= su_v_d;
+      hot_q       <= hot_d;
+      arm_q       <= take_ok_d ? hot_d : '0;
+      last_q      <= feed_r_d == 2'd3;
+      feed_r_q    <= feed_r_d;
+      if (acc_take_f) feed_thr_q <= acc_thr;
     end
   end
   // The feeder's copy of the packet follows the input register while the feeder is idle (so the
@@ -556,8 +573,11 @@ module rc_setup_unit #(
                                feed_idle_q == !feed_busy_q);
   TakeOk_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             take_ok_q == (pin_v_q & ~feed_busy_q) && take_no_q == !take_ok_q);
+  // The valids are the feeder's state: busy, at the rotation's unit; the registered parts of their
+  // next values agree with the state they stand for.
   SuValid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                              su_v_q == (feed_busy_q ? NU'(1) << in_u_q : '0));
+                              $onehot(hot_q) && su_v_q == (feed_busy_q ? hot_q : '0) &&
+                              arm_q == (take_ok_q ? hot_q : '0) && last_q == (feed_r_q == 2'd3));
   // A packet is taken into a free thread.
   AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     acc_take |-> free_q[acc_thr] && gacc_q[acc_thr] == 1'b0);
