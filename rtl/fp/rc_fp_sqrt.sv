@@ -35,13 +35,21 @@
 // also reduces the final remainder to the sticky bit (nonzero = inexact); slot N rounds to
 // nearest even and packs (rc_fp_round_pack).
 //
+// Slots in one cycle do not chain their subtractions (as in rc_fp_div): a slot k >= 2 in the
+// same cycle as slot k - 1 subtracts from slot k - 1's input state for both of its outcomes,
+// with trial 8 p + 1 (slot k - 1 kept its remainder) or 8 t + 1 (it subtracted), where p is
+// slot k - 1's partial root and t = 3 p + 1 is carried in the state (each slot derives the next
+// t from t + 1 and t - 1, made beside its subtraction), and slot k - 1's root bit only selects.
+// One carry chain per cycle, bit for bit the chained result (run 48: the ray generator's square
+// root, two chained subtractions a cycle, -0.64 to -2.45 ns).
+//
 // Pipeline: the N + 1 slots are spread evenly over Se = min(Stages, N + 1) cycles, the longer
 // cycles first, as in rc_fp_div: with Base = (N + 1) / Se and Rem = (N + 1) % Se, the first Rem
 // cycles take Base + 1 consecutive slots and the others Base; a register sits in front of every
 // slot that starts a cycle, and the remaining Stages - Se + 1 registers (at least one) sit at the
 // output. At fp24 (N = 18, 19 slots) the default Stages = 10 gives slots {0, 1} {2, 3} ...
-// {16, 17} {18 = round}: at most two subtract-and-select steps per cycle, the last one with the
-// sticky reduction, and the rounding alone. That reaches 121 to 124 MHz alone on an ECP5
+// {16, 17} {18 = round}: two root bits per cycle on one carry chain, the last with the sticky
+// compares, and the rounding alone. That reaches 121 to 124 MHz alone on an ECP5
 // LFE5U-85F; Stages = 9 (three slots in the unpack cycle, the rounding with the last root bit)
 // 112 to 117 MHz (docs/fp24.md).
 module rc_fp_sqrt #(
@@ -88,13 +96,14 @@ module rc_fp_sqrt #(
   localparam int unsigned MetaW = 4;
   localparam int unsigned HdrW  = MetaW + ExpW;
   // The state after slot k (k = 0 .. N - 2): {hdr, radicand bits not yet brought down (left
-  // aligned, N bits), remainder (k + 2 bits), partial root (k + 1 bits)}. The widths grow by
-  // two bits a slot, so the states sit one after the other in one vector at offsets st_off(k).
+  // aligned, N bits), remainder (k + 2 bits), partial root q (k + 1 bits), 3 q + 1 (k + 3
+  // bits)}. The widths grow by three bits a slot, so the states sit one after the other in one
+  // vector at offsets st_off(k).
   function automatic int unsigned st_w(input int unsigned k);
-    st_w = HdrW + N + 2 * k + 3;
+    st_w = HdrW + N + 3 * k + 6;
   endfunction
   function automatic int unsigned st_off(input int unsigned k);
-    st_off = k * (HdrW + N) + k * k + 2 * k;  // the sum of st_w(0 .. k - 1)
+    st_off = k * (HdrW + N + 6) + 3 * k * (k - 1) / 2;  // the sum of st_w(0 .. k - 1)
   endfunction
   localparam int unsigned ChainW = st_off(N - 1);
   // State after the last root bit: of the final remainder only whether it is nonzero (sticky).
@@ -142,8 +151,13 @@ module rc_fp_sqrt #(
   logic [ChainW-1:0] st_in /* verilator split_var */;
   logic [FinW-1:0]   fin_d, fin_q;
 
+  // Each slot's root bit, for the slot after it (read only where the two share a cycle).
+  logic [N-2:1] r_s /* verilator split_var */;
+  logic         unused_r_s;
+  assign unused_r_s = ^r_s;
+
   assign st_out[0 +: st_w(0)] = {spec_nan, spec_inf, spec_zero, a_sign, exp_sum[ExpW:1],
-                                 rad0[N-3:0], 2'b00, rem1, 1'b1};
+                                 rad0[N-3:0], 2'b00, rem1, 1'b1, 3'd4};
 
   for (genvar k = 1; k < N; k++) begin : g_step
     // Where the state entering slot k (the state after slot k - 1) sits in st_out and st_in.
@@ -163,26 +177,66 @@ module rc_fp_sqrt #(
       end
     end
 
-    // Slot k takes root bit j = k + 1 from the state after bit k: remainder k + 1 bits, root k.
+    // Slot k takes root bit j = k + 1 from the state after bit k: remainder k + 1 bits, root q
+    // k bits, t = 3 q + 1 k + 2 bits.
     logic [HdrW-1:0] hdr;
     logic [N-1:0]    rad;
     logic [k:0]      rem;
     logic [k-1:0]    root;
+    logic [k+1:0]    t, t_inc, t_dec;
     logic [k+2:0]    rem_sh;
     logic [k+3:0]    diff;
     logic            r_bit;
     logic [k+1:0]    rem_next;
 
-    assign {hdr, rad, rem, root} = st_in[InOff +: InW];
+    assign {hdr, rad, rem, root, t} = st_in[InOff +: InW];
     // Bring down the next two radicand bits, and subtract the trial 4 q + 1 if it fits. The kept
     // remainder is <= 2 * (the new root), so it fits in k + 2 bits (the bit dropped is 0).
-    assign rem_sh   = {rem, rad[N-1 -: 2]};
-    assign diff     = {1'b0, rem_sh} - {2'b00, root, 2'b01};
+    assign rem_sh = {rem, rad[N-1 -: 2]};
+    if (k >= 2 && cycle_of(k) == cycle_of(k - 1)) begin : g_both
+      // Slot k - 1 runs in this cycle: subtract from its input state (remainder R, root p,
+      // t_p = 3 p + 1, pairs a then b) for both of its outcomes, and let its root bit select.
+      // It kept 4 R + a: this slot's remainder is 16 R + 4 a + b and the trial 8 p + 1; it
+      // subtracted 4 p + 1: the remainder is 16 R + 4 a + b - 16 p - 4 and the trial 8 p + 5,
+      // so the difference is (16 R + 4 a + b) - (8 t_p + 1). Both modulo 2^(k+4), like the
+      // chained subtraction, so the bits are the same (a kept 4 R + a has a top bit of 0).
+      // t = 3 q + 1 with q = 2 p + r: t_p - 1 shifted with a 1, or t_p + 1 shifted with a 0, so
+      // t + 1 and t - 1 are selected from t_p and t_p +- 1 as well (no chain behind slot
+      // k - 1's subtraction).
+      // Slot k - 1's input state, from the bottom: t_p (k + 1 bits), p (k - 1), R (k), the
+      // radicand (N, its top pair a).
+      localparam int unsigned PrevOff = st_off(k - 2);
+      logic [k+1:0] sh_prev;  // 4 R + a
+      logic [k-2:0] root_prev;
+      logic [k:0]   t_prev, t_prev_inc, t_prev_dec;
+      logic [k+3:0] diff_kept, diff_sub;
+      logic         unused_t;
+      assign unused_t   = ^t;  // the same as t_p's selection, made from t_p here
+      assign sh_prev    = {st_in[PrevOff + 2 * k +: k], st_in[PrevOff + 3 * k + N - 2 +: 2]};
+      assign root_prev  = st_in[PrevOff + k + 1 +: k - 1];
+      assign t_prev     = st_in[PrevOff +: k + 1];
+      assign t_prev_inc = t_prev + (k + 1)'(1);
+      assign t_prev_dec = t_prev - (k + 1)'(1);
+      assign diff_kept  = {sh_prev, rad[N-1 -: 2]} - {2'b00, root_prev, 3'b001};
+      assign diff_sub   = {sh_prev, rad[N-1 -: 2]} - {t_prev, 3'b001};
+      assign diff       = r_s[k-1] ? diff_sub : diff_kept;
+      assign t_inc      = r_s[k-1] ? {t_prev_inc, 1'b1} : {t_prev, 1'b0};
+      assign t_dec      = r_s[k-1] ? {t_prev, 1'b1} : {t_prev_dec, 1'b0};
+    end else begin : g_chain
+      assign diff  = {1'b0, rem_sh} - {2'b00, root, 2'b01};
+      assign t_inc = t + (k + 2)'(1);
+      assign t_dec = t - (k + 2)'(1);
+    end
     assign r_bit    = ~diff[k+3];
     assign rem_next = (k + 2)'(r_bit ? diff[k+2:0] : rem_sh);
+    if (k < N - 1) begin : g_r_s
+      assign r_s[k] = r_bit;
+    end
 
     if (k < N - 1) begin : g_mid
-      assign st_out[OutOff +: OutW] = {hdr, rad[N-3:0], 2'b00, rem_next, root, r_bit};
+      // The new root 2 q + r: t becomes 6 q + 3 r + 1, 2 (t + 1) or 2 (t - 1) + 1.
+      assign st_out[OutOff +: OutW] = {hdr, rad[N-3:0], 2'b00, rem_next, root, r_bit,
+                                       r_bit ? {t_inc, 1'b0} : {t_dec, 1'b1}};
     end else begin : g_last
       // The sticky bit (a nonzero final remainder) is formed here, before the register, so the
       // rounding cycle starts from it. With the trial subtracted the remainder is zero exactly
@@ -191,7 +245,7 @@ module rc_fp_sqrt #(
       // subtraction's carry chain: run 47, -0.44 ns in rc_ray_gen).
       logic sticky, unused_next;
       assign sticky      = r_bit ? (rem_sh != {1'b0, root, 2'b01}) : (rem_sh != '0);
-      assign unused_next = ^rem_next;
+      assign unused_next = ^{rem_next, t_inc, t_dec};
       assign fin_d       = {hdr, sticky, root, r_bit};
       // By now every radicand bit has been brought down (the rest are the zeros shifted in).
       logic unused_rad;
