@@ -27,6 +27,9 @@
 
 namespace rc::test {
 
+using rc::harness::put;
+using rc::harness::VerilatedTb;
+
 template <class V, class T>
 class UnitsHarness {
  public:

@@ -17,7 +17,7 @@
 #include "error.hpp"
 #include "model_module.hpp"
 #include "rc_constants.hpp"
-#include "verilated.h"
+#include "verilated_tb.hpp"
 
 namespace rc::harness {
 namespace {
@@ -25,57 +25,45 @@ namespace {
 BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
                         const BoardSimOptions& options) {
   const auto start_time = std::chrono::steady_clock::now();
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->assertOn(true);
-  ctx->fatalOnError(false);
   std::vector<std::string> args = {"raycore-board"};
   for (const BoardRom& rom : b.roms)
     args.push_back("+" + rom.name + "=" + (dir / (rom.name + ".hex")).string());
   args.push_back("+regs=" + (dir / "regs.hex").string());
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  ctx->commandArgs(static_cast<int>(argv.size()), argv.data());
-  auto m = std::make_unique<Vrc_board>(ctx.get(), "board");
+  // Not fatal on error: an assertion ends the run with a BoardSimError, not abort().
+  VerilatedTb<Vrc_board> tb("board", false, args);
 
   BoardSimResult res;
-  uint64_t cycle = 0;
   const auto fail = [&](const std::string& what) {
-    throw BoardSimError("board: " + what + " (cycle " + std::to_string(cycle) + ")");
+    throw BoardSimError("board: " + what + " (cycle " + std::to_string(tb.cycles()) + ")");
   };
   const auto tick = [&] {
-    m->clk_i = 1;
-    m->eval();
-    m->clk_i = 0;
-    m->eval();
-    ++cycle;
-    if (ctx->gotError()) fail("the RTL stopped (an assertion or $stop; see the message above)");
+    try {
+      tb.tick();
+    } catch (const TbError&) {
+      fail("the RTL stopped (an assertion or $stop; see the message above)");
+    }
   };
-  m->clk_i = 0;
-  m->rst_ni = 0;
-  m->reg_we_i = 0;
-  m->start_i = 0;
-  m->fb_raddr_i = 0;
-  m->eval();
-  for (int i = 0; i < 4; ++i) tick();
-  m->rst_ni = 1;
-  m->eval();
+  tb->reg_we_i = 0;
+  tb->start_i = 0;
+  tb->fb_raddr_i = 0;
+  tb.reset(4, tick);
   tick();
 
   const auto write_reg = [&](uint32_t addr, uint32_t value) {
-    m->reg_we_i = 1;
-    m->reg_addr_i = static_cast<uint8_t>(addr);
-    m->reg_wdata_i = value;
+    tb->reg_we_i = 1;
+    tb->reg_addr_i = static_cast<uint8_t>(addr);
+    tb->reg_wdata_i = value;
     tick();
-    m->reg_we_i = 0;
+    tb->reg_we_i = 0;
   };
   // A read: the address for one cycle, then the read data spec::kBoardReadLatency cycles on
   // (the address lines change meanwhile, as a pipelined host's would).
   const auto read_reg = [&](uint32_t addr) {
-    m->reg_addr_i = static_cast<uint8_t>(addr);
+    tb->reg_addr_i = static_cast<uint8_t>(addr);
     tick();
-    m->reg_addr_i = static_cast<uint8_t>(addr ^ 1u);
+    tb->reg_addr_i = static_cast<uint8_t>(addr ^ 1u);
     for (int64_t k = 1; k < spec::kBoardReadLatency; ++k) tick();
-    return static_cast<uint32_t>(m->reg_rdata_o);
+    return static_cast<uint32_t>(tb->reg_rdata_o);
   };
 
   // Program the camera and the frame size, then read the whole register file back.
@@ -94,31 +82,31 @@ BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
   f.hits.assign(npix, HitRecord{});
   std::vector<uint8_t> seen(npix, 0);
   write_reg(spec::kBoardRegControl, 1u);
-  const uint64_t frame_start = cycle;
-  while (!m->done_o) {
-    if (m->size_error_o) fail("the board refused the frame size");
-    if (m->mon_valid_o) {
-      const uint32_t pix = m->mon_pixel_o;
+  const uint64_t frame_start = tb.cycles();
+  while (!tb->done_o) {
+    if (tb->size_error_o) fail("the board refused the frame size");
+    if (tb->mon_valid_o) {
+      const uint32_t pix = tb->mon_pixel_o;
       if (pix >= npix) fail("write to pixel " + std::to_string(pix) + " outside the frame");
       if (seen[pix]++) fail("pixel " + std::to_string(pix) + " written twice");
-      const uint32_t rgb = m->mon_rgb_o;
+      const uint32_t rgb = tb->mon_rgb_o;
       for (int c = 0; c < 3; ++c)
         f.rgb[pix * 3 + static_cast<size_t>(c)] = (rgb >> (8 * c)) & 0xffu;
-      if (m->mon_hit_o) {
+      if (tb->mon_hit_o) {
         f.hits[pix] =
-            HitRecord{static_cast<int32_t>(m->mon_tri_o), m->mon_t_o, m->mon_u_o, m->mon_v_o};
-        f.hit_tri[pix] = static_cast<int32_t>(m->mon_tri_o);
-        f.hit_t[pix] = fp24::from_bits(m->mon_t_o).to_float();
+            HitRecord{static_cast<int32_t>(tb->mon_tri_o), tb->mon_t_o, tb->mon_u_o, tb->mon_v_o};
+        f.hit_tri[pix] = static_cast<int32_t>(tb->mon_tri_o);
+        f.hit_t[pix] = fp24::from_bits(tb->mon_t_o).to_float();
       }
     }
     tick();
-    if (cycle - frame_start > options.watchdog_cycles)
+    if (tb.cycles() - frame_start > options.watchdog_cycles)
       fail("no done after " + std::to_string(options.watchdog_cycles) + " cycles (status " +
            std::to_string(read_reg(spec::kBoardRegStatus)) + ")");
-    if (options.progress && (cycle & 0xfffff) == 0)
-      std::fprintf(stderr, "\rboard: %llu cycles", static_cast<unsigned long long>(cycle));
+    if (options.progress && (tb.cycles() & 0xfffff) == 0)
+      std::fprintf(stderr, "\rboard: %llu cycles", static_cast<unsigned long long>(tb.cycles()));
   }
-  if (options.progress && cycle - frame_start > 0xfffff) std::fprintf(stderr, "\n");
+  if (options.progress && tb.cycles() - frame_start > 0xfffff) std::fprintf(stderr, "\n");
   for (size_t p = 0; p < npix; ++p)
     if (!seen[p]) fail("pixel " + std::to_string(p) + " never written");
 
@@ -136,20 +124,19 @@ BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
   }
   f.counters = counters_from_perf(res.perf, res.error_bits);
   for (size_t p = 0; p < npix; ++p) {
-    m->fb_raddr_i = static_cast<std::remove_reference_t<decltype(m->fb_raddr_i)>>(p);
+    tb->fb_raddr_i = static_cast<std::remove_reference_t<decltype(tb->fb_raddr_i)>>(p);
     tick();
-    const uint32_t rgb = m->fb_rdata_o;
+    const uint32_t rgb = tb->fb_rdata_o;
     for (int c = 0; c < 3; ++c)
       if (((rgb >> (8 * c)) & 0xffu) != f.rgb[p * 3 + static_cast<size_t>(c)]) {
         ++res.fb_readback_differ;
         break;
       }
   }
-  m->final();
   res.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   f.seconds = res.seconds;
-  res.cycles_per_second = res.seconds > 0 ? static_cast<double>(cycle) / res.seconds : 0.0;
+  res.cycles_per_second = res.seconds > 0 ? static_cast<double>(tb.cycles()) / res.seconds : 0.0;
   return res;
 }
 

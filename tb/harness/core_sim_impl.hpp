@@ -16,45 +16,11 @@
 
 #include "core_sim.hpp"
 #include "error.hpp"
+#include "verilated_tb.hpp"
 
 namespace rc::harness {
 
 namespace detail {
-
-// ---- Port bit access: Verilator gives ports up to 64 bits as integers, wider ones as VlWide ----
-
-template <class P>
-void set_field(P& port, unsigned lsb, unsigned width, uint64_t value) {
-  static_assert(std::is_integral<P>::value, "scalar port");
-  const uint64_t mask = width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
-  const uint64_t cur = static_cast<uint64_t>(port);
-  port = static_cast<P>((cur & ~(mask << lsb)) | ((value & mask) << lsb));
-}
-template <std::size_t N>
-void set_field(VlWide<N>& port, unsigned lsb, unsigned width, uint64_t value) {
-  for (unsigned i = 0; i < width; ++i) {
-    const unsigned b = lsb + i;
-    const uint32_t m = 1u << (b % 32);
-    if ((value >> i) & 1u)
-      port[b / 32] |= m;
-    else
-      port[b / 32] &= ~m;
-  }
-}
-
-template <class P>
-uint64_t get_field(const P& port, unsigned lsb, unsigned width) {
-  static_assert(std::is_integral<P>::value, "scalar port");
-  const uint64_t mask = width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
-  return (static_cast<uint64_t>(port) >> lsb) & mask;
-}
-
-// A field of at most 32 bits that does not cross a 32-bit word of a wide signal.
-template <std::size_t N>
-uint64_t get_field(const VlWide<N>& port, unsigned lsb, unsigned width) {
-  const uint64_t mask = width >= 32 ? 0xffffffffull : (uint64_t{1} << width) - 1;
-  return (static_cast<uint64_t>(port[lsb / 32]) >> (lsb % 32)) & mask;
-}
 
 // A memory response's data words (little-endian 32-bit words) onto a data port.
 template <class P>
@@ -91,7 +57,7 @@ std::string describe_thread_states(const Word& st, uint32_t threads) {
   std::ostringstream s;
   s << "  threads:";
   for (uint32_t t = 0; t < threads; ++t) {
-    const uint64_t v = detail::get_field(st, kBits * t, kBits);
+    const uint64_t v = get_field(st, static_cast<int>(kBits * t), static_cast<int>(kBits));
     s << " " << t << ":"
       << (v < static_cast<uint64_t>(spec::kThreadStateCount) ? spec::kThreadStateNames[v] : "?");
   }
@@ -103,9 +69,8 @@ template <class Model>
 struct CoreSim<Model>::State {
   const scene::SceneImage& image;
   CoreSimOptions opt;
-  std::unique_ptr<VerilatedContext> ctx;
-  std::unique_ptr<Model> m;
-  std::unique_ptr<VerilatedFstC> fst;
+  std::unique_ptr<VerilatedTb<Model>> tb;  // the model, its clock and reset, the waveform
+  Model* m = nullptr;                      // tb's model
   std::vector<std::unique_ptr<MemoryPort>> ports;
   std::mt19937_64 rng;
   uint64_t cycle = 0;
@@ -167,30 +132,28 @@ CoreSim<Model>::CoreSim(const scene::SceneImage& image, const CoreSimOptions& op
 
   s.ports = make_core_ports(image, s.opt.memory);
 
-  s.ctx = std::make_unique<VerilatedContext>();
-  s.ctx->assertOn(true);
-  s.ctx->fatalOnError(false);  // an assertion ends the run with a CoreSimError, not abort()
-  if (!s.opt.trace_path.empty()) s.ctx->traceEverOn(true);
-  s.m = std::make_unique<Model>(s.ctx.get(), "core");
+  // Not fatal on error: an assertion ends the run with a CoreSimError, not abort().
+  s.tb = std::make_unique<VerilatedTb<Model>>("core", false, std::vector<std::string>{},
+                                              !s.opt.trace_path.empty());
+  s.m = &s.tb->m();
 }
 
 template <class Model>
-CoreSim<Model>::~CoreSim() {
-  if (!s_) return;
-  if (s_->fst) s_->fst->close();
-  if (s_->m) s_->m->final();
-}
+CoreSim<Model>::~CoreSim() = default;  // the wrapper closes the waveform, then final()'s the model
 
 template <class Model>
 CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
-  using detail::get_field;
-  using detail::set_field;
   using T = fp24;
   constexpr unsigned W = T::kWidth;
   State& s = *s_;
   if (s.used) throw std::logic_error("CoreSim::render: one render per simulation object");
   s.used = true;
   Model& m = *s.m;
+  VerilatedTb<Model>& tb = *s.tb;
+  // A field of a port; fp24 words and pixel ids are placed by unsigned offsets.
+  const auto set_field = [](auto& port, unsigned lsb, unsigned width, uint64_t value) {
+    put_field(port, static_cast<int>(lsb), static_cast<int>(width), value);
+  };
   const auto start = std::chrono::steady_clock::now();
 
   // ---- Configuration and reset ----
@@ -209,19 +172,17 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   m.pkt_valid_i = 0;
   m.fb_ready_i = 0;
   m.perf_sel_i = 0;
-  m.clk_i = 0;
-  m.rst_ni = 1;
-  m.eval();
-  m.rst_ni = 0;
-  m.eval();
-  for (int i = 0; i < 4; ++i) {
-    m.clk_i = 1;
-    m.eval();
-    m.clk_i = 0;
-    m.eval();
-  }
-  m.rst_ni = 1;
-  m.eval();
+  const auto fail = [&](const std::string& what) { throw CoreSimError(s.describe(what)); };
+  // The wrapper's check (an RTL error: a failed assertion, $error or $stop) as a CoreSimError
+  // with the harness's state.
+  const auto checked = [&](auto&& step) {
+    try {
+      step();
+    } catch (const TbError&) {
+      fail("the RTL stopped (an assertion or $stop; see the message above)");
+    }
+  };
+  checked([&] { tb.reset(4); });
 
   // ---- The frame ----
   const PacketSource<T> gen(render.camera, render.width, render.height, render.ray_source);
@@ -259,8 +220,6 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
     }
   };
 
-  const auto fail = [&](const std::string& what) { throw CoreSimError(s.describe(what)); };
-
   auto last_progress = start;
   const auto drive_port = [&](auto& req_ready, auto& rsp_valid, auto& rsp_tag, auto& rsp_data,
                               auto& rsp_error, const MemoryPort& p) {
@@ -294,14 +253,14 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   const bool in_window_possible = !s.opt.trace_path.empty();
   const auto dump = [&](uint64_t time) {
     if (!in_window_possible || s.cycle < s.opt.trace_first || s.cycle > s.opt.trace_last) return;
-    if (!s.fst) {
-      s.fst = std::make_unique<VerilatedFstC>();
-      m.trace(s.fst.get(), 99);
-      s.fst->open(s.opt.trace_path.c_str());
-      if (!s.fst->isOpen())
+    if (!tb.tracing()) {
+      try {
+        tb.open_trace(s.opt.trace_path);
+      } catch (const TbError&) {
         throw CoreSimError("--trace " + s.opt.trace_path + ": cannot open the waveform file");
+      }
     }
-    s.fst->dump(time);
+    tb.dump(time);
   };
 
   bool tail_started = false;
@@ -330,8 +289,7 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
                m.shd_rsp_error_i, *s.ports[kPortShading]);
     drive_port(m.mat_req_ready_i, m.mat_rsp_valid_i, m.mat_rsp_tag_i, m.mat_rsp_data_i,
                m.mat_rsp_error_i, *s.ports[kPortMaterials]);
-    m.clk_i = 0;
-    m.eval();
+    tb.eval();
 
     // ---- Handshakes completing at the coming edge ----
     handshake = false;
@@ -385,14 +343,16 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
       }
       f.hits[pix] = h;
     }
-    if (s.ctx->gotError()) fail("the RTL stopped (an assertion or $stop; see the message above)");
+    checked([&] { tb.check(); });
 
     // ---- The clock edge ----
     dump(2 * s.cycle);
-    m.clk_i = 1;
-    m.eval();
-    dump(2 * s.cycle + 1);
-    for (auto& p : s.ports) p->tick();
+    checked([&] {
+      tb.tick([&] {
+        dump(2 * s.cycle + 1);
+        for (auto& p : s.ports) p->tick();
+      });
+    });
     ++s.cycle;
     s.quiet = handshake ? 0 : s.quiet + 1;
 
@@ -450,8 +410,8 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   for (int i = 0; i < kCorePorts; ++i)
     res.memory[static_cast<size_t>(i)] = s.ports[static_cast<size_t>(i)]->stats();
   f.counters = counters_from_perf(res.perf, res.error_bits);
-  if (s.fst) s.fst->flush();
-  if (!s.opt.trace_path.empty() && !s.fst)
+  tb.flush_trace();
+  if (!s.opt.trace_path.empty() && !tb.tracing())
     throw CoreSimError("--trace " + s.opt.trace_path + ": no waveform written: the trace window " +
                        std::to_string(s.opt.trace_first) + ":" + std::to_string(s.opt.trace_last) +
                        " lies after the frame's last cycle " + std::to_string(s.cycle));

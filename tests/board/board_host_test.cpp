@@ -17,9 +17,9 @@
 #include <utility>
 #include <vector>
 
-#include "../verilated_tb.hpp"
 #include "Vrc_board_host_tb.h"
 #include "rc_constants.hpp"
+#include "verilated_tb.hpp"
 
 namespace {
 
@@ -178,7 +178,7 @@ class Bench {
     }
   }
 
-  rc::test::VerilatedTb<Vrc_board_host_tb> tb_;
+  rc::harness::VerilatedTb<Vrc_board_host_tb> tb_;
   std::deque<int> line_;
   int jitter_ = 0;
   std::mt19937 jitter_rng_{7};

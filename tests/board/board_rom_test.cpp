@@ -24,8 +24,8 @@
 #include <string>
 #include <vector>
 
-#include "../verilated_tb.hpp"
 #include "Vrc_board_rom_tb.h"
+#include "verilated_tb.hpp"
 
 namespace {
 
@@ -184,7 +184,7 @@ class Bench {
   std::mt19937 rng_;
   std::vector<uint64_t> rom_;
   std::string file_;
-  rc::test::VerilatedTb<Vrc_board_rom_tb> tb_;
+  rc::harness::VerilatedTb<Vrc_board_rom_tb> tb_;
   bool req_valid_ = false;
   uint32_t req_index_ = 0, req_tag_ = 0;
   std::deque<Expect> expect_;

@@ -10,39 +10,32 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <memory>
 #include <random>
 #include <string>
 
 #include "Vrc_ray_gen.h"
 #include "camera.hpp"
 #include "render.hpp"
-#include "verilated.h"
+#include "verilated_tb.hpp"
 
 namespace rc::test {
+
+using rc::harness::get_field;
+using rc::harness::put_field;
+using rc::harness::VerilatedTb;
+
 namespace {
 
 constexpr unsigned kW = fp24::kWidth;
 
-template <std::size_t N>
-void put(VlWide<N>& port, unsigned lsb, uint32_t value) {
-  for (unsigned i = 0; i < kW; ++i) {
-    const unsigned b = lsb + i;
-    if ((value >> i) & 1u)
-      port[b / 32] |= 1u << (b % 32);
-    else
-      port[b / 32] &= ~(1u << (b % 32));
-  }
+// A field of a port (fp24 words and pixel ids, placed by unsigned offsets).
+template <class P>
+void put(P& port, unsigned lsb, uint32_t value) {
+  put_field(port, static_cast<int>(lsb), static_cast<int>(kW), value);
 }
-
-template <std::size_t N>
-uint32_t get(const VlWide<N>& port, unsigned lsb, unsigned width) {
-  uint32_t v = 0;
-  for (unsigned i = 0; i < width; ++i) {
-    const unsigned b = lsb + i;
-    v |= ((port[b / 32] >> (b % 32)) & 1u) << i;
-  }
-  return v;
+template <class P>
+uint32_t get(const P& port, unsigned lsb, unsigned width) {
+  return static_cast<uint32_t>(get_field(port, static_cast<int>(lsb), static_cast<int>(width)));
 }
 
 struct Frame {
@@ -57,40 +50,26 @@ struct Outcome {
 // Runs one frame through the unit and checks every packet. stall: probability that pkt_ready_i
 // is low in a cycle.
 Outcome run_frame(const Frame& fr, double stall, uint64_t seed) {
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->assertOn(true);
-  ctx->fatalOnError(false);
-  auto m = std::make_unique<Vrc_ray_gen>(ctx.get(), "ray_gen");
+  // Not fatal on error: a failing RTL assertion fails the test (the wrapper's TbError).
+  VerilatedTb<Vrc_ray_gen> tb("ray_gen", false);
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution low(stall);
-  const auto tick = [&] {
-    m->clk_i = 1;
-    m->eval();
-    m->clk_i = 0;
-    m->eval();
-    EXPECT_FALSE(ctx->gotError()) << "an assertion fired";
-  };
+  const auto tick = [&] { tb.tick(); };
   for (unsigned a = 0; a < 3; ++a) {
-    put(m->eye_i, a * kW, fr.regs.eye[a].bits());
-    put(m->c0_i, a * kW, fr.regs.c0[a].bits());
-    put(m->cx_i, a * kW, fr.regs.cx[a].bits());
-    put(m->cy_i, a * kW, fr.regs.cy[a].bits());
+    put(tb->eye_i, a * kW, fr.regs.eye[a].bits());
+    put(tb->c0_i, a * kW, fr.regs.c0[a].bits());
+    put(tb->cx_i, a * kW, fr.regs.cx[a].bits());
+    put(tb->cy_i, a * kW, fr.regs.cy[a].bits());
   }
-  m->width_i = static_cast<uint16_t>(fr.width);
-  m->height_i = static_cast<uint16_t>(fr.height);
-  m->start_i = 0;
-  m->pkt_ready_i = 0;
-  m->clk_i = 0;
-  m->rst_ni = 0;
-  m->eval();
+  tb->width_i = static_cast<uint16_t>(fr.width);
+  tb->height_i = static_cast<uint16_t>(fr.height);
+  tb->start_i = 0;
+  tb->pkt_ready_i = 0;
+  tb.reset(2);
   tick();
+  tb->start_i = 1;
   tick();
-  m->rst_ni = 1;
-  m->eval();
-  tick();
-  m->start_i = 1;
-  tick();
-  m->start_i = 0;
+  tb->start_i = 0;
 
   Outcome out;
   const uint32_t pw = (fr.width + 1) / 2, ph = (fr.height + 1) / 2;
@@ -101,9 +80,9 @@ Outcome run_frame(const Frame& fr, double stall, uint64_t seed) {
   uint64_t cycles = 0;
   while (out.packets < total && cycles < 200 * (total + 100)) {
     const bool ready = !low(rng);
-    m->pkt_ready_i = ready;
-    m->eval();
-    if (m->pkt_valid_o && ready) {
+    tb->pkt_ready_i = ready;
+    tb->eval();
+    if (tb->pkt_valid_o && ready) {
       const uint32_t px = static_cast<uint32_t>(out.packets % pw),
                      py = static_cast<uint32_t>(out.packets / pw);
       uint32_t want_mask = 0;
@@ -115,23 +94,23 @@ Outcome run_frame(const Frame& fr, double stall, uint64_t seed) {
         const std::string where = "packet (" + std::to_string(px) + ", " + std::to_string(py) +
                                   ") ray " + std::to_string(r) + ": ";
         for (unsigned a = 0; a < 3; ++a) {
-          const uint32_t org = get(m->pkt_org_o, (3 * r + a) * kW, kW);
-          const uint32_t dir = get(m->pkt_dir_o, (3 * r + a) * kW, kW);
+          const uint32_t org = get(tb->pkt_org_o, (3 * r + a) * kW, kW);
+          const uint32_t dir = get(tb->pkt_dir_o, (3 * r + a) * kW, kW);
           if (org != ray.org[a].bits()) fail(where + "org " + fp24::from_bits(org).hex());
           if (dir != ray.dir[a].bits())
             fail(where + "dir[" + std::to_string(a) + "] rtl " + fp24::from_bits(dir).hex() +
                  ", model " + ray.dir[a].hex());
         }
-        const uint32_t inv = get(m->pkt_inv_len_o, r * kW, kW);
+        const uint32_t inv = get(tb->pkt_inv_len_o, r * kW, kW);
         if (inv != ray.inv_len.bits())
           fail(where + "inv_len rtl " + fp24::from_bits(inv).hex() + ", model " +
                ray.inv_len.hex());
-        const uint32_t pix = get(m->pkt_pixel_o, r * 32, 32);
+        const uint32_t pix = get(tb->pkt_pixel_o, r * 32, 32);
         if (pix != y * fr.width + x) fail(where + "pixel id " + std::to_string(pix));
         ++out.rays;
       }
-      if (m->pkt_mask_o != want_mask)
-        fail("packet " + std::to_string(out.packets) + ": mask " + std::to_string(m->pkt_mask_o) +
+      if (tb->pkt_mask_o != want_mask)
+        fail("packet " + std::to_string(out.packets) + ": mask " + std::to_string(tb->pkt_mask_o) +
              ", want " + std::to_string(want_mask));
       ++out.packets;
     }
@@ -139,14 +118,13 @@ Outcome run_frame(const Frame& fr, double stall, uint64_t seed) {
     ++cycles;
   }
   EXPECT_EQ(out.packets, total) << "packets missing after " << cycles << " cycles";
-  m->pkt_ready_i = 1;
+  tb->pkt_ready_i = 1;
   for (int i = 0; i < 4; ++i) {
-    m->eval();
-    EXPECT_FALSE(m->pkt_valid_o) << "a packet beyond the frame";
+    tb->eval();
+    EXPECT_FALSE(tb->pkt_valid_o) << "a packet beyond the frame";
     tick();
   }
-  EXPECT_FALSE(m->busy_o) << "busy_o after the frame's last packet";
-  m->final();
+  EXPECT_FALSE(tb->busy_o) << "busy_o after the frame's last packet";
   return out;
 }
 

@@ -20,7 +20,6 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
-#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -32,39 +31,18 @@
 #include "fp.hpp"
 #include "fp_cases.hpp"
 #include "trace.hpp"
-#include "verilated.h"
+#include "verilated_tb.hpp"
 
 namespace rc::test {
+
+using rc::harness::get_field;
+using rc::harness::put_field;
+using rc::harness::VerilatedTb;
+
 namespace {
 
 using T = fp24;
 constexpr int kW = T::kWidth;
-
-// Bit-field access to Verilator's wide (VlWide) ports.
-template <class Wide>
-void put_field(Wide& w, int lsb, int width, uint32_t val) {
-  for (int i = 0; i < width;) {
-    const int b = lsb + i, wi = b / 32, off = b % 32;
-    const int n = std::min(width - i, 32 - off);
-    const uint32_t mask = (n == 32 ? 0xffffffffu : ((1u << n) - 1u)) << off;
-    w[static_cast<size_t>(wi)] =
-        (w[static_cast<size_t>(wi)] & ~mask) | (((val >> i) << off) & mask);
-    i += n;
-  }
-}
-
-template <class Wide>
-uint32_t get_field(const Wide& w, int lsb, int width) {
-  uint32_t v = 0;
-  for (int i = 0; i < width;) {
-    const int b = lsb + i, wi = b / 32, off = b % 32;
-    const int n = std::min(width - i, 32 - off);
-    const uint32_t mask = n == 32 ? 0xffffffffu : ((1u << n) - 1u);
-    v |= ((w[static_cast<size_t>(wi)] >> off) & mask) << i;
-    i += n;
-  }
-  return v;
-}
 
 ///////////////////////////////////////////
 // A generic valid/ready stream harness  //
@@ -81,31 +59,20 @@ class Stream {
   // gap: 1 in gap_every input slots is idle (0: never); stall: a ready_i low period starts with
   // probability stall_permille/1000 per cycle and lasts 1..max_stall cycles.
   Stream(uint64_t seed, uint32_t gap_every, uint32_t stall_permille, uint32_t max_stall)
-      : ctx_(std::make_unique<VerilatedContext>()),
-        rng_(seed),
-        gap_every_(gap_every),
-        stall_permille_(stall_permille),
-        max_stall_(max_stall) {
-    ctx_->assertOn(true);
-    dut_ = std::make_unique<V>(ctx_.get());
-    dut_->clk_i = 0;
-    dut_->rst_ni = 0;
+      : rng_(seed), gap_every_(gap_every), stall_permille_(stall_permille), max_stall_(max_stall) {
     dut_->valid_i = 0;
     dut_->ready_i = 0;
-    dut_->eval();
-    for (int i = 0; i < 4; ++i) edge();
-    dut_->rst_ni = 1;
-    edge();
+    dut_.reset(4);
+    dut_.tick();
   }
-  ~Stream() { dut_->final(); }
 
-  V& dut() { return *dut_; }
+  V& dut() { return dut_.m(); }
 
   // Offers one item (after a random gap) and holds it until the unit accepts it.
   void push(const Item& it, Exp e) {
     while (gap_every_ != 0 && rng_() % gap_every_ == 0) cycle(false);
     e.tag = next_tag_++;
-    Drv::drive(*dut_, it, e.tag);
+    Drv::drive(dut_.m(), it, e.tag);
     dut_->valid_i = 1;
     uint64_t waited = 0;
     while (!cycle(true)) ++waited;
@@ -127,7 +94,7 @@ class Stream {
     drain();
     stall_permille_ = 0;
     e.tag = next_tag_++;
-    Drv::drive(*dut_, it, e.tag);
+    Drv::drive(dut_.m(), it, e.tag);
     dut_->valid_i = 1;
     uint64_t n = 0;
     bool accepted = cycle(true);
@@ -160,14 +127,7 @@ class Stream {
   }
 
  private:
-  void edge() {
-    dut_->clk_i = 1;
-    dut_->eval();
-    ctx_->timeInc(1);
-    dut_->clk_i = 0;
-    dut_->eval();
-    ctx_->timeInc(1);
-  }
+  void edge() { dut_.tick(); }
 
   // One clock cycle; returns whether an offered input was accepted.
   bool cycle(bool offering) {
@@ -182,20 +142,20 @@ class Stream {
     const bool in_fire = offering && dut_->ready_o;
     if (offering && !dut_->ready_o) ++not_ready_cycles_;
     // A stalled result must still be offered, with the same tag (the RTL asserts full stability).
-    if (held_ && (!dut_->valid_o || Drv::tag(*dut_) != held_tag_))
+    if (held_ && (!dut_->valid_o || Drv::tag(dut_.m()) != held_tag_))
       fail("valid_o dropped or changed while stalled (tag " + std::to_string(held_tag_) + ")");
     held_ = dut_->valid_o && !dut_->ready_i;
-    if (held_) held_tag_ = Drv::tag(*dut_), ++stalled_cycles_;
+    if (held_) held_tag_ = Drv::tag(dut_.m()), ++stalled_cycles_;
     if (dut_->valid_o && dut_->ready_i) {
       if (exp_.empty()) {
-        fail("valid_o without a pending input (tag " + std::to_string(Drv::tag(*dut_)) + ")");
+        fail("valid_o without a pending input (tag " + std::to_string(Drv::tag(dut_.m())) + ")");
       } else {
         const Exp& e = exp_.front();
-        if (Drv::tag(*dut_) != e.tag) {
-          fail("out of order, lost or duplicated: got tag " + std::to_string(Drv::tag(*dut_)) +
+        if (Drv::tag(dut_.m()) != e.tag) {
+          fail("out of order, lost or duplicated: got tag " + std::to_string(Drv::tag(dut_.m())) +
                ", expected " + std::to_string(e.tag));
         } else {
-          const std::string err = Drv::check(*dut_, e);
+          const std::string err = Drv::check(dut_.m(), e);
           if (!err.empty()) fail("tag " + std::to_string(e.tag) + ": " + err);
         }
         exp_.pop_front();
@@ -207,8 +167,7 @@ class Stream {
     return in_fire;
   }
 
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<V> dut_;
+  VerilatedTb<V> dut_;  // fatal on error: a failing RTL assertion ends the test binary
   std::mt19937_64 rng_;
   uint32_t gap_every_, stall_permille_, max_stall_;
   uint32_t stall_left_ = 0;
@@ -561,8 +520,8 @@ TEST(IsectRtl, Fp24VsGoldenIntersect) {
   // The contract's latency: issue 2 (input register, second pass), the transform (multiply and
   // three adds), divide, multiply, two adds, compare, the output FIFO.
   constexpr int64_t add = spec::kFpStagesAdd, mul = spec::kFpStagesMul;
-  constexpr int64_t lat = 2 + (mul + 3 * add) + spec::kFpStagesDiv + mul + 2 * add +
-                          spec::kFpStagesCmp + 1;
+  constexpr int64_t lat =
+      2 + (mul + 3 * add) + spec::kFpStagesDiv + mul + 2 * add + spec::kFpStagesCmp + 1;
   run_isect<Visect_e7f16>("rtl isect unit (one transform unit) vs golden intersect", 1'000'000, 7,
                           static_cast<uint64_t>(lat));
 }
@@ -655,7 +614,7 @@ struct XformDrv {
   static std::string check(const V& d, const XformExp& e) {
     std::string err;
     for (int r = 0; r < 3; ++r) {
-      const uint32_t got = get_field(d.r_o, r * kW, kW);
+      const auto got = static_cast<uint32_t>(get_field(d.r_o, r * kW, kW));
       if (got != e.r[static_cast<size_t>(r)].bits())
         err += " row " + std::to_string(r) + ": rtl " + T::from_bits(got).hex() + ", model " +
                e.r[static_cast<size_t>(r)].hex();

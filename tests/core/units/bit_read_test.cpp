@@ -22,6 +22,11 @@
 #include "verilated_tb.hpp"
 
 namespace rc::test {
+
+using rc::harness::clear;
+using rc::harness::put;
+using rc::harness::put_field;
+using rc::harness::VerilatedTb;
 namespace {
 
 // Write bits into the model's bits_i, whatever type Verilator gave it (an integer or VlWide).

@@ -25,6 +25,11 @@
 #include "verilated_tb.hpp"
 
 namespace rc::test {
+
+using rc::harness::clear;
+using rc::harness::put;
+using rc::harness::put_field;
+using rc::harness::VerilatedTb;
 namespace {
 
 constexpr int kN = static_cast<int>(spec::kCorePerfCount);

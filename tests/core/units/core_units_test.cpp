@@ -28,6 +28,10 @@
 #include "verilated_tb.hpp"
 
 namespace rc::test {
+
+using rc::harness::get_field;
+using rc::harness::put_field;
+using rc::harness::VerilatedTb;
 namespace {
 
 using T = fp24;

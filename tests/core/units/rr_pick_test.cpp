@@ -53,6 +53,12 @@
 #include "verilated_tb.hpp"
 
 namespace rc::test {
+
+using rc::harness::clear;
+using rc::harness::get_field;
+using rc::harness::put;
+using rc::harness::put_field;
+using rc::harness::VerilatedTb;
 namespace {
 
 // The reference: the first set bit of req at or after ptr, wrapping; -1 when req is 0.

@@ -1,14 +1,16 @@
-// The one wrapper of a Verilated model in the test benches (after ZipCPU's testb.h): it owns the
-// VerilatedContext and the model, and does reset, the clock, the cycle count and the error checks;
-// beside it, the helpers that read and write ports of any width. Header-only, Verilator's public
-// API only (no Verilator-internal names).
+// The one wrapper of a Verilated model (after ZipCPU's testb.h), used by the harness (the core's
+// and the board's runs) and by every test bench: it owns the VerilatedContext and the model, and
+// does reset, the clock, the cycle count, the waveform and the error checks; beside it, the helpers
+// that read and write ports of any width. Header-only, Verilator's public API only (no
+// Verilator-internal names).
 //
 // Contract
 // - VerilatedTb<V> needs ports clk_i and (for reset() only) rst_ni on V. The constructor makes
 //   the context (assertions on; fatalOnError as asked: Verilator's default true aborts the process
 //   at a failing RTL assertion, false leaves it to check()), passes `args` (argv[0] first) for
-//   $value$plusargs before the model exists, makes the model with instance name `name` and sets
-//   clk_i = 0. The destructor calls the model's final().
+//   $value$plusargs, turns tracing on when asked (`trace`: needed before the model exists for
+//   open_trace()), makes the model with instance name `name` and sets clk_i = 0. The destructor
+//   closes the waveform, then calls the model's final().
 // - reset(n, tick_fn): clk_i = 0, rst_ni = 0, eval; n cycles of tick_fn (the bench's own cycle,
 //   default tick(), so its per-cycle work runs through reset too); rst_ni = 1, eval. The bench
 //   sets its other inputs before.
@@ -20,6 +22,11 @@
 // - check(): an RTL error ($error, failed assertion, $stop: VerilatedContext::gotError) or
 //   $finish (gotFinish) throws TbError naming the model and the cycle; GoogleTest reports it as a
 //   failure of the test. Called by tick(); a bench may call it after its own eval().
+// - Waveform: open_trace(path, levels) opens an FST file of the model (the constructor's `trace`
+//   must have been true; the caller includes verilated_fst_c.h and links Verilator's FST
+//   runtime; TbError if the file cannot be opened); dump(time) writes the signals at the bench's
+//   time stamp (nothing before open_trace()); flush_trace() flushes. Benches without a waveform
+//   need neither the header nor the runtime.
 // - Ports: clear(p), put_field(p, lsb, width, v) and get_field(p, lsb, width) take an integer
 //   port (CData, SData, IData, QData) or a VlWide<N>; width <= 64; bit i of a VlWide is bit
 //   i % 32 of word i / 32 (element i of a [N][W] packed array sits at bits [i*W +: W]);
@@ -29,6 +36,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -37,7 +45,9 @@
 
 #include "verilated.h"
 
-namespace rc::test {
+class VerilatedFstC;  // verilated_fst_c.h, needed only by the benches that call open_trace()
+
+namespace rc::harness {
 
 // A Verilated model reported an error or $finish.
 class TbError : public std::runtime_error {
@@ -49,7 +59,7 @@ template <class V>
 class VerilatedTb {
  public:
   explicit VerilatedTb(const char* name = "TOP", bool fatal_on_error = true,
-                       const std::vector<std::string>& args = {})
+                       const std::vector<std::string>& args = {}, bool trace = false)
       : name_(name), ctx_(std::make_unique<VerilatedContext>()) {
     ctx_->assertOn(true);
     ctx_->fatalOnError(fatal_on_error);
@@ -58,10 +68,16 @@ class VerilatedTb {
       for (const std::string& a : args) argv.push_back(a.c_str());
       ctx_->commandArgs(static_cast<int>(argv.size()), argv.data());
     }
+    if (trace) ctx_->traceEverOn(true);
     m_ = std::make_unique<V>(ctx_.get(), name);
     m_->clk_i = 0;
   }
-  ~VerilatedTb() { m_->final(); }
+  ~VerilatedTb() {
+    dump_ = nullptr;
+    flush_ = nullptr;
+    trace_.reset();  // closes the file
+    m_->final();
+  }
   VerilatedTb(const VerilatedTb&) = delete;
   VerilatedTb& operator=(const VerilatedTb&) = delete;
 
@@ -101,6 +117,29 @@ class VerilatedTb {
     reset(n, [this] { tick(); });
   }
 
+  // The waveform (a function template, so that only its callers need the FST runtime).
+  template <class Fst = VerilatedFstC>
+  void open_trace(const std::string& path, int levels = 99) {
+    std::shared_ptr<Fst> f(new Fst, [](Fst* p) {
+      p->close();
+      delete p;
+    });
+    m_->trace(f.get(), levels);
+    f->open(path.c_str());
+    if (!f->isOpen()) throw TbError(path + ": cannot open the waveform file");
+    Fst* raw = f.get();  // trace_ alone owns the file, so the destructor closes it first
+    dump_ = [raw](uint64_t time) { raw->dump(time); };
+    flush_ = [raw] { raw->flush(); };
+    trace_ = f;
+  }
+  bool tracing() const { return trace_ != nullptr; }
+  void dump(uint64_t time) {
+    if (dump_) dump_(time);
+  }
+  void flush_trace() {
+    if (flush_) flush_();
+  }
+
   void check() const {
     if (ctx_->gotError())
       throw TbError(name_ + ": an RTL error (failed assertion, $error or $stop; its %Error line " +
@@ -112,6 +151,9 @@ class VerilatedTb {
   std::string name_;
   std::unique_ptr<VerilatedContext> ctx_;  // outlives the model
   std::unique_ptr<V> m_;
+  std::shared_ptr<void> trace_;  // the open waveform, if any (its deleter closes the file)
+  std::function<void(uint64_t)> dump_;
+  std::function<void()> flush_;
   uint64_t cycles_ = 0;
 };
 
@@ -168,4 +210,4 @@ void put(P& port, uint64_t value) {
   port = static_cast<P>(value);
 }
 
-}  // namespace rc::test
+}  // namespace rc::harness
