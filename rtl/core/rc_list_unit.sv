@@ -204,8 +204,8 @@ module rc_list_unit #(
   // The issue of a list entry (lu_busy_q & tag_avail_q & lreq_free) drives some 250 enables and
   // selects in both halves of this unit, so it is registered from the next values, twice:
   // li_take_q for the tag pool (tag_first_q, tf_q, the pool's writes) and li_wait_q, its inverse
-  // (a different function, so synthesis keeps both), for the request side (lu_*, the request
-  // registers, the in-flight counts). Both equal the expression above (LiTake_A).
+  // (rc_flag_pair), for the request side (lu_*, the request registers, the in-flight counts).
+  // Both equal the expression above (LiTake_A).
   logic lu_busy_d, lsk_v_d, li_take_d, li_take_q, li_wait_q, li_take_r;
   assign li_take   = li_take_q;
   assign li_take_r = ~li_wait_q;
@@ -217,15 +217,13 @@ module rc_list_unit #(
   assign lsk_v_d     = lsk_v_q ? ~lout_free : (li_take_r & ~lout_free);
   assign tag_avail_d = li_take ? |tf_rest : |tf_q;
   assign li_take_d   = lu_busy_d & tag_avail_d & ~lsk_v_d;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      li_take_q <= 1'b0;
-      li_wait_q <= 1'b1;
-    end else begin
-      li_take_q <= li_take_d;
-      li_wait_q <= ~li_take_d;
-    end
-  end
+  rc_flag_pair u_li_take (
+    .clk_i,
+    .rst_ni,
+    .d_i (li_take_d),
+    .q_o (li_take_q),
+    .qn_o(li_wait_q)
+  );
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

@@ -203,23 +203,21 @@ module rc_setup_unit #(
 
   // The take's condition beside the pick (a packet waiting, the feeder idle) is registered from
   // the next values, twice: take_ok_q makes the take for the pick and the taken thread's
-  // registers, and take_no_q, its inverse (a different function, so synthesis does not merge
-  // the two), makes the feeder's copy for the feeder and the input register. So neither
+  // registers, and take_no_q, its inverse (rc_flag_pair), makes the feeder's copy for the feeder
+  // and the input register. So neither
   // feed_busy_q nor one net drives both sides (run 47: feed_busy_q -> su_v_q, -1.12 ns, and
   // into the pick's candidates, -0.57 ns).
   logic take_ok_q, take_no_q, take_ok_d;
   assign acc_take   = take_ok_q & acc_any;
   assign acc_take_f = ~take_no_q & acc_any;
   assign take_ok_d  = pin_v_d & ~feed_busy_d;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      take_ok_q <= 1'b0;
-      take_no_q <= 1'b1;
-    end else begin
-      take_ok_q <= take_ok_d;
-      take_no_q <= ~take_ok_d;
-    end
-  end
+  rc_flag_pair u_take_ok (
+    .clk_i,
+    .rst_ni,
+    .d_i (take_ok_d),
+    .q_o (take_ok_q),
+    .qn_o(take_no_q)
+  );
 
   ////////////
   // Feeder //
@@ -236,8 +234,8 @@ module rc_setup_unit #(
   logic            su_take;
 
   // The feeder's flags, so that no one flip-flop drives everything: feed_busy_q for the take and
-  // the step; feed_idle_q, its inverse (a different function, so synthesis does not merge the
-  // two), enables the feeder's copy of the packet (700 flip-flops); su_v_q[u], set-up unit u's
+  // the step; feed_idle_q, its inverse (rc_flag_pair), enables the feeder's copy of the packet
+  // (700 flip-flops); su_v_q[u], set-up unit u's
   // input valid (the feeder busy and the rotation at u), registered from the next values, drives
   // that unit only (its input registers, 450 flip-flops each).
   //
@@ -273,8 +271,6 @@ module rc_setup_unit #(
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      feed_busy_q <= 1'b0;
-      feed_idle_q <= 1'b1;
       su_v_q      <= '0;
       hot_q       <= NU'(1);
       arm_q       <= '0;
@@ -282,8 +278,6 @@ module rc_setup_unit #(
       feed_thr_q  <= '0;
       feed_r_q    <= '0;
     end else begin
-      feed_busy_q <= feed_busy_d;
-      feed_idle_q <= ~feed_busy_d;
       su_v_q      <= su_v_d;
       hot_q       <= hot_d;
       arm_q       <= take_ok_d ? hot_d : '0;
@@ -292,6 +286,13 @@ module rc_setup_unit #(
       if (acc_take_f) feed_thr_q <= acc_thr;
     end
   end
+  rc_flag_pair u_feed_busy (
+    .clk_i,
+    .rst_ni,
+    .d_i (feed_busy_d),
+    .q_o (feed_busy_q),
+    .qn_o(feed_idle_q)
+  );
   // The feeder's copy of the packet follows the input register while the feeder is idle (so the
   // take is not the enable of its 700 flip-flops): it holds the taken packet from the take on.
   always_ff @(posedge clk_i) begin
@@ -568,11 +569,9 @@ module rc_setup_unit #(
   // every_free_q is the AND of the free bits.
   EveryFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 every_free_q == (&free_q));
-  // The feeder's flags agree.
-  FeedIdle_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               feed_idle_q == !feed_busy_q);
+  // The take's condition is its expression's value (the pair's halves agree: rc_flag_pair).
   TakeOk_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                            take_ok_q == (pin_v_q & ~feed_busy_q) && take_no_q == !take_ok_q);
+                            take_ok_q == (pin_v_q & ~feed_busy_q));
   // The valids are the feeder's state: busy, at the rotation's unit; the registered parts of their
   // next values agree with the state they stand for.
   SuValid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
