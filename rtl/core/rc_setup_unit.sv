@@ -204,9 +204,8 @@ module rc_setup_unit #(
   // The take's condition beside the pick (a packet waiting, the feeder idle) is registered from
   // the next values, twice: take_ok_q makes the take for the pick and the taken thread's
   // registers, and take_no_q, its inverse (rc_flag_pair), makes the feeder's copy for the feeder
-  // and the input register. So neither
-  // feed_busy_q nor one net drives both sides (run 47: feed_busy_q -> su_v_q, -1.12 ns, and
-  // into the pick's candidates, -0.57 ns).
+  // and the input register. So neither feed_busy_q nor one net drives both sides (run 47:
+  // feed_busy_q -> su_v_q, -1.12 ns, and into the pick's candidates, -0.57 ns).
   logic take_ok_q, take_no_q, take_ok_d;
   assign acc_take   = take_ok_q & acc_any;
   assign acc_take_f = ~take_no_q & acc_any;
@@ -235,9 +234,9 @@ module rc_setup_unit #(
 
   // The feeder's flags, so that no one flip-flop drives everything: feed_busy_q for the take and
   // the step; feed_idle_q, its inverse (rc_flag_pair), enables the feeder's copy of the packet
-  // (700 flip-flops); su_v_q[u], set-up unit u's
-  // input valid (the feeder busy and the rotation at u), registered from the next values, drives
-  // that unit only (its input registers, 450 flip-flops each).
+  // (700 flip-flops); su_v_q[u], set-up unit u's input valid (the feeder busy and the rotation
+  // at u), registered from the next values, drives that unit only (its input registers, 450
+  // flip-flops each).
   //
   // su_v_q[u]'s next value is the feeder busy with the rotation at u after this cycle's take,
   // written per unit from registers so that a unit's ready (two flip-flops in the unit, across

@@ -107,11 +107,27 @@ module rc_xform_unit #(
     tr_dly_q <= (tr_dly_q << 1) | M3Dly'(translate_i);
   end
 
-  // Delays translate a further AddStages cycles, to the row select at the end.
-  logic [AddStages-1:0] tr_end_q;
+  // Delays translate a further AddStages cycles, to the row select at the end: one copy per row,
+  // each of a different function (row 0 the inverse, row 1 ANDed with the row's valid, row 2
+  // ORed with its invalid), equal to translate whenever the row's result is valid. So synthesis
+  // keeps three flip-flops, each selecting its own row's W bits, and none of them is the tag line's
+  // copy of translate, which a caller may carry in tag_i (rc_isect_unit does): run 49, one
+  // flip-flop selecting all 72 bits into the intersection divider, -2.73 ns. tr_end_q is the
+  // plain delay the copies are checked against (RowSel_A).
+  logic [AddStages-1:0] tr_end_q, sel_n_q, sel_v_q, sel_o_q;
+  logic [2:0]           row_sel;
+  logic                 tr_b, sel_n_d, sel_v_d, sel_o_d;  // at the third add's input
+  assign tr_b    = tr_dly_q[M3Dly-1];
+  assign sel_n_d = ~tr_b;
+  assign sel_v_d = tr_b & add_b_valid[1];
+  assign sel_o_d = tr_b | ~add_b_valid[2];
   always_ff @(posedge clk_i) begin
-    tr_end_q <= (tr_end_q << 1) | AddStages'(tr_dly_q[M3Dly-1]);
+    tr_end_q <= (tr_end_q << 1) | AddStages'(tr_b);
+    sel_n_q  <= (sel_n_q << 1) | AddStages'(sel_n_d);
+    sel_v_q  <= (sel_v_q << 1) | AddStages'(sel_v_d);
+    sel_o_q  <= (sel_o_q << 1) | AddStages'(sel_o_d);
   end
+  assign row_sel = {sel_o_q[AddStages-1], sel_v_q[AddStages-1], ~sel_n_q[AddStages-1]};
 
   for (genvar r = 0; r < 3; r++) begin : g_row
     logic [W-1:0] p0, p1, p2, sum_a, sum_b, sum_c;
@@ -164,7 +180,7 @@ module rc_xform_unit #(
       b_dly_q <= (b_dly_q << W) | (AddStages * W)'(sum_b);
     end
 
-    assign res[r*W +: W] = tr_end_q[AddStages-1] ? sum_c : b_dly_q[AddStages*W-1 -: W];
+    assign res[r*W +: W] = row_sel[r] ? sum_c : b_dly_q[AddStages*W-1 -: W];
   end
 
   logic            pipe_valid;
@@ -212,6 +228,9 @@ module rc_xform_unit #(
   // The three rows run in lockstep; diverging valids would mean misaligned delay lines.
   RowsLockstep_A: assert property (@(posedge clk_i) disable iff (chk_on_q !== 1'b1)
                                    (&add_c_valid || ~|add_c_valid) && (&mul_valid || ~|mul_valid));
+  // Each row's select is translate whenever the row's result is valid.
+  RowSel_A: assert property (@(posedge clk_i) disable iff (chk_on_q !== 1'b1)
+                             add_c_valid[0] |-> row_sel == {3{tr_end_q[AddStages-1]}});
   // The consumer qualifies everything with valid_o, so it must be known once out of reset.
   ValidKnown_A: assert property (@(posedge clk_i) disable iff (chk_on_q !== 1'b1)
                                  !$isunknown({valid_o, ready_o}));
