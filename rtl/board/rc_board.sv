@@ -31,8 +31,9 @@
 //   RGB). done_o rises two cycles after the first cycle in which the last packet has been
 //   generated and the core is idle; it stays until the next start. BoardRegCycles holds the
 //   frame's cycle count.
-// - Framebuffer read port: fb_rdata_o is pixel fb_raddr_i of the previous cycle (registered
-//   block RAM read; reading while a frame runs is legal and shows the frame in progress).
+// - Framebuffer read port: fb_rdata_o is pixel fb_raddr_i of rc_pkg::BoardFbReadLatency (2)
+//   cycles before (the block RAM's read register, then a register after the multiplexer that
+//   joins the block RAMs); reading while a frame runs is legal and shows the frame in progress.
 // - Monitor: mon_valid_o and mon_* show each framebuffer write of the core with its hit record
 //   (simulation checks them; a board top leaves them open).
 // - Status: busy_o (a frame is starting or running), done_o, error_o = rc_core's error_o
@@ -426,7 +427,9 @@ module rc_board #(
   /////////////////
 
   logic [23:0] fb_mem [0:FbPixels-1];
-  logic [23:0] fb_rdata_q;
+  logic [23:0] fb_rdata_q;  // the block RAMs' read registers (Yosys maps it into the RAMs)
+  logic [23:0] fb_out_q;    // after the multiplexer joining the RAMs: the RAMs' 5.8 ns
+                            // clock-to-out ended at the host's register across two LUTs (run 49)
 
   // A write is registered first (fbw_*_q) and made a cycle later: the core's pixel id comes
   // from a distributed-RAM read, and its range check's carry chain ended at the block RAM's
@@ -452,6 +455,10 @@ module rc_board #(
 
   always_ff @(posedge clk_i) begin
     fb_rdata_q <= fb_mem[fb_raddr_i];
+    fb_out_q   <= fb_rdata_q;
+  end
+  if (rc_pkg::BoardFbReadLatency != 2) begin : g_fb_read_check
+    $error("rc_board: the framebuffer read has two registers: needs BoardFbReadLatency 2");
   end
 
   ////////////////////
@@ -513,7 +520,7 @@ module rc_board #(
   end
 
   assign reg_rdata_o  = rdata_q;
-  assign fb_rdata_o   = fb_rdata_q;
+  assign fb_rdata_o   = fb_out_q;
   assign busy_o       = busy;
   assign done_o       = done_q;
   assign size_error_o = size_error_q;

@@ -24,13 +24,12 @@
 //   a register, never depends on tx_ready_i, and tx_valid_o/tx_data_o hold until taken.
 // - Register port: reg_we_o/reg_addr_o/reg_wdata_o come from registers; a write is a single cycle
 //   of reg_we_o. reg_rdata_i is the register at reg_addr_o of rc_pkg::BoardReadLatency cycles
-//   before (rc_board's read latency). Framebuffer: fb_rdata_i is the pixel of the previous
-//   cycle's fb_raddr_o.
+//   before (rc_board's read latency). Framebuffer: fb_rdata_i is the pixel at fb_raddr_o of
+//   rc_pkg::BoardFbReadLatency cycles before.
 // - Latency: a 'W' or 'S' writes 1 cycle after its last byte's strobe; an 'R' answer's first byte
 //   is offered BoardReadLatency + 2 cycles after the addr strobe; each pixel of an 'F' is fetched
-//   in 4 cycles after its predecessor's last byte was taken (the UART, 30 bit times per pixel, is
-//   the bottleneck).
-//   fb_rdata_i goes straight into a register (the block RAM's output path has no logic here).
+//   in BoardFbReadLatency + 3 cycles after its predecessor's last byte was taken (the UART, 30
+//   bit times per pixel, is the bottleneck). fb_rdata_i goes straight into a register.
 // - Illegal input: none (every byte sequence is handled as above).
 // - Reset: rst_ni (active low, asynchronous) abandons any command and answer.
 module rc_board_host #(
@@ -113,15 +112,18 @@ module rc_board_host #(
   logic [TimeW-1:0]    idle_q;       // cycles since the last byte (saturating)
   logic                timeout;
   logic                timeout_q;    // idle_q >= TimeoutCycles, registered from the next count
-  // A register read's wait: the *Wait states last BoardReadLatency cycles (rd_wait_q counts the
-  // cycles left after this one; loaded with every new read address).
+  // A read's wait: the register reads' *Wait states last BoardReadLatency cycles, StPixWait
+  // BoardFbReadLatency cycles (rd_wait_q counts the cycles left after this one; loaded with
+  // every new read address).
   localparam int unsigned RdLat   = rc_pkg::BoardReadLatency;
-  localparam int unsigned RdWaitW = (RdLat > 1) ? $clog2(RdLat) : 1;
+  localparam int unsigned FbLat   = rc_pkg::BoardFbReadLatency;
+  localparam int unsigned MaxLat  = (RdLat > FbLat) ? RdLat : FbLat;
+  localparam int unsigned RdWaitW = (MaxLat > 1) ? $clog2(MaxLat) : 1;
   logic [RdWaitW-1:0]  rd_wait_q;
   logic                rd_ready;
   assign rd_ready = rd_wait_q == '0;
-  if (RdLat < 1) begin : g_lat_check
-    $error("rc_board_host: BoardReadLatency must be at least 1");
+  if (RdLat < 1 || FbLat < 1) begin : g_lat_check
+    $error("rc_board_host: BoardReadLatency and BoardFbReadLatency must be at least 1");
   end
 
   // The count's compare is registered (from the count as it will be: no byte now and the count
@@ -240,11 +242,12 @@ module rc_board_host #(
           end else begin
             fb_raddr_q <= FbAddrW'(pix_q);
             pix_ok_q   <= pix_q < 32'(FbPixels);
+            rd_wait_q  <= RdWaitW'(FbLat - 1);
             state_q    <= StPixWait;
           end
         end
-        StPixWait: state_q <= StPixTake;
-        // The block RAM's output goes to a plain register first (no logic on that slow path).
+        StPixWait: if (rd_ready) state_q <= StPixTake;
+        // The framebuffer's read data goes to a plain register first.
         StPixTake: begin
           pix_data_q <= fb_rdata_i;
           state_q    <= StPixLoad;

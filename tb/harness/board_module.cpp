@@ -125,7 +125,7 @@ BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
   f.counters = counters_from_perf(res.perf, res.error_bits);
   for (size_t p = 0; p < npix; ++p) {
     tb->fb_raddr_i = static_cast<std::remove_reference_t<decltype(tb->fb_raddr_i)>>(p);
-    tick();
+    for (int64_t k = 0; k < spec::kBoardFbReadLatency; ++k) tick();
     const uint32_t rgb = tb->fb_rdata_o;
     for (int c = 0; c < 3; ++c)
       if (((rgb >> (8 * c)) & 0xffu) != f.rgb[p * 3 + static_cast<size_t>(c)]) {

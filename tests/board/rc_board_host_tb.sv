@@ -8,9 +8,10 @@
 //   fake register file: 256 registers of 32 bits, register a initialised to RegInit(a), written
 //   by reg_we, read with rc_board's latency (rc_pkg::BoardReadLatency cycles, the value sampled
 //   in the address's cycle, so a host that takes it early gets an older read); its framebuffer
-//   port goes to a fake framebuffer of FbPixels 24-bit pixels with rc_board's one cycle
-//   latency, which the test fills through fb_we_i/fb_waddr_i/fb_wdata_i. No core: it verilates
-//   and runs in seconds.
+//   port goes to a fake framebuffer of FbPixels 24-bit pixels with rc_board's latency
+//   (rc_pkg::BoardFbReadLatency cycles: a host that takes the pixel early gets an older one),
+//   which the test fills through fb_we_i/fb_waddr_i/fb_wdata_i. No core: it verilates and runs
+//   in seconds.
 // - Monitor: mon_we_o/mon_addr_o/mon_wdata_o show each register write of the host, drop_o its
 //   dropped-byte pulses, rx_frame_error_o the host receiver's framing errors.
 // - Parameters: ClkHz and Baud of all UARTs (a small ratio keeps the test fast), FbPixels,
@@ -86,7 +87,7 @@ module rc_board_host_tb #(
   logic [AddrW-1:0] reg_addr;
   logic [31:0]      reg_wdata, reg_rdata_q;
   logic [FbAddrW-1:0] fb_raddr;
-  logic [23:0]      fb_rdata_q;
+  logic [23:0]      fb_rdata;
 
   rc_uart_rx #(.ClkHz(ClkHz), .Baud(Baud)) u_rx (
     .clk_i,
@@ -110,7 +111,7 @@ module rc_board_host_tb #(
     .reg_wdata_o(reg_wdata),
     .reg_rdata_i(reg_rdata_q),
     .fb_raddr_o (fb_raddr),
-    .fb_rdata_i (fb_rdata_q),
+    .fb_rdata_i (fb_rdata),
     .drop_o
   );
 
@@ -153,12 +154,16 @@ module rc_board_host_tb #(
   // Fake framebuffer //
   //////////////////////
 
+  localparam int unsigned FbLat = rc_pkg::BoardFbReadLatency;
   logic [23:0] fb_q [0:FbPixels-1];
+  logic [23:0] fb_pipe_q [0:FbLat-1];
 
   always_ff @(posedge clk_i) begin
     if (fb_we_i) fb_q[fb_waddr_i] <= fb_wdata_i;
-    fb_rdata_q <= fb_q[fb_raddr];
+    fb_pipe_q[0] <= fb_q[fb_raddr];
+    for (int unsigned k = 1; k < FbLat; k++) fb_pipe_q[k] <= fb_pipe_q[k-1];
   end
+  assign fb_rdata = fb_pipe_q[FbLat-1];
 
   assign mon_we_o    = reg_we;
   assign mon_addr_o  = reg_addr;
