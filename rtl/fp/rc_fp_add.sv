@@ -295,19 +295,36 @@ module rc_fp_add #(
   // the overflow with zero_i inside rc_fp_round_pack changes nothing here.
   assign sum_zero_s4 = lz_s4 == LzW'(SumW);
 
+  // The rounding cycle's range checks, made here so its override starts near flip-flops.
+  logic       man_ones_s4;
+  logic [1:0] uflow_s4, oflow_s4;
+  rc_fp_round_flags #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .ExW  (ExW)
+  ) u_round_flags (
+    .exp_i     (exp_norm_s4),
+    .man_i     (man_s4),
+    .man_ones_o(man_ones_s4),
+    .uflow_o   (uflow_s4),
+    .oflow_o   (oflow_s4)
+  );
+
   ////////////////
   // Cut K5     //
   ////////////////
 
-  localparam int unsigned K5W = FlW + 1 + ExW + ManW + 1;
+  localparam int unsigned K5W = FlW + 1 + ExW + ManW + 1 + 5;
   logic [K5W-1:0]  k5_d, k5_q;
   logic            spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5;
   logic [ExW-1:0]  exp_norm_s5;
   logic [ManW-1:0] man_s5;
-  logic            round_up_s5;
+  logic            round_up_s5, man_ones_s5;
+  logic [1:0]      uflow_s5, oflow_s5;
   logic [W-1:0]    res_d;
 
-  assign k5_d = {fl_s4, sum_zero_s4, exp_norm_s4, man_s4, round_up_s4};
+  assign k5_d = {fl_s4, sum_zero_s4, exp_norm_s4, man_s4, round_up_s4, man_ones_s4, uflow_s4,
+                 oflow_s4};
   if (CutK5) begin : g_cut_k5
     always_ff @(posedge clk_i) begin
       k5_q <= k5_d;
@@ -316,7 +333,7 @@ module rc_fp_add #(
     assign k5_q = k5_d;
   end
   assign {spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5, exp_norm_s5, man_s5,
-          round_up_s5} = k5_q;
+          round_up_s5, man_ones_s5, uflow_s5, oflow_s5} = k5_q;
 
   ////////////////////////////////////////////////////
   // Segment 5: round increment, flush/overflow, pack //
@@ -335,6 +352,9 @@ module rc_fp_add #(
     .exp_i      (exp_norm_s5),
     .man_i      (man_s5),
     .round_up_i (round_up_s5),
+    .man_ones_i (man_ones_s5),
+    .uflow_i    (uflow_s5),
+    .oflow_i    (oflow_s5),
     .res_o      (res_d)
   );
 

@@ -94,8 +94,9 @@ module rc_fp_div #(
   // far}.
   localparam int unsigned StW   = HdrW + FracW + D3W + RemW + N;
   // State after the last iteration: the divisor and the final remainder are no longer needed;
-  // the rounding increment is (round_up, in the place of the remainder).
-  localparam int unsigned FinW  = HdrW + 1 + N;
+  // the rounding increment is (round_up, in the place of the remainder); then the five
+  // rc_fp_round_flags bits.
+  localparam int unsigned FinW  = HdrW + 1 + N + 5;
 
   ///////////////////////////////////////
   // Slot 0: unpack, pre-normalise     //
@@ -228,11 +229,25 @@ module rc_fp_div #(
       // itself: two equality compares beside the subtraction, which only selects (rem_kept is
       // not needed). The increment rounds to nearest even: the round bit (this slot's) and the
       // sticky bit or the last significand bit (slot N - 1's).
-      logic sticky, round_up_d, unused_kept;
+      // The rounding cycle's range checks are made here too (the significand is slots 1 to
+      // N - 1's bits, the exponent the header's), so its override starts near flip-flops.
+      logic sticky, round_up_d, unused_kept, man_ones_d;
+      logic [1:0] uflow_d, oflow_d;
       assign unused_kept = ^rem_kept;
       assign sticky      = q_bit ? (rem != {2'b01, dvs_frac}) : (rem != '0);
       assign round_up_d  = q_bit & (sticky | quo[1]);
-      assign fin_d       = {hdr, round_up_d, quo_next};
+      rc_fp_round_flags #(
+        .ExpW (ExpW),
+        .FracW(FracW),
+        .ExW  (ExW)
+      ) u_round_flags (
+        .exp_i     (hdr[ExW-1:0]),
+        .man_i     (quo[N-1:1]),
+        .man_ones_o(man_ones_d),
+        .uflow_o   (uflow_d),
+        .oflow_o   (oflow_d)
+      );
+      assign fin_d = {hdr, round_up_d, quo_next, man_ones_d, uflow_d, oflow_d};
     end
   end
 
@@ -251,13 +266,15 @@ module rc_fp_div #(
 
   logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
   logic [ExW-1:0]  exp_f;
-  logic            round_up;
+  logic            round_up, man_ones_f;
+  logic [1:0]      uflow_f, oflow_f;
   logic [N-1:0]    quo_f;
   logic [ManW-1:0] man;
   logic [W-1:0]    res_d;
   logic            unused_round_bit;
 
-  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, round_up, quo_f} = fin_q;
+  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, round_up, quo_f, man_ones_f, uflow_f,
+          oflow_f} = fin_q;
   assign man              = quo_f[N-1:1];
   assign unused_round_bit = quo_f[0];  // (in round_up)
 
@@ -274,6 +291,9 @@ module rc_fp_div #(
     .exp_i      (exp_f),
     .man_i      (man),
     .round_up_i (round_up),
+    .man_ones_i (man_ones_f),
+    .uflow_i    (uflow_f),
+    .oflow_i    (oflow_f),
     .res_o      (res_d)
   );
 

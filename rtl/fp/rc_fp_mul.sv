@@ -161,18 +161,34 @@ module rc_fp_mul #(
   assign round_up_s2 = prod_norm[ManW-1] & ((|prod_norm[ManW-2:0]) | man_s2[0]);
   assign exp_norm_s2 = exp_s2 + ExW'(prod_top);
 
+  // The rounding cycle's range checks, made here so its override starts near flip-flops.
+  logic       man_ones_s2;
+  logic [1:0] uflow_s2, oflow_s2;
+  rc_fp_round_flags #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .ExW  (ExW)
+  ) u_round_flags (
+    .exp_i     (exp_norm_s2),
+    .man_i     (man_s2),
+    .man_ones_o(man_ones_s2),
+    .uflow_o   (uflow_s2),
+    .oflow_o   (oflow_s2)
+  );
+
   ////////////////
   // Cut C      //
   ////////////////
 
-  localparam int unsigned SCW = MetaW + ExW + ManW + 1;
+  localparam int unsigned SCW = MetaW + ExW + ManW + 1 + 5;
   logic [SCW-1:0]   sc_d, sc_q;
   logic [MetaW-1:0] meta_s3;
   logic [ExW-1:0]   exp_s3;
   logic [ManW-1:0]  man_s3;
-  logic             round_up_s3;
+  logic             round_up_s3, man_ones_s3;
+  logic [1:0]       uflow_s3, oflow_s3;
 
-  assign sc_d = {meta_s2, exp_norm_s2, man_s2, round_up_s2};
+  assign sc_d = {meta_s2, exp_norm_s2, man_s2, round_up_s2, man_ones_s2, uflow_s2, oflow_s2};
   if (CutC) begin : g_cut_c
     always_ff @(posedge clk_i) begin
       sc_q <= sc_d;
@@ -180,7 +196,7 @@ module rc_fp_mul #(
   end else begin : g_no_cut_c
     assign sc_q = sc_d;
   end
-  assign {meta_s3, exp_s3, man_s3, round_up_s3} = sc_q;
+  assign {meta_s3, exp_s3, man_s3, round_up_s3, man_ones_s3, uflow_s3, oflow_s3} = sc_q;
 
   ////////////////////////////////////////////
   // Segment 3: round, flush/overflow, pack //
@@ -204,6 +220,9 @@ module rc_fp_mul #(
     .exp_i      (exp_s3),
     .man_i      (man_s3),
     .round_up_i (round_up_s3),
+    .man_ones_i (man_ones_s3),
+    .uflow_i    (uflow_s3),
+    .oflow_i    (oflow_s3),
     .res_o      (res_d)
   );
 

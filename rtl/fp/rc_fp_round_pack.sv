@@ -15,10 +15,14 @@
 // - Inputs: exp_i is the biased result exponent before the rounding carry, two's complement and
 //   unbounded (it may be <= 0 or >= all ones); man_i is the normalised significand including the
 //   hidden bit (man_i[FracW]); round_up_i is the round-to-nearest-even increment decided by the
-//   caller.
+//   caller; man_ones_i, uflow_i and oflow_i are rc_fp_round_flags of exp_i and man_i, which the
+//   caller computes a cycle earlier and registers (the override then starts near flip-flops).
+//   The rounding carry out of the significand (man_i all ones and rounding up) only selects
+//   between the flags of exp_i and of exp_i + 1.
 // - Illegal input: exp_i + 1 must fit in ExW bits as a signed value (no wrap-around); when none of
 //   nan_i, inf_i, zero_i is set and the result does not flush, man_i[FracW] must be 1 (the hidden
-//   bit is dropped, not checked). Otherwise man_i and exp_i are don't-care.
+//   bit is dropped, not checked). Otherwise man_i and exp_i are don't-care. man_ones_i, uflow_i
+//   and oflow_i must be rc_fp_round_flags of the same exp_i and man_i.
 module rc_fp_round_pack #(
   parameter int unsigned ExpW  = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW = rc_pkg::Fp24FracW,
@@ -32,6 +36,9 @@ module rc_fp_round_pack #(
   input  logic [ExW-1:0]      exp_i,
   input  logic [FracW:0]      man_i,
   input  logic                round_up_i,
+  input  logic                man_ones_i,
+  input  logic [1:0]          uflow_i,
+  input  logic [1:0]          oflow_i,
   output logic [ExpW+FracW:0] res_o
 );
 
@@ -44,26 +51,24 @@ module rc_fp_round_pack #(
   localparam logic [ExpW-1:0] ExpOnes = {ExpW{1'b1}};
   localparam logic [W-1:0]    QNaN    = (W'(ExpOnes) << FracW) | (W'(1) << (FracW - 1));
 
-  // The rounding carry out of the significand (man_i all ones and rounding up) is a wide AND,
-  // not the end of the increment's carry chain, and the exponent checks are made for both
-  // outcomes (exp_i and exp_i + 1) in parallel with the increment; the carry only selects. This
-  // is the same function as incrementing, adding the carry to the exponent and then checking.
+  // The rounding carry out of the significand is the AND of the increment and the registered
+  // all-ones flag, not the end of the increment's carry chain, and the exponent's checks for
+  // both outcomes (exp_i and exp_i + 1) come in as flags; the carry only selects. This is the
+  // same function as incrementing, adding the carry to the exponent and then checking.
   logic [FracW-1:0] frac_rounded;
   logic             carry;
   logic [ExpW-1:0]  exp_inc, exp_field;
-  logic             uflow0, uflow1, oflow0, oflow1, exp_uflow, exp_oflow;
+  logic             exp_uflow, exp_oflow;
 
   assign frac_rounded = man_i[FracW-1:0] + FracW'(round_up_i);
-  assign carry        = round_up_i & (&man_i);
+  assign carry        = round_up_i & man_ones_i;
   assign exp_inc      = exp_i[ExpW-1:0] + ExpW'(1);
-  // exp_i <= 0 and exp_i + 1 <= 0 (exp_i negative); exp_i >= ones and exp_i + 1 >= ones.
-  assign uflow0       = exp_i[ExW-1] | ~|exp_i;
-  assign uflow1       = exp_i[ExW-1];
-  assign oflow0       = ~exp_i[ExW-1] & (exp_i >= ExW'(ExpOnes));
-  assign oflow1       = ~exp_i[ExW-1] & (exp_i >= ExW'(ExpOnes) - ExW'(1));
-  assign exp_uflow    = carry ? uflow1 : uflow0;
-  assign exp_oflow    = carry ? oflow1 : oflow0;
+  assign exp_uflow    = carry ? uflow_i[1] : uflow_i[0];
+  assign exp_oflow    = carry ? oflow_i[1] : oflow_i[0];
   assign exp_field    = carry ? exp_inc : exp_i[ExpW-1:0];
+  // The exponent's high bits and the hidden bit are read only through the flags.
+  logic unused_flag_inputs;
+  assign unused_flag_inputs = ^{exp_i[ExW-1:ExpW], man_i[FracW]};
 
   always_comb begin
     if (nan_i) begin

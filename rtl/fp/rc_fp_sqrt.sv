@@ -106,8 +106,9 @@ module rc_fp_sqrt #(
     st_off = k * (HdrW + N + 6) + 3 * k * (k - 1) / 2;  // the sum of st_w(0 .. k - 1)
   endfunction
   localparam int unsigned ChainW = st_off(N - 1);
-  // State after the last root bit: of the final remainder only whether it is nonzero (sticky).
-  localparam int unsigned FinW   = HdrW + 1 + N;
+  // State after the last root bit: of the final remainder only whether it is nonzero (sticky);
+  // then the five rc_fp_round_flags bits.
+  localparam int unsigned FinW   = HdrW + 1 + N + 5;
 
   //////////////////////////////////////////////////
   // Slot 0: unpack, classify, radicand, bit 1    //
@@ -243,10 +244,24 @@ module rc_fp_sqrt #(
       // when the trial equals the brought-down remainder, so the sticky bit is two equality
       // compares beside the subtraction, which only selects (not an OR over rem_next behind the
       // subtraction's carry chain: run 47, -0.44 ns in rc_ray_gen).
-      logic sticky, unused_next;
+      // The rounding cycle's range checks are made here too (the significand is the root so
+      // far, the exponent the header's), so its override starts near flip-flops.
+      logic sticky, unused_next, man_ones_d;
+      logic [1:0] uflow_d, oflow_d;
       assign sticky      = r_bit ? (rem_sh != {1'b0, root, 2'b01}) : (rem_sh != '0);
       assign unused_next = ^{rem_next, t_inc, t_dec};
-      assign fin_d       = {hdr, sticky, root, r_bit};
+      rc_fp_round_flags #(
+        .ExpW (ExpW),
+        .FracW(FracW),
+        .ExW  (ExW)
+      ) u_round_flags (
+        .exp_i     (ExW'(hdr[ExpW-1:0])),
+        .man_i     (root),
+        .man_ones_o(man_ones_d),
+        .uflow_o   (uflow_d),
+        .oflow_o   (oflow_d)
+      );
+      assign fin_d = {hdr, sticky, root, r_bit, man_ones_d, uflow_d, oflow_d};
       // By now every radicand bit has been brought down (the rest are the zeros shifted in).
       logic unused_rad;
       assign unused_rad = ^rad[N-3:0];
@@ -271,10 +286,12 @@ module rc_fp_sqrt #(
   logic            sticky_f;
   logic [N-1:0]    root_f;
   logic [ManW-1:0] man;
-  logic            round_up;
+  logic            round_up, man_ones_f;
+  logic [1:0]      uflow_f, oflow_f;
   logic [W-1:0]    res_d;
 
-  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, sticky_f, root_f} = fin_q;
+  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, sticky_f, root_f, man_ones_f, uflow_f,
+          oflow_f} = fin_q;
   assign man      = root_f[N-1:1];  // man[ManW-1] = 1: the root lies in [1, 2)
   assign round_up = root_f[0] & (sticky_f | man[0]);
 
@@ -291,6 +308,9 @@ module rc_fp_sqrt #(
     .exp_i      (ExW'(exp_f)),
     .man_i      (man),
     .round_up_i (round_up),
+    .man_ones_i (man_ones_f),
+    .uflow_i    (uflow_f),
+    .oflow_i    (oflow_f),
     .res_o      (res_d)
   );
 
