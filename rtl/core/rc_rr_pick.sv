@@ -3,7 +3,11 @@
 // Contract
 // - req_i bit i: requester i wants service. take_i: the choice (valid_o, idx_o, grant_o) is used
 //   this cycle if there is one. take_i without a choice (valid_o low) is legal: a user can take
-//   whenever it has room, so valid_o need not reach its registers' enables.
+//   whenever it has room, so valid_o need not reach its registers' enables. What such a take
+//   does is TakeNeedsChoice's: 0, it returns the pointers to 0 (below); 1, it changes nothing,
+//   as if take_i were low, so a user whose take is (condition & valid_o) may give the condition
+//   alone and keep valid_o out of the take's path (the candidates' loads above 32 requesters use
+//   take_i only with a group's choice, which implies valid_o).
 // - grant_o: the choice as a one-hot vector (bit idx_o set; zero when valid_o is low), for users
 //   that decode the choice per requester.
 // - Up to 32 requesters (one pointer over all of them, rc_rr_pick_flat): valid_o = |req_i; idx_o
@@ -20,7 +24,8 @@
 //   round-robin pick (rc_rr_pick_flat) over the groups holding a candidate, and that group's
 //   candidate: it comes from registers, so no path runs from req_i to the outputs, and the
 //   choice's loop (a take, the candidate's replacement) passes one 16-way pick and the group
-//   pick instead of a pick over all N. Rules for the user:
+//   pick instead of a pick over all N; valid_o is a flip-flop (registered from the candidates'
+//   next values). Rules for the user:
 //   - a request stays up until the requester is taken (candidates are not withdrawn; checked by
 //     ReqHeld_A), and drops at the clock edge that ends the take's cycle or at the next one;
 //   - a request is chosen at the earliest in the cycle after it rises (latency 1);
@@ -29,13 +34,15 @@
 //   Every requester is served within G (16 + 1) takes of asking (G groups: 136 at N = 128): it
 //   becomes its group's candidate within 16 of the group's takes, each within G takes, and is
 //   then taken within G takes.
-// - Parameters: N >= 1 requesters; IdxW index bits (>= 1, 2^IdxW >= N).
+// - Parameters: N >= 1 requesters; IdxW index bits (>= 1, 2^IdxW >= N); TakeNeedsChoice
+//   (above).
 // - Illegal input: a request dropped before it is taken (more than 32 requesters).
 // - Reset: rst_ni (active low, asynchronous) sets the pointers to 0 and, above 32 requesters,
 //   clears the candidates.
 module rc_rr_pick #(
-  parameter int unsigned N    = 8,
-  parameter int unsigned IdxW = (N > 1) ? $clog2(N) : 1
+  parameter int unsigned N               = 8,
+  parameter int unsigned IdxW            = (N > 1) ? $clog2(N) : 1,
+  parameter bit          TakeNeedsChoice = 1'b0
 ) (
   input  logic            clk_i,
   input  logic            rst_ni,
@@ -50,6 +57,10 @@ module rc_rr_pick #(
     $error("rc_rr_pick: need N >= 1 and 2^IdxW >= N");
   end
 
+  // The take as the pointers see it.
+  logic take_ptr;
+  assign take_ptr = TakeNeedsChoice ? take_i & valid_o : take_i;
+
   if (N <= 32) begin : g_flat
     rc_rr_pick_flat #(
       .N   (N),
@@ -58,7 +69,7 @@ module rc_rr_pick #(
       .clk_i,
       .rst_ni,
       .req_i,
-      .take_i,
+      .take_i (take_ptr),
       .valid_o,
       .idx_o,
       .grant_o
@@ -69,7 +80,8 @@ module rc_rr_pick #(
     localparam int unsigned GW  = (G > 1) ? $clog2(G) : 1;
     localparam int unsigned GIW = 4;
     logic [G*GS-1:0]  req_all, grant_all, cand_all, taken_q;
-    logic [G-1:0]     cand_v, g_grant, load;
+    logic [G-1:0]     cand_v, cand_v_d, g_grant, load;
+    logic             any_q, g_valid;
     logic [GW-1:0]    g_idx;
     logic [G*GIW-1:0] cand_idx;
     logic [GIW-1:0]   idx_in;
@@ -105,6 +117,7 @@ module rc_rr_pick #(
         end
       end
       assign cand_v[g]                = cand_v_q;
+      assign cand_v_d[g]              = load[g] ? new_v : cand_v_q;
       assign cand_idx[g*GIW +: GIW]   = cand_idx_q;
       assign cand_all[g*GS +: GS]  = cand_q;
       assign grant_all[g*GS +: GS] = {GS{g_grant[g]}} & cand_q;
@@ -116,18 +129,27 @@ module rc_rr_pick #(
       .clk_i,
       .rst_ni,
       .req_i  (cand_v),
-      .take_i (take_i),
-      .valid_o(valid_o),
+      .take_i (take_ptr),
+      .valid_o(g_valid),
       .idx_o  (g_idx),
       .grant_o(g_grant)
     );
+    // The choice's valid (some group holds a candidate) is a flip-flop, registered from the
+    // candidates' next values, so a user's logic after valid_o starts at one register instead of
+    // an OR over the groups' registers across the chip (run 50: the free pick's valid through the
+    // set-up unit's feeder, -2.14 ns).
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         taken_q <= '0;
+        any_q   <= 1'b0;
       end else begin
         taken_q <= take_i ? grant_all : '0;
+        any_q   <= |cand_v_d;
       end
     end
+    assign valid_o = any_q;
+    logic unused_g_valid;
+    assign unused_g_valid = g_valid;  // the same value (AnyReg_A)
     always_comb begin
       idx_in = '0;
       for (int unsigned g = 0; g < G; g++) begin
@@ -146,6 +168,9 @@ module rc_rr_pick #(
       .rst_ni,
       .on_o (tree_checks_on)
     );
+    // The registered valid is the OR of the candidates' valid bits.
+    AnyReg_A: assert property (@(posedge clk_i) disable iff (tree_checks_on !== 1'b1)
+                               valid_o == g_valid);
     // A candidate is a requester that still asks (requests are held until taken).
     ReqHeld_A: assert property (@(posedge clk_i) disable iff (tree_checks_on !== 1'b1)
                                 (cand_all & ~req_all) == '0);

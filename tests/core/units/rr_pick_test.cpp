@@ -6,8 +6,9 @@
 // vector, valid_o and idx_o against a plain scan (the first requester at or after the pointer,
 // wrapping around); then seeded random takes, checking after each that the pointer moved to the
 // taken index + 1 (mod N) by the choice it makes next; one take in eight has no request at all,
-// which must return the pointer to 0. grant_o (the choice one-hot) is checked against the same
-// reference in every case.
+// which must return the pointer to 0, or (TakeNeedsChoice = 1, verilated at N = 16 as n16c)
+// leave it where it was. grant_o (the choice one-hot) is checked against the same reference in
+// every case.
 //
 // Groups of 16 with a candidate register each (N > 32), verilated at N = 128 (the core's default
 // thread count) and 40 (two full groups and a third padded with 8 requesters that never ask),
@@ -17,9 +18,10 @@
 // is taken, loads the first of its requests at or after its pointer, leaving out the candidate it
 // replaces and the requester taken in the cycle before (its pointer then moves past it, or to 0
 // when there is none); a take moves the group pointer past the chosen group, or to 0 without a
-// choice. The requests keep the contract's rules: a requester asks until it is taken and drops at
-// the take's edge or at the next one (drawn at random), and may ask again from the cycle after.
-// Checked every cycle (valid_o, grant_o, and idx_o when valid_o is high):
+// choice (with TakeNeedsChoice = 1, verilated at N = 64 as n64c, the board's thread count, a take
+// without a choice changes nothing). The requests keep the contract's rules: a requester asks until
+// it is taken and drops at the take's edge or at the next one (drawn at random), and may ask again
+// from the cycle after. Checked every cycle (valid_o, grant_o, and idx_o when valid_o is high):
 // - seeded random: 240,000 cycles in runs of 1..400 cycles, each run one kind of arrivals (dense,
 //   half, sparse, a few, a single requester, all requesters, the last group only (the padded one
 //   at 40), one group, one requester in each of some groups, none), taken with probability 1, 3/4
@@ -47,8 +49,10 @@
 #include "Vrr_pick_n1.h"
 #include "Vrr_pick_n128.h"
 #include "Vrr_pick_n16.h"
+#include "Vrr_pick_n16c.h"
 #include "Vrr_pick_n40.h"
 #include "Vrr_pick_n5.h"
+#include "Vrr_pick_n64c.h"
 #include "fp_cases.hpp"
 #include "verilated_tb.hpp"
 
@@ -111,7 +115,7 @@ class Picker {
 };
 
 template <class V>
-void run(int n, const char* what) {
+void run(int n, const char* what, bool needs_choice = false) {
   Picker<V> pk(n);
   uint64_t cases = 0, bad = 0;
   const uint32_t all = n >= 32 ? 0xffffffffu : (1u << n) - 1u;
@@ -133,8 +137,8 @@ void run(int n, const char* what) {
     }
   }
   // Random takes: the pointer follows the taken index, observed through the next choice with all
-  // requesters asking (which must then be taken index + 1 mod N, or 0 after a take without a
-  // request).
+  // requesters asking (which must then be taken index + 1 mod N; after a take without a request
+  // 0, or the pointer as it was with TakeNeedsChoice).
   std::mt19937 rng(0x5eed0000u + static_cast<uint32_t>(n));
   int ptr = 0;
   pk.set_ptr(0);
@@ -150,7 +154,11 @@ void run(int n, const char* what) {
       if (bad < 8) ADD_FAILURE() << what << ": take " << k << ": idx " << got << ", want " << want;
       ++bad;
     }
-    ptr = none ? 0 : (want + 1) % n;
+    if (!none) {
+      ptr = (want + 1) % n;
+    } else if (!needs_choice) {
+      ptr = 0;
+    }
     ++cases;
     if (pk.choose(all) != ptr) {
       if (bad < 8) ADD_FAILURE() << what << ": take " << k << ": pointer not at " << ptr;
@@ -166,6 +174,9 @@ TEST(RrPick, N16Exhaustive) {
 }
 TEST(RrPick, N5Exhaustive) { run<Vrr_pick_n5>(5, "rc_rr_pick N=5 (every pointer, every request)"); }
 TEST(RrPick, N1Exhaustive) { run<Vrr_pick_n1>(1, "rc_rr_pick N=1 (every pointer, every request)"); }
+TEST(RrPick, N16TakeNeedsChoiceExhaustive) {
+  run<Vrr_pick_n16c>(16, "rc_rr_pick N=16 TakeNeedsChoice (every pointer, every request)", true);
+}
 
 // ---- The grouped picker (N > 32) ----
 
@@ -224,8 +235,9 @@ Bits get_bits(const Port& port) {
 // pointer over the groups holding a candidate. All pointers start at 0, no candidates.
 class GroupedRef {
  public:
-  explicit GroupedRef(int n)
+  GroupedRef(int n, bool needs_choice)
       : n_(n),
+        needs_choice_(needs_choice),
         groups_((n + kGroup - 1) / kGroup),
         gptr_(static_cast<std::size_t>(groups_), 0),
         cand_(static_cast<std::size_t>(groups_), -1) {}
@@ -248,7 +260,7 @@ class GroupedRef {
   void edge(const Bits& req, bool take) {
     const int c = choose();
     const int cg = c < 0 ? -1 : c / kGroup;
-    if (take) optr_ = c < 0 ? 0 : (cg + 1) % groups_;
+    if (take && (c >= 0 || !needs_choice_)) optr_ = c < 0 ? 0 : (cg + 1) % groups_;
     for (int g = 0; g < groups_; ++g) {
       if (cand(g) >= 0 && !(take && g == cg)) continue;
       int pick = -1;
@@ -263,7 +275,9 @@ class GroupedRef {
   }
 
  private:
-  int n_, groups_;
+  int n_;
+  bool needs_choice_;
+  int groups_;
   int optr_ = 0, taken_ = -1;
   std::vector<int> gptr_, cand_;
 };
@@ -272,7 +286,7 @@ class GroupedRef {
 template <class V>
 class Checked {
  public:
-  Checked(int n, const char* what) : n_(n), what_(what), ref_(n) {
+  Checked(int n, const char* what, bool needs_choice) : n_(n), what_(what), ref_(n, needs_choice) {
     put_bits(tb_->req_i, Bits{});
     tb_->take_i = 0;
     tb_.reset(0);
@@ -445,9 +459,9 @@ class Requests {
 };
 
 template <class V>
-void run_grouped_random(int n, const char* what) {
+void run_grouped_random(int n, const char* what, bool needs_choice = false) {
   constexpr uint64_t kCycles = 240000;
-  Checked<V> ck(n, what);
+  Checked<V> ck(n, what, needs_choice);
   ReqGen gen(n, 0x9e0b0000u + static_cast<uint32_t>(n));
   Requests rq(n);
   std::vector<uint64_t> taken(static_cast<std::size_t>(n), 0);
@@ -499,8 +513,8 @@ void run_grouped_random(int n, const char* what) {
 // Fairness: fixed sets of requesters that ask again as soon as they may; each must be served
 // within the contract's bound of takes while it asks.
 template <class V>
-void run_grouped_fairness(int n, const char* what) {
-  Checked<V> ck(n, what);
+void run_grouped_fairness(int n, const char* what, bool needs_choice = false) {
+  Checked<V> ck(n, what, needs_choice);
   ReqGen gen(n, 0xfa170000u + static_cast<uint32_t>(n));
   const int groups = (n + kGroup - 1) / kGroup;
   std::vector<std::pair<std::string, Bits>> sets;
@@ -605,6 +619,13 @@ TEST(RrPick, N128GroupedFairness) {
 }
 TEST(RrPick, N40GroupedFairness) {
   run_grouped_fairness<Vrr_pick_n40>(40, "rc_rr_pick N=40 grouped fairness");
+}
+TEST(RrPick, N64TakeNeedsChoiceGroupedRandom) {
+  run_grouped_random<Vrr_pick_n64c>(
+      64, "rc_rr_pick N=64 TakeNeedsChoice grouped (random vs the model)", true);
+}
+TEST(RrPick, N64TakeNeedsChoiceGroupedFairness) {
+  run_grouped_fairness<Vrr_pick_n64c>(64, "rc_rr_pick N=64 TakeNeedsChoice grouped fairness", true);
 }
 
 }  // namespace
