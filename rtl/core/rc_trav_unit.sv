@@ -402,18 +402,41 @@ module rc_trav_unit #(
       ent_b.tmax[r] = (!same && spl) ? t : hi;
     end
   end
-  assign ent_go = (tq_a_mask_q != 4'd0) ? ent_a : ent_b;
+  // Whether the first child has rays, registered beside the masks twice (rc_flag_pair): tq_go_a_q
+  // selects between the two children's routes, computed side by side, a LUT before the outputs'
+  // valid registers; tq_go_b_q, its inverse, selects the entry that goes on (some 300 bits). So
+  // the select's fan-out is off the valids' path (runs 48 to 50: tq_a_mask_q -> req_v_q through
+  // the wide select, -0.07 to -0.84 ns).
+  logic tq_go_a_q, tq_go_b_q;
+  rc_flag_pair u_go_a (
+    .clk_i,
+    .rst_ni,
+    .d_i (|hd_a_mask),
+    .q_o (tq_go_a_q),
+    .qn_o(tq_go_b_q)
+  );
+  assign ent_go = tq_go_b_q ? ent_b : ent_a;
   assign tq_thr = ThrW'(tq_com_q.thr);
   assign tq_sp1 = tq_com_q.sp + SpW'(1);
 
-  logic [1:0] go_route;
-  logic [2:0] go_err;
-  logic       go_leaf_kind, push_ok;
-  assign go_route     = rc_pkg::walk_route(ent_go.mask, ent_go.node.rec[1:0],
-                                           ent_go.node.rec[63:32], ent_go.node.chk);
-  assign go_err       = rc_pkg::walk_err(ent_go.mask, ent_go.node.chk);
-  assign go_leaf_kind = ent_go.node.rec[rc_pkg::KdNodeKindLsb +: 2] ==
-                        2'(rc_pkg::KdNodeKindLeaf);
+  // The route, the errors, the leaf kind and the empty leaf of each child, then the select.
+  logic [1:0] route_a, route_b, go_route;
+  logic [2:0] err_a, err_b, go_err;
+  logic       leaf_a, leaf_b, empty_a, empty_b, go_leaf_kind, go_empty, push_ok;
+  assign route_a      = rc_pkg::walk_route(ent_a.mask, ent_a.node.rec[1:0],
+                                           ent_a.node.rec[63:32], ent_a.node.chk);
+  assign route_b      = rc_pkg::walk_route(ent_b.mask, ent_b.node.rec[1:0],
+                                           ent_b.node.rec[63:32], ent_b.node.chk);
+  assign err_a        = rc_pkg::walk_err(ent_a.mask, ent_a.node.chk);
+  assign err_b        = rc_pkg::walk_err(ent_b.mask, ent_b.node.chk);
+  assign leaf_a       = ent_a.node.rec[rc_pkg::KdNodeKindLsb +: 2] == 2'(rc_pkg::KdNodeKindLeaf);
+  assign leaf_b       = ent_b.node.rec[rc_pkg::KdNodeKindLsb +: 2] == 2'(rc_pkg::KdNodeKindLeaf);
+  assign empty_a      = ent_a.node.rec[rc_pkg::KdNodeValueLsb +: 32] == 32'd0;
+  assign empty_b      = ent_b.node.rec[rc_pkg::KdNodeValueLsb +: 32] == 32'd0;
+  assign go_route     = tq_go_a_q ? route_a : route_b;
+  assign go_err       = tq_go_a_q ? err_a : err_b;
+  assign go_leaf_kind = tq_go_a_q ? leaf_a : leaf_b;
+  assign go_empty     = tq_go_a_q ? empty_a : empty_b;
   assign push_ok      = tq_push_q & ~tq_ovf_q;
 
   // The decision's outputs, registered.
@@ -443,8 +466,7 @@ module rc_trav_unit #(
       req_v_q      <= tq_v_q & (tq_ovf_q | (go_route == rc_pkg::RoutePop));
       err_v_q      <= tq_v_q & (tq_ovf_q | (go_err != 3'd0));
       perf_leaf_q  <= tq_v_q & ~tq_ovf_q & go_leaf_kind;
-      perf_empty_q <= tq_v_q & ~tq_ovf_q & go_leaf_kind &
-                      (ent_go.node.rec[rc_pkg::KdNodeValueLsb +: 32] == 32'd0);
+      perf_empty_q <= tq_v_q & ~tq_ovf_q & go_leaf_kind & go_empty;
     end
   end
   always_ff @(posedge clk_i) begin
@@ -516,6 +538,9 @@ module rc_trav_unit #(
                                  iss_v |-> iss_item.entry.mask != 4'd0 &&
                                  iss_item.entry.node.chk == rc_pkg::NodeOk &&
                                  iss_item.entry.node.rec[1:0] != 2'(rc_pkg::KdNodeKindLeaf));
+  // The decision's select is the first child's mask being nonzero (registered beside it).
+  GoA_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                          tq_v_q |-> tq_go_a_q == (tq_a_mask_q != 4'd0));
   // The request queue holds each thread once at most, so it never overflows.
   ReqRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               iss_v |-> 32'(rq_cnt) < ReqQD);
