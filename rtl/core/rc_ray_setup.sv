@@ -30,7 +30,8 @@
 //   ready_i; valid_o never depends on ready_i. Results leave in order; nothing is dropped or
 //   duplicated. tag_i travels with the operation to tag_o.
 // - Latency: 21 cycles at the defaults from the taking edge to valid_o (input register 1 · z
-//   enters the slice 2 x 1 after x · divide 11, with the subtracts in parallel · multiply 3 ·
+//   enters the slice 2 x 1 after x · divide 11, with the subtracts in parallel (an operand
+//   register, then rc_fp_add with 10 stages) · multiply 3 ·
 //   min/max of t0, t1: 1 · the chain step of z: 1 (those of x and y overlap the later axes) ·
 //   le: 1 · output FIFO 1), when the FIFO is empty and ready_i is 1.
 // - Throughput: one ray per 3 x CmpStages cycles (3 at the defaults) while ready_i is 1: ready_o
@@ -78,6 +79,9 @@ module rc_ray_setup #(
   // Latencies of the fp units: the rc_fp_* defaults, both from docs/spec.toml [fp_stages].
   localparam int unsigned DivStages = rc_pkg::FpStagesDiv;
   localparam int unsigned SubStages = DivStages;  // the subtracts run beside the divide
+  if (SubStages < 2) begin : g_sub_check
+    $error("rc_ray_setup: the subtracts' operand register needs DivStages >= 2");
+  end
   localparam int unsigned MulStages = rc_pkg::FpStagesMul;
   localparam int unsigned CmpStages = rc_pkg::FpStagesCmp;
   // One axis enters the slice every AxisGap cycles: an axis' chain step needs the result of the
@@ -184,17 +188,36 @@ module rc_ray_setup #(
     .res_o  (inv)
   );
 
+  // The subtracts need fewer cycles than the divide they run beside, so the first of their
+  // SubStages is a register of their operands (sub_in_q, no enable): their first segment (unpack,
+  // magnitude compare, operand order) starts at a register beside them instead of at ax_q, which
+  // the feeder's data also pull (runs 49 and 51: ax_q -> the subtracters' cut K1, up to -1.44 ns).
+  logic [3*W-1:0] sub_in_q;
+  logic           sub_issue_q;
+  logic [W-1:0]   sub_lo_a, sub_hi_a, sub_org_b;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      sub_issue_q <= 1'b0;
+    end else begin
+      sub_issue_q <= issue;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    sub_in_q <= {ax_lo, ax_hi, ax_org};
+  end
+  assign {sub_lo_a, sub_hi_a, sub_org_b} = sub_in_q;
+
   rc_fp_add #(
     .ExpW  (ExpW),
     .FracW (FracW),
-    .Stages(SubStages)
+    .Stages(SubStages - 1)
   ) u_sub_lo (
     .clk_i,
     .rst_ni,
-    .valid_i(issue),
+    .valid_i(sub_issue_q),
     .sub_i  (1'b1),
-    .a_i    (ax_lo),
-    .b_i    (ax_org),
+    .a_i    (sub_lo_a),
+    .b_i    (sub_org_b),
     .valid_o(sub_lo_valid),
     .res_o  (dlo)
   );
@@ -202,14 +225,14 @@ module rc_ray_setup #(
   rc_fp_add #(
     .ExpW  (ExpW),
     .FracW (FracW),
-    .Stages(SubStages)
+    .Stages(SubStages - 1)
   ) u_sub_hi (
     .clk_i,
     .rst_ni,
-    .valid_i(issue),
+    .valid_i(sub_issue_q),
     .sub_i  (1'b1),
-    .a_i    (ax_hi),
-    .b_i    (ax_org),
+    .a_i    (sub_hi_a),
+    .b_i    (sub_org_b),
     .valid_o(sub_hi_valid),
     .res_o  (dhi)
   );
