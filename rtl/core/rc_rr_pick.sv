@@ -24,8 +24,10 @@
 //   round-robin pick (rc_rr_pick_flat) over the groups holding a candidate, and that group's
 //   candidate: it comes from registers, so no path runs from req_i to the outputs, and the
 //   choice's loop (a take, the candidate's replacement) passes one 16-way pick and the group
-//   pick instead of a pick over all N; valid_o is a flip-flop (registered from the candidates'
-//   next values). Rules for the user:
+//   pick instead of a pick over all N; valid_o is the OR of the candidates' valid bits, or with
+//   RegValid a flip-flop holding it (registered from the candidates' next values: a user whose
+//   logic after valid_o is long gets it from one register, a user whose take is long keeps the
+//   take out of valid_o's path). Rules for the user:
 //   - a request stays up until the requester is taken (candidates are not withdrawn; checked by
 //     ReqHeld_A), and drops at the clock edge that ends the take's cycle or at the next one;
 //   - a request is chosen at the earliest in the cycle after it rises (latency 1);
@@ -34,15 +36,16 @@
 //   Every requester is served within G (16 + 1) takes of asking (G groups: 136 at N = 128): it
 //   becomes its group's candidate within 16 of the group's takes, each within G takes, and is
 //   then taken within G takes.
-// - Parameters: N >= 1 requesters; IdxW index bits (>= 1, 2^IdxW >= N); TakeNeedsChoice
-//   (above).
+// - Parameters: N >= 1 requesters; IdxW index bits (>= 1, 2^IdxW >= N); TakeNeedsChoice and
+//   RegValid (above; RegValid matters only above 32 requesters).
 // - Illegal input: a request dropped before it is taken (more than 32 requesters).
 // - Reset: rst_ni (active low, asynchronous) sets the pointers to 0 and, above 32 requesters,
 //   clears the candidates.
 module rc_rr_pick #(
   parameter int unsigned N               = 8,
   parameter int unsigned IdxW            = (N > 1) ? $clog2(N) : 1,
-  parameter bit          TakeNeedsChoice = 1'b0
+  parameter bit          TakeNeedsChoice = 1'b0,
+  parameter bit          RegValid        = 1'b0
 ) (
   input  logic            clk_i,
   input  logic            rst_ni,
@@ -134,22 +137,32 @@ module rc_rr_pick #(
       .idx_o  (g_idx),
       .grant_o(g_grant)
     );
-    // The choice's valid (some group holds a candidate) is a flip-flop, registered from the
-    // candidates' next values, so a user's logic after valid_o starts at one register instead of
-    // an OR over the groups' registers across the chip (run 50: the free pick's valid through the
-    // set-up unit's feeder, -2.14 ns).
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         taken_q <= '0;
-        any_q   <= 1'b0;
       end else begin
         taken_q <= take_i ? grant_all : '0;
-        any_q   <= |cand_v_d;
       end
     end
+    // The choice's valid (some group holds a candidate). With RegValid it is a flip-flop,
+    // registered from the candidates' next values, so a user's logic after valid_o starts at one
+    // register instead of an OR over the groups' registers across the chip (run 50: the free
+    // pick's valid through the set-up unit's feeder, -2.14 ns). Without, the take does not reach
+    // valid_o's register (run 51: the pop pick's take into any_q, -0.68 ns).
+    if (RegValid) begin : g_any_reg
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) begin
+          any_q <= 1'b0;
+        end else begin
+          any_q <= |cand_v_d;
+        end
+      end
+    end else begin : g_any_comb
+      assign any_q = g_valid;
+      logic unused_cand_v_d;
+      assign unused_cand_v_d = ^cand_v_d;
+    end
     assign valid_o = any_q;
-    logic unused_g_valid;
-    assign unused_g_valid = g_valid;  // the same value (AnyReg_A)
     always_comb begin
       idx_in = '0;
       for (int unsigned g = 0; g < G; g++) begin
@@ -168,7 +181,7 @@ module rc_rr_pick #(
       .rst_ni,
       .on_o (tree_checks_on)
     );
-    // The registered valid is the OR of the candidates' valid bits.
+    // The valid (registered or not) is the OR of the candidates' valid bits.
     AnyReg_A: assert property (@(posedge clk_i) disable iff (tree_checks_on !== 1'b1)
                                valid_o == g_valid);
     // A candidate is a requester that still asks (requests are held until taken).

@@ -137,7 +137,8 @@ module rc_setup_unit #(
   rc_rr_pick #(
     .N              (Threads),
     .IdxW           (ThrW),
-    .TakeNeedsChoice(1'b1)
+    .TakeNeedsChoice(1'b1),
+    .RegValid       (1'b1)
   ) u_pick_free (
     .clk_i,
     .rst_ni,

@@ -19,7 +19,8 @@
 // replaces and the requester taken in the cycle before (its pointer then moves past it, or to 0
 // when there is none); a take moves the group pointer past the chosen group, or to 0 without a
 // choice (with TakeNeedsChoice = 1, verilated at N = 64 as n64c, the board's thread count, a take
-// without a choice changes nothing). The requests keep the contract's rules: a requester asks until
+// without a choice changes nothing; n64c also has RegValid, valid_o from a flip-flop, which must
+// give the same values every cycle). The requests keep the contract's rules: a requester asks until
 // it is taken and drops at the take's edge or at the next one (drawn at random), and may ask again
 // from the cycle after. Checked every cycle (valid_o, grant_o, and idx_o when valid_o is high):
 // - seeded random: 240,000 cycles in runs of 1..400 cycles, each run one kind of arrivals (dense,
