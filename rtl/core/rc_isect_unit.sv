@@ -313,19 +313,38 @@ module rc_isect_unit #(
   logic         ctb_valid, ctb_lt, ctb_le, ctb_eq;
   logic [W-1:0] c0t_min, c0t_max, ctb_min, ctb_max;
 
+  // The compares on t take it a cycle after the divider, from a register beside them (t_cq,
+  // with best_t1 and the index test): flag a waits for u and v's compares anyway, so it waits a
+  // cycle less below (run 52: the divider's output register, which also feeds the two
+  // multipliers, through the compare with the best t, -0.89 and -1.12 ns).
+  logic [W-1:0] t_cq, best_t_cq;
+  logic         t_cvalid_q, tri_lt_cq;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      t_cvalid_q <= 1'b0;
+    end else begin
+      t_cvalid_q <= t_valid;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    t_cq      <= t;
+    best_t_cq <= best_t1;
+    tri_lt_cq <= tri_lt1;
+  end
+
   rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_0_t (
-    .clk_i, .rst_ni, .valid_i(t_valid), .a_i(Zero), .b_i(t), .valid_o(c0t_valid),
+    .clk_i, .rst_ni, .valid_i(t_cvalid_q), .a_i(Zero), .b_i(t_cq), .valid_o(c0t_valid),
     .lt_o(c0t_lt), .le_o(c0t_le), .eq_o(c0t_eq), .min_o(c0t_min), .max_o(c0t_max)
   );
   rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_t_best (
-    .clk_i, .rst_ni, .valid_i(t_valid), .a_i(t), .b_i(best_t1), .valid_o(ctb_valid),
+    .clk_i, .rst_ni, .valid_i(t_cvalid_q), .a_i(t_cq), .b_i(best_t_cq), .valid_o(ctb_valid),
     .lt_o(ctb_lt), .le_o(ctb_le), .eq_o(ctb_eq), .min_o(ctb_min), .max_o(ctb_max)
   );
 
   // tri < best_tri waits for the comparator outputs.
   logic [CmpStages-1:0] tri_lt_q;
   always_ff @(posedge clk_i) begin
-    tri_lt_q <= (tri_lt_q << 1) | CmpStages'(tri_lt1);
+    tri_lt_q <= (tri_lt_q << 1) | CmpStages'(tri_lt_cq);
   end
 
   // Flag a: positive distance and closer than the best hit (with the index tie break).
@@ -372,8 +391,8 @@ module rc_isect_unit #(
   logic [31:0]     tri_s3;
   assign {tag3, tri_s3, dz3, t3} = d3_q[AddStages*D3W-1 -: D3W];
 
-  // Flag a (ready CmpStages after t) waits until u and v's comparisons are done.
-  localparam int unsigned FaDly = MulStages + AddStages;
+  // Flag a (ready 1 + CmpStages after t) waits until u and v's comparisons are done.
+  localparam int unsigned FaDly = MulStages + AddStages - 1;
   logic [FaDly-1:0] flag_a_q;
   always_ff @(posedge clk_i) begin
     flag_a_q <= (flag_a_q << 1) | FaDly'(flag_a);
