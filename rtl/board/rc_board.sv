@@ -31,9 +31,10 @@
 //   RGB). done_o rises two cycles after the first cycle in which the last packet has been
 //   generated and the core is idle; it stays until the next start. BoardRegCycles holds the
 //   frame's cycle count.
-// - Framebuffer read port: fb_rdata_o is pixel fb_raddr_i of rc_pkg::BoardFbReadLatency (2)
-//   cycles before (the block RAM's read register, then a register after the multiplexer that
-//   joins the block RAMs); reading while a frame runs is legal and shows the frame in progress.
+// - Framebuffer read port: fb_rdata_o is pixel fb_raddr_i of rc_pkg::BoardFbReadLatency (3)
+//   cycles before (the block RAM's read register, a register after each bank of block RAMs, then
+//   one after the multiplexer that joins the banks); reading while a frame runs is legal and
+//   shows the frame in progress. An address at or beyond FbPixels reads an undefined value.
 // - Monitor: mon_valid_o and mon_* show each framebuffer write of the core with its hit record
 //   (simulation checks them; a board top leaves them open).
 // - Status: busy_o (a frame is starting or running), done_o, error_o = rc_core's error_o
@@ -426,10 +427,19 @@ module rc_board #(
   // Framebuffer //
   /////////////////
 
-  logic [23:0] fb_mem [0:FbPixels-1];
-  logic [23:0] fb_rdata_q;  // the block RAMs' read registers (Yosys maps it into the RAMs)
-  logic [23:0] fb_out_q;    // after the multiplexer joining the RAMs: the RAMs' 5.8 ns
-                            // clock-to-out ended at the host's register across two LUTs (run 49)
+  // The framebuffer is FbBanks banks of FbBankPx pixels: a bank is six DP16KD of 4096 x 4 bits
+  // (Yosys's mapping of a 24-bit memory of that depth), the last bank holds what is left. A read
+  // passes three registers: the bank's read register (in the block RAMs), a register after each
+  // bank (fb_bank_q), then one after the multiplexer that joins the banks (fb_out_q). The block
+  // RAM's 5.8 ns clock-to-out thus meets only routing (run 52: through the multiplexer into
+  // fb_out_q, -0.57 ns; run 49: into the host's register across two LUTs).
+  localparam int unsigned FbBankPx = (FbPixels < 4096) ? FbPixels : 4096;
+  localparam int unsigned FbBanks  = (FbPixels + FbBankPx - 1) / FbBankPx;
+  localparam int unsigned FbBankAW = (FbBankPx > 1) ? $clog2(FbBankPx) : 1;
+  localparam int unsigned FbSelW   = (FbBanks > 1) ? $clog2(FbBanks) : 1;
+  if (FbBanks > 1 && FbBankPx != (1 << FbBankAW)) begin : g_fb_bank_check
+    $error("rc_board: a framebuffer bank must hold a power of two pixels");
+  end
 
   // A write is registered first (fbw_*_q) and made a cycle later: the core's pixel id comes
   // from a distributed-RAM read, and its range check's carry chain ended at the block RAM's
@@ -449,16 +459,39 @@ module rc_board #(
     fbw_addr_q <= FbAddrW'(fb_pixel);
     fbw_rgb_q  <= fb_rgb;
   end
-  always_ff @(posedge clk_i) begin
-    if (fbw_q) fb_mem[fbw_addr_q] <= fbw_rgb_q;
+
+  // The bank a pixel address selects (0 with one bank).
+  function automatic logic [FbSelW-1:0] fb_bank_of(input logic [FbAddrW-1:0] addr);
+    fb_bank_of = (FbBanks > 1) ? FbSelW'(addr >> FbBankAW) : '0;
+  endfunction
+
+  logic [FbBanks*24-1:0] fb_bank_q;  // bank b's pixel at [b * 24 +: 24]
+  for (genvar b = 0; b < FbBanks; b++) begin : g_fb_bank
+    localparam int unsigned Depth = (b == FbBanks - 1) ? FbPixels - b * FbBankPx : FbBankPx;
+    localparam int unsigned AW    = (Depth > 1) ? $clog2(Depth) : 1;
+    logic [23:0] mem [0:Depth-1];
+    logic [23:0] rdata_q;  // the block RAMs' read register (Yosys maps it into the RAMs)
+    always_ff @(posedge clk_i) begin
+      if (fbw_q && fb_bank_of(fbw_addr_q) == FbSelW'(b)) begin
+        mem[AW'(fbw_addr_q)] <= fbw_rgb_q;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      rdata_q      <= mem[AW'(fb_raddr_i)];
+      fb_bank_q[b*24 +: 24] <= rdata_q;
+    end
   end
 
+  // The bank of each read, beside the two registers in front of the multiplexer.
+  logic [FbSelW-1:0] fb_sel0_q, fb_sel1_q;
+  logic [23:0]       fb_out_q;
   always_ff @(posedge clk_i) begin
-    fb_rdata_q <= fb_mem[fb_raddr_i];
-    fb_out_q   <= fb_rdata_q;
+    fb_sel0_q <= fb_bank_of(fb_raddr_i);
+    fb_sel1_q <= fb_sel0_q;
+    fb_out_q  <= (32'(fb_sel1_q) < FbBanks) ? fb_bank_q[32'(fb_sel1_q)*24 +: 24] : '0;
   end
-  if (rc_pkg::BoardFbReadLatency != 2) begin : g_fb_read_check
-    $error("rc_board: the framebuffer read has two registers: needs BoardFbReadLatency 2");
+  if (rc_pkg::BoardFbReadLatency != 3) begin : g_fb_read_check
+    $error("rc_board: the framebuffer read has three registers: needs BoardFbReadLatency 3");
   end
 
   ////////////////////
