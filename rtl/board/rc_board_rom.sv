@@ -8,31 +8,35 @@
 //   significant digit first); in simulation (SYNTHESIS undefined) the plusarg +<Name>=<file>
 //   overrides it, so one verilated model serves any scene.
 // - Handshake: the protocol of docs/architecture.md ("Memory ports"). req_valid_i/req_ready_o,
-//   then rsp_valid_o/rsp_ready_i. req_ready_o comes from a register (a one-entry skid buffer
-//   in front of the read: ready while it is empty), so no combinational path runs from
-//   rsp_ready_i or req_valid_i to req_ready_o and the core's request logic does not chain
-//   through the ROM into its own response ready. rsp_valid_o and the response come straight
+//   then rsp_valid_o/rsp_ready_i. req_ready_o is a register: the ROM holds at most Credits = 4
+//   requests (accepted and not yet taken), and req_ready_o says that the count, as it will be
+//   after this cycle's transfers, is below that. rsp_valid_o and the response come straight
 //   from the output register and never depend on rsp_ready_i. The response holds until taken.
-//   rsp_ready_i moves only the output register and the pointers and count of a two-entry
-//   FIFO beside it, never a clock enable of the FIFO's entries or of the read stage, which
-//   follow registers only (the count as it was at the start of the cycle), so no path runs
-//   from the consumer's ready across the chip into the block RAM or the wide data registers.
-// - Latency: 3 cycles: an address register, the block RAM's registered read, then the output
+// - Pipeline: an address stage and the block RAM's read stage that move on every cycle,
+//   whatever the consumer does (they have no enables: the block RAM reads every cycle), then a
+//   FIFO of Credits - 1 entries beside the output register. The read stage's result is written
+//   into the FIFO's entry at the write pointer whenever it is valid (the entry's enable is that
+//   valid bit and the pointer, registers); it counts as pushed unless it goes straight on to
+//   the output register (FIFO empty, output register free). The credits guarantee the room: a
+//   request accepted is in the address stage, the read stage, the FIFO or the output register.
+//   rsp_ready_i moves only the output register, the FIFO's read pointer, its count and the
+//   credit count, never the block RAM's enable or the FIFO entries' enables, so no path runs
+//   from the consumer's ready across the chip into the block RAMs or their address register
+//   (run 52: the triangle ROM's control, through its enables, -0.84 ns).
+// - Latency: 3 cycles: the address register, the block RAM's registered read, then the output
 //   register in the fabric. The address register makes the read's address a flip-flop (a
-//   small ROM becomes LUTs, whose decode otherwise began at the skid buffer's select: run
-//   24's critical path); the output register ends the block RAM's slow clock-to-out (5.8 ns
-//   on the LFE5U-85F, speed grade 6) at a flip-flop instead of the core's response checks.
-//   A request that finds the address stage stalled waits in the skid buffer and moves on one
-//   cycle later; a read result that finds the output register held waits in the FIFO.
-//   Throughput one request per cycle while rsp_ready_i is 1 (the FIFO and the skid buffer
-//   then stay empty); up to six requests are held while rsp_ready_i is 0 (the skid buffer,
-//   the address stage, the read stage, two FIFO entries, the output register). Responses are
-//   in request order.
+//   small ROM becomes LUTs, whose decode otherwise began at the request's select: run 24's
+//   critical path); the output register ends the block RAM's slow clock-to-out (5.8 ns on the
+//   LFE5U-85F, speed grade 6) at a flip-flop instead of the core's response checks.
+//   Throughput one request per cycle while rsp_ready_i is 1 (the FIFO then stays empty); four
+//   requests are held while rsp_ready_i is 0 (the output register and the FIFO's three
+//   entries, once the address and read stages have moved on). Responses are in request order.
 // - Parameters: Width record bits, Depth records (>= 1), IdxW index bits, TagW tag bits.
 // - Illegal input: none (every index is answered; out-of-range ones with an error).
-// - Reset: rst_ni (active low, asynchronous) clears rsp_valid_o; contents are not reset.
-// - Debug: tests/board/rc_board_rom_tb.sv reads a0_free, s1_free and adv (hierarchically);
-//   renaming them breaks that test bench.
+// - Reset: rst_ni (active low, asynchronous) clears the valid bits, the FIFO's pointers and
+//   count and the credit count; contents are not reset.
+// - Debug: tests/board/rc_board_rom_tb.sv reads entry_we (the FIFO entries' write enables)
+//   hierarchically; renaming it breaks that test bench.
 module rc_board_rom #(
   parameter int unsigned Width    = 32,
   parameter int unsigned Depth    = 1,
@@ -75,111 +79,116 @@ module rc_board_rom #(
 `endif
   end
 
-  // The skid buffer (k) holds a request accepted while the address stage (a0) could not take
-  // it; req_ready_o is its emptiness, a register. The address stage moves on whenever stage 1
-  // is free. Stage 1 is the block RAM's read register (s1);
-  // it moves on (adv) whenever the FIFO is not full (o_cnt_q < 2 as the cycle began: a
-  // response taken in that cycle makes room only from the next one), and its result is then
-  // always written into the FIFO's entry at the write pointer. The output register (s2) takes
-  // the FIFO's oldest entry when there is one, else stage 1's result directly (then the entry
-  // just written is not counted: the write pointer stays), whenever it is empty or being taken.
-  // The address stage takes the skid buffer's request, or else the port's, whenever it is
-  // empty or moving on (its valid bit from req_valid_i; its enable from registers only); stage
-  // 1 reads at the address stage's registered address whenever it is free. So adv, and with it
-  // the read enable and every entry's clock enable, comes from registers only; rsp_ready_i
-  // reaches s2, the pointers and the count.
-  logic             acc, in_range, adv, s1_free, a0_free, rd_valid, s2_free, o_any, push, pop;
-  logic             o_wp;
-  logic [IdxW-1:0]  rd_index;
-  logic [TagW-1:0]  rd_tag;
-  logic [AddrW-1:0] addr;
-  logic             k_valid_q, a0_valid_q, a0_error_q, s1_valid_q, s1_error_q, o_rp_q;
-  logic [AddrW-1:0] a0_addr_q;
-  logic [1:0]       o_cnt_q;
-  logic             o0_error_q, o1_error_q, s2_valid_q, s2_error_q;
-  logic [IdxW-1:0]  k_index_q;
-  logic [TagW-1:0]  k_tag_q, a0_tag_q, s1_tag_q, o0_tag_q, o1_tag_q, s2_tag_q;
-  logic [Width-1:0] s1_data_q, o0_data_q, o1_data_q, s2_data_q;
+  localparam int unsigned Credits = 4;  // the least count that keeps one request a cycle
+  localparam int unsigned Entries = Credits - 1;
 
-  assign adv         = s1_valid_q & ~o_cnt_q[1];
-  assign s1_free     = ~s1_valid_q | adv;
-  assign a0_free     = ~a0_valid_q | s1_free;
-  assign s2_free     = ~s2_valid_q | rsp_ready_i;
-  assign o_any       = o_cnt_q != 2'd0;
-  // The entry written this cycle counts unless it goes straight on to s2 (FIFO empty, s2 free).
-  assign push        = adv & (o_any | ~s2_free);
-  assign pop         = o_any & s2_free;
-  // The write pointer is the read pointer plus the count (mod 2), not a register of its own.
-  assign o_wp        = o_rp_q ^ o_cnt_q[0];
-  assign req_ready_o = ~k_valid_q;
-  assign acc         = req_valid_i & ~k_valid_q;
-  assign rd_valid    = k_valid_q | req_valid_i;
-  assign rd_index    = k_valid_q ? k_index_q : req_index_i;
-  assign rd_tag      = k_valid_q ? k_tag_q : req_tag_i;
-  // The block RAM is addressed by the index's low bits whether or not it is in range (an
-  // out-of-range read returns an error response whose data nobody uses), so the range check's
-  // carry chain ends at the error flag's register, not at the block RAM's address pins.
-  assign in_range    = 64'(rd_index) < 64'(Depth);
-  assign addr        = AddrW'(rd_index);
+  // Requests held: accepted and not yet taken (address stage, read stage, FIFO, output
+  // register). req_ready_o is the count after this cycle's transfers below Credits, registered.
+  logic       acc, take, ready_q;
+  logic [2:0] cnt_q, cnt_d;
+  assign acc         = req_valid_i & ready_q;
+  assign take        = s2_valid_q & rsp_ready_i;
+  assign cnt_d       = cnt_q + 3'(acc) - 3'(take);
+  assign req_ready_o = ready_q;
+
+  // Address stage and read stage: every cycle. The block RAM is addressed by the index's low
+  // bits whether or not it is in range (an out-of-range read returns an error response whose
+  // data nobody uses), so the range check's carry chain ends at the error flag's register, not
+  // at the block RAM's address pins.
+  logic             a0_valid_q, a0_error_q, s1_valid_q, s1_error_q;
+  logic [AddrW-1:0] a0_addr_q;
+  logic [TagW-1:0]  a0_tag_q, s1_tag_q;
+  logic [Width-1:0] s1_data_q;
+
+  // The FIFO: Entries plain registers (not an array, so no tool makes them a RAM), a read
+  // pointer, a write pointer and a count.
+  logic [Entries-1:0]       o_err_q;
+  logic [Entries*TagW-1:0]  o_tag_q;   // entry e at [e * TagW +: TagW]
+  logic [Entries*Width-1:0] o_data_q;  // entry e at [e * Width +: Width]
+  logic [1:0]               o_rp_q, o_wp_q, o_cnt_q;
+  logic                     o_any, s2_free, push, pop;
+  logic [Entries-1:0]       entry_we;
+  logic                     s2_valid_q, s2_error_q;
+  logic [TagW-1:0]          s2_tag_q;
+  logic [Width-1:0]         s2_data_q;
+
+  assign o_any   = o_cnt_q != 2'd0;
+  assign s2_free = ~s2_valid_q | rsp_ready_i;
+  // The read stage's result counts in the FIFO unless it goes straight on to s2.
+  assign push    = s1_valid_q & (o_any | ~s2_free);
+  assign pop     = o_any & s2_free;
+  for (genvar e = 0; e < Entries; e++) begin : g_entry_we
+    assign entry_we[e] = s1_valid_q & (o_wp_q == 2'(e));
+  end
+
+  // The FIFO's head, a plain multiplexer on the read pointer (a part-select at a computed
+  // offset would be a shifter).
+  logic             head_err;
+  logic [TagW-1:0]  head_tag;
+  logic [Width-1:0] head_data;
+  always_comb begin
+    head_err  = o_err_q[0];
+    head_tag  = o_tag_q[0 +: TagW];
+    head_data = o_data_q[0 +: Width];
+    for (int unsigned e = 1; e < Entries; e++) begin
+      if (o_rp_q == 2'(e)) begin
+        head_err  = o_err_q[e];
+        head_tag  = o_tag_q[e*TagW +: TagW];
+        head_data = o_data_q[e*Width +: Width];
+      end
+    end
+  end
+
+  function automatic logic [1:0] next_ptr(input logic [1:0] p);
+    next_ptr = (p == 2'(Entries - 1)) ? 2'd0 : p + 2'd1;
+  endfunction
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      k_valid_q  <= 1'b0;
+      ready_q    <= 1'b1;
+      cnt_q      <= 3'd0;
       a0_valid_q <= 1'b0;
       s1_valid_q <= 1'b0;
-      o_rp_q     <= 1'b0;
+      o_rp_q     <= 2'd0;
+      o_wp_q     <= 2'd0;
       o_cnt_q    <= 2'd0;
       s2_valid_q <= 1'b0;
     end else begin
-      // Full only from an accepted request the address stage could not take; a full buffer is
-      // emptied by the address stage before anything else (req_ready_o is 0 meanwhile).
-      k_valid_q <= k_valid_q ? ~a0_free : (acc & ~a0_free);
-      if (a0_free) a0_valid_q <= rd_valid;
-      if (s1_free) s1_valid_q <= a0_valid_q;
-      if (pop) o_rp_q <= ~o_rp_q;
+      cnt_q      <= cnt_d;
+      ready_q    <= cnt_d < 3'(Credits);
+      a0_valid_q <= acc;
+      s1_valid_q <= a0_valid_q;
+      if (push) o_wp_q <= next_ptr(o_wp_q);
+      if (pop) o_rp_q <= next_ptr(o_rp_q);
       o_cnt_q <= o_cnt_q + 2'(push) - 2'(pop);
-      if (s2_free) s2_valid_q <= o_any | adv;
+      if (s2_free) s2_valid_q <= o_any | s1_valid_q;
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (acc) begin
-      k_index_q <= req_index_i;
-      k_tag_q   <= req_tag_i;
-    end
-    if (a0_free) begin
-      a0_addr_q  <= addr;
-      a0_tag_q   <= rd_tag;
-      a0_error_q <= ~in_range;
-    end
-    if (s1_free) begin
-      s1_tag_q   <= a0_tag_q;
-      s1_error_q <= a0_error_q;
-    end
-    // The two entries are plain registers (not an array), so no tool makes them a RAM.
-    if (adv && !o_wp) begin
-      o0_tag_q   <= s1_tag_q;
-      o0_error_q <= s1_error_q;
-      o0_data_q  <= s1_data_q;
-    end
-    if (adv && o_wp) begin
-      o1_tag_q   <= s1_tag_q;
-      o1_error_q <= s1_error_q;
-      o1_data_q  <= s1_data_q;
+    a0_addr_q  <= AddrW'(req_index_i);
+    a0_tag_q   <= req_tag_i;
+    a0_error_q <= 64'(req_index_i) >= 64'(Depth);
+    s1_tag_q   <= a0_tag_q;
+    s1_error_q <= a0_error_q;
+    for (int unsigned e = 0; e < Entries; e++) begin
+      if (entry_we[e]) begin
+        o_tag_q[e*TagW +: TagW]    <= s1_tag_q;
+        o_err_q[e]                 <= s1_error_q;
+        o_data_q[e*Width +: Width] <= s1_data_q;
+      end
     end
     if (s2_free) begin
-      s2_tag_q   <= !o_any ? s1_tag_q : o_rp_q ? o1_tag_q : o0_tag_q;
-      s2_error_q <= !o_any ? s1_error_q : o_rp_q ? o1_error_q : o0_error_q;
-      s2_data_q  <= !o_any ? s1_data_q : o_rp_q ? o1_data_q : o0_data_q;
+      s2_tag_q   <= o_any ? head_tag : s1_tag_q;
+      s2_error_q <= o_any ? head_err : s1_error_q;
+      s2_data_q  <= o_any ? head_data : s1_data_q;
     end
   end
 
-  // The block RAM read port: registered, enabled whenever the read stage is free (so the
-  // enable comes from this module's registers, not from the core's request valid across the
-  // chip: run 22's path into the read's enable). A read without a request loads data nobody
-  // uses (s1_valid_q stays 0).
+  // The block RAM read port: registered, and enabled on every cycle (a read without a request
+  // loads data nobody uses: s1_valid_q stays 0).
   always_ff @(posedge clk_i) begin
-    if (s1_free) s1_data_q <= mem[a0_addr_q];
+    s1_data_q <= mem[a0_addr_q];
   end
 
   assign rsp_valid_o = s2_valid_q;
@@ -199,15 +208,18 @@ module rc_board_rom #(
   RspHold_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     rsp_valid_o && !rsp_ready_i |=> rsp_valid_o && $stable(rsp_tag_o) &&
     $stable(rsp_data_o) && $stable(rsp_error_o));
-  // A request waits in the skid buffer only behind an address stage that cannot move on.
-  SkidBehindRead_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-    k_valid_q |-> a0_valid_q);
-  // The FIFO holds two entries at most (adv waits while it is full).
+  // The count is what the stages hold: every request accepted is in exactly one of them.
+  Credits_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    32'(cnt_q) == 32'(a0_valid_q) + 32'(s1_valid_q) + 32'(o_cnt_q) + 32'(s2_valid_q));
+  // The FIFO never overflows (the credits keep its room).
   OutCount_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-    o_cnt_q <= 2'd2);
+    32'(o_cnt_q) <= Entries);
   // Results wait in the FIFO only behind a held output register.
   FifoBehindOutput_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     o_any |-> s2_valid_q);
+  // The write pointer is the read pointer plus the count.
+  WritePointer_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    32'(o_wp_q) == (32'(o_rp_q) + 32'(o_cnt_q)) % Entries);
 `endif
 
 endmodule

@@ -2,13 +2,10 @@
 //
 // Contract
 // - Function: one rc_board_rom (u_rom) with the same parameters and ports, passed straight
-//   through, plus three debug outputs that show its read stage's enables, so the test reads
-//   them as ports instead of Verilator-internal names: dbg_a0_free_o (u_rom.a0_free, the
-//   address stage's enable), dbg_s1_free_o (u_rom.s1_free, the read enable), dbg_adv_o
-//   (u_rom.adv, the read stage's move on, also the clock enable of the FIFO entry it writes).
-//   The test checks they never follow rsp_ready_i within a cycle. They are hierarchical
-//   references, so renaming those signals in rc_board_rom breaks this bench (rc_board_rom's
-//   contract names them).
+//   through, plus a debug output that shows its FIFO entries' write enables (u_rom.entry_we),
+//   so the test reads them as a port instead of Verilator-internal names. The test checks they
+//   never follow rsp_ready_i within a cycle. It is a hierarchical reference, so renaming the
+//   signal in rc_board_rom breaks this bench (rc_board_rom's contract names it).
 // - A test bench wrapper only: never synthesized, not in rtl/rtl_files.f.
 // - Parameters, handshake, latency, illegal input, reset: those of rc_board_rom.
 module rc_board_rom_tb #(
@@ -31,10 +28,8 @@ module rc_board_rom_tb #(
   output logic [Width-1:0] rsp_data_o,
   output logic             rsp_error_o,
 
-  // Debug: the read stage's enables inside u_rom.
-  output logic             dbg_a0_free_o,
-  output logic             dbg_s1_free_o,
-  output logic             dbg_adv_o
+  // Debug: the FIFO entries' write enables inside u_rom (three entries).
+  output logic [2:0]       dbg_entry_we_o
 );
 
   rc_board_rom #(
@@ -58,8 +53,6 @@ module rc_board_rom_tb #(
     .rsp_error_o
   );
 
-  assign dbg_a0_free_o = u_rom.a0_free;
-  assign dbg_s1_free_o = u_rom.s1_free;
-  assign dbg_adv_o     = u_rom.adv;
+  assign dbg_entry_we_o = u_rom.entry_we;
 
 endmodule
