@@ -482,13 +482,20 @@ module rc_board #(
     end
   end
 
-  // The bank of each read, beside the two registers in front of the multiplexer.
+  // The bank of each read, beside the two registers in front of the multiplexer (a plain
+  // multiplexer on the bank: a part-select at a computed offset would be a shifter).
   logic [FbSelW-1:0] fb_sel0_q, fb_sel1_q;
-  logic [23:0]       fb_out_q;
+  logic [23:0]       fb_out_d, fb_out_q;
+  always_comb begin
+    fb_out_d = '0;
+    for (int unsigned b = 0; b < FbBanks; b++) begin
+      if (fb_sel1_q == FbSelW'(b)) fb_out_d = fb_bank_q[b*24 +: 24];
+    end
+  end
   always_ff @(posedge clk_i) begin
     fb_sel0_q <= fb_bank_of(fb_raddr_i);
     fb_sel1_q <= fb_sel0_q;
-    fb_out_q  <= (32'(fb_sel1_q) < FbBanks) ? fb_bank_q[32'(fb_sel1_q)*24 +: 24] : '0;
+    fb_out_q  <= fb_out_d;
   end
   if (rc_pkg::BoardFbReadLatency != 3) begin : g_fb_read_check
     $error("rc_board: the framebuffer read has three registers: needs BoardFbReadLatency 3");
