@@ -101,7 +101,9 @@ module rc_board_rom #(
   logic [Width-1:0] s1_data_q;
 
   // The FIFO: Entries plain registers (not an array, so no tool makes them a RAM), a read
-  // pointer, a write pointer and a count.
+  // pointer, a write pointer and a count. The write pointer is the read pointer plus the count
+  // (WritePointer_A), and cnt_q is the sum of the stages' valid bits (Credits_A); both are kept
+  // as registers so that the entries' write enables and req_ready_o start at flip-flops.
   logic [Entries-1:0]       o_err_q;
   logic [Entries*TagW-1:0]  o_tag_q;   // entry e at [e * TagW +: TagW]
   logic [Entries*Width-1:0] o_data_q;  // entry e at [e * Width +: Width]
