@@ -33,6 +33,7 @@ rtl/core/rc_isect_issue.sv
 rtl/core/rc_hit_store.sv
 rtl/core/rc_shade_seq.sv
 rtl/core/rc_core_status.sv
+rtl/core/rc_thread_mon.sv
 rtl/core/rc_core.sv
 rtl/board/rc_delay.sv
 rtl/board/rc_ray_gen.sv

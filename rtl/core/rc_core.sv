@@ -801,11 +801,10 @@ module rc_core #(
 `ifdef SYNTHESIS
   assign dbg_thread_state_o = '0;
 `else
-  // Every thread's state, kept from the units' events: which unit holds the thread
-  // (docs/architecture.md, "Thread states"). Each event applies to a thread in the state it
-  // leaves (EventState_A), and a thread has at most one event a cycle (EventsExclusive_A).
-  localparam int unsigned SB = rc_pkg::ThreadStateBits;
-  rc_pkg::thread_state_e st_q [0:Threads-1];
+  // Every thread's state, kept from the units' events (rc_thread_mon). Five of its inputs are
+  // registers inside a unit that no port carries: the pop unit's pushes into the fetch and leaf
+  // queues and its own-thread pop, the traversal decision's continuation flag, and the shading
+  // sequencer's output thread.
   logic checks_on;
   rc_checks_on u_checks_on (
     .clk_i,
@@ -813,100 +812,55 @@ module rc_core #(
     .on_o (checks_on)
   );
 
-  function automatic logic at(input logic v, input logic [ThrW-1:0] thr,
-                              input logic [ThrW-1:0] t);
-    at = v && thr == t;
-  endfunction
+  rc_thread_mon #(
+    .Threads(Threads),
+    .ThrW   (ThrW)
+  ) u_thread_mon (
+    .clk_i,
+    .rst_ni,
+    .acc_valid_i     (acc_valid),
+    .acc_thr_i       (acc_thr),
+    .tq_valid_i      (u_stack.tq_push_q),
+    .tq_thr_i        (ThrW'(u_stack.tq_item_q.thr)),
+    .iss_valid_i     (trav_issue_valid),
+    .iss_thr_i       (trav_issue_thr),
+    .cont_i          (u_trav.cont_v_q),
+    .leaf_tr_valid_i (trav_leaf_valid),
+    .leaf_tr_thr_i   (ThrW'(trav_leaf_item.thr)),
+    .req_tr_valid_i  (trav_req_valid),
+    .req_tr_thr_i    (trav_req_thr),
+    .req_nr_valid_i  (trav_reqnr_valid),
+    .req_nr_thr_i    (trav_reqnr_thr),
+    .leaf_stk_valid_i(u_stack.lq_push_q),
+    .leaf_stk_thr_i  (ThrW'(u_stack.lq_item_q.thr)),
+    .take_valid_i    (list_take_valid),
+    .take_thr_i      (list_take_thr),
+    .lend_i          (list_leaf_end),
+    .own_valid_i     (u_stack.own_v_q),
+    .own_thr_i       (u_stack.own_thr_q),
+    .pick_valid_i    (stk_pick_valid),
+    .pick_thr_i      (stk_pick_thr),
+    .done_valid_i    (stk_done_valid),
+    .done_thr_i      (stk_done_thr),
+    .spick_valid_i   (shd_pick_valid),
+    .spick_thr_i     (shd_pick_thr),
+    .free_valid_i    (shd_free_valid),
+    .free_thr_i      (shd_free_thr),
+    .free0_valid_i   (shd_free0_valid),
+    .free0_thr_i     (shd_free0_thr),
+    .step_valid_i    (trav_step_valid),
+    .step_thr_i      (trav_step_thr),
+    .load_valid_i    (isect_load_valid),
+    .load_thr_i      (isect_load_thr),
+    .fin_valid_i     (hits_fin_valid),
+    .fin_thr_i       (hits_fin_thr),
+    .commit_valid_i  (hits_hit_valid),
+    .commit_thr_i    (hits_hit_thr),
+    .fb_valid_i      (fb_valid_o),
+    .fb_thr_i        (u_shade.oq_thr),
+    .state_o         (dbg_thread_state_o)
+  );
 
-  for (genvar t = 0; t < Threads; t++) begin : g_state
-    logic e_acc, e_tq, e_iss, e_cont, e_leaf_tr, e_req_tr, e_req_nr, e_leaf_stk, e_take;
-    logic e_lend, e_own, e_pick, e_done, e_spick, e_free;
-    rc_pkg::thread_state_e st;
-    assign st         = st_q[t];
-    assign e_acc      = at(acc_valid, acc_thr, ThrW'(t));
-    assign e_tq       = at(u_stack.tq_push_q, ThrW'(u_stack.tq_item_q.thr), ThrW'(t));
-    assign e_iss      = at(trav_issue_valid, trav_issue_thr, ThrW'(t));
-    assign e_leaf_tr  = at(trav_leaf_valid, ThrW'(trav_leaf_item.thr), ThrW'(t));
-    assign e_req_tr   = at(trav_req_valid, trav_req_thr, ThrW'(t));
-    assign e_req_nr   = at(trav_reqnr_valid, trav_reqnr_thr, ThrW'(t));
-    assign e_leaf_stk = at(u_stack.lq_push_q, ThrW'(u_stack.lq_item_q.thr), ThrW'(t));
-    assign e_take     = at(list_take_valid, list_take_thr, ThrW'(t));
-    assign e_lend     = list_leaf_end[t];
-    assign e_own      = at(u_stack.own_v_q, u_stack.own_thr_q, ThrW'(t));
-    assign e_pick     = at(stk_pick_valid, stk_pick_thr, ThrW'(t));
-    assign e_done     = at(stk_done_valid, stk_done_thr, ThrW'(t));
-    assign e_spick    = at(shd_pick_valid, shd_pick_thr, ThrW'(t));
-    assign e_free     = at(shd_free_valid, shd_free_thr, ThrW'(t)) |
-                        at(shd_free0_valid, shd_free0_thr, ThrW'(t));
-    // A continuation is issued in the cycle the decision's registers show it.
-    assign e_cont     = e_iss && u_trav.cont_v_q;
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        st_q[t] <= rc_pkg::StFree;
-      end else begin
-        // The decision's leaf and pop outputs come a cycle before their thread could be issued
-        // again, and only one of them at a time (the decision routes a thread one way).
-        if (e_acc) st_q[t] <= rc_pkg::StSetup;
-        if (e_tq) st_q[t] <= rc_pkg::StFetch;
-        if (e_iss) st_q[t] <= rc_pkg::StNode;
-        if (e_leaf_tr || e_leaf_stk) st_q[t] <= rc_pkg::StLeaf;
-        if (e_take) st_q[t] <= rc_pkg::StLeafRun;
-        if (e_req_tr || e_req_nr || e_lend || e_own) st_q[t] <= rc_pkg::StPop;
-        if (e_pick) st_q[t] <= rc_pkg::StPopping;
-        if (e_done) st_q[t] <= rc_pkg::StDone;
-        if (e_spick) st_q[t] <= rc_pkg::StShade;
-        if (e_free) st_q[t] <= rc_pkg::StFree;
-      end
-    end
-    assign dbg_thread_state_o[t*SB +: SB] = st_q[t];
-
-    EventsExclusive_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                        $onehot0({e_acc, e_tq, e_iss, e_leaf_tr | e_leaf_stk,
-                                                  e_take, e_req_tr | e_req_nr | e_lend | e_own,
-                                                  e_pick, e_done, e_spick, e_free}));
-    EventState_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                   (!e_acc || st == rc_pkg::StFree) &&
-                                   (!e_tq || st == rc_pkg::StSetup || st == rc_pkg::StPopping) &&
-                                   (!e_iss || (e_cont ? st == rc_pkg::StNode :
-                                                        st == rc_pkg::StFetch)) &&
-                                   (!e_leaf_tr || st == rc_pkg::StNode) &&
-                                   (!e_leaf_stk || st == rc_pkg::StSetup ||
-                                    st == rc_pkg::StPopping) &&
-                                   (!e_take || st == rc_pkg::StLeaf) &&
-                                   (!e_req_tr || st == rc_pkg::StNode) &&
-                                   (!e_req_nr || st == rc_pkg::StNode) &&
-                                   (!e_lend || st == rc_pkg::StLeafRun) &&
-                                   (!e_own || st == rc_pkg::StSetup ||
-                                    st == rc_pkg::StPopping) &&
-                                   (!e_pick || st == rc_pkg::StPop) &&
-                                   (!e_done || st == rc_pkg::StPopping) &&
-                                   (!e_spick || st == rc_pkg::StDone) &&
-                                   (!e_free || st == rc_pkg::StShade));
-  end
-
-  // The units' work belongs to threads in their hands.
-  rc_pkg::thread_state_e st_step, st_load, st_fin, st_commit, st_fb;
-  logic [ThrW-1:0]       fb_thr;
-  assign fb_thr = u_shade.oq_thr;
-  always_comb begin
-    st_step   = st_q[trav_step_thr];
-    st_load   = st_q[isect_load_thr];
-    st_fin    = st_q[hits_fin_thr];
-    st_commit = st_q[hits_hit_thr];
-    st_fb     = st_q[fb_thr];
-  end
-  StepOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                trav_step_valid |-> st_step == rc_pkg::StNode);
-  TriRspOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                  isect_load_valid |-> st_load == rc_pkg::StLeafRun);
-  IsectOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                 hits_fin_valid |-> st_fin == rc_pkg::StLeafRun);
-  CommitOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                  hits_hit_valid |-> st_commit == rc_pkg::StLeafRun ||
-                                                     st_commit == rc_pkg::StPop);
-  FbOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                              fb_valid_o |-> st_fb == rc_pkg::StShade);
   // Requests and writes hold their payload until taken (the memory-port protocol).
   NodeReqStable_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     node_req_valid_o && !node_req_ready_i |=>
