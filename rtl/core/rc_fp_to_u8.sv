@@ -9,7 +9,7 @@
 // - Handshake: valid only, no backpressure. valid_o is valid_i delayed by exactly its latency;
 //   byte_o belongs to the input presented that many cycles earlier and is meaningful only while
 //   valid_o is 1. A new value may be presented every cycle.
-// - Latency: 2 * FpStagesCmp + FpStagesMul + 1 cycles (max · min · multiply · round; 5 at the
+// - Latency: 2 * FpStagesCmp + FpStagesMul + 1 cycles (max · min · multiply · round; 7 at the
 //   defaults of docs/spec.toml [fp_stages]).
 // - Parameters: ExpW, FracW: the number format (default fp24). FracW >= 7 is required (255.0
 //   needs 8 significant bits) and ExpW >= 4 (255.0 must be a normal number); any other

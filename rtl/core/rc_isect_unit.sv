@@ -27,9 +27,9 @@
 //   unit's first pass; a register, so ready_o still depends only on registered state).
 // - Latency: PipeLat = IssueLat + (MulStages + 3 * AddStages) + DivStages + MulStages +
 //   2 * AddStages + CmpStages cycles, IssueLat = 2 with SharedXform (input register, second
-//   pass) and 0 without (2 + 21 + 11 + 3 + 12 + 1 = 50 at the defaults mul 3, add 6, div 11,
+//   pass) and 0 without (2 + 22 + 11 + 4 + 12 + 1 = 52 at the defaults mul 4, add 6, div 11,
 //   cmp 1: the rc_fp_* default latencies), plus the FIFO's output register: valid_o rises
-//   PipeLat + 1 = 51 cycles (49 with SharedXform = 0) after an accepted input when ready_i is
+//   PipeLat + 1 = 53 cycles (51 with SharedXform = 0) after an accepted input when ready_i is
 //   high and the FIFO is empty.
 // - Throughput: SharedXform = 1: one ray-triangle pair every two cycles (with ready_i held high,
 //   ready_o is 1 every other cycle); SharedXform = 0: one pair per cycle (ready_o stays 1).
@@ -47,15 +47,16 @@
 // SharedXform = 1 registers the input at cycle 0, starts d' at 1 and o' at 2, and keeps d' one
 // cycle in xd_q, so everything below happens 2 cycles later):
 //   0   o' and d' transforms start (two rc_xform_unit, valid-only)
-//   20  t = -o'z / d'z starts; o'x, o'y, d'x, d'y, d'z and the side band wait DivStages
-//   31  t*d'x, t*d'y start; lt(0,t), lt(t,best_t), eq(t,best_t) start
-//   32  flag a = lt(0,t) && (lt(t,best_t) || (eq(t,best_t) && tri < best_tri))
-//   33  u = o'x + t*d'x, v = o'y + t*d'y start
-//   39  u + v starts; le(0,u), le(0,v) start
-//   40  flag b = flag a && le(0,u) && le(0,v)
-//   45  le(u+v, 1.0) starts
-//   46  hit = flag b && le(u+v, 1.0); the result enters the output FIFO
-//   47  valid_o
+//   22  t = -o'z / d'z starts; o'x, o'y, d'x, d'y, d'z and the side band wait DivStages
+//   33  t*d'x, t*d'y start
+//   34  lt(0,t), lt(t,best_t), eq(t,best_t) start (t from a register beside the compares)
+//   35  flag a = lt(0,t) && (lt(t,best_t) || (eq(t,best_t) && tri < best_tri))
+//   37  u = o'x + t*d'x, v = o'y + t*d'y start
+//   43  u + v starts; le(0,u), le(0,v) start
+//   44  flag b = flag a && le(0,u) && le(0,v)
+//   49  le(u+v, 1.0) starts
+//   50  hit = flag b && le(u+v, 1.0); the result enters the output FIFO
+//   51  valid_o
 module rc_isect_unit #(
   parameter int unsigned ExpW        = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW       = rc_pkg::Fp24FracW,
@@ -477,7 +478,7 @@ module rc_isect_unit #(
   // The credit counter, FIFO pointers and their checks (credit bound, room for every write,
   // stable output until taken) live in rc_credit_fifo. Depth = PipeLat + 2 sustains one
   // ray-triangle pair per cycle (more than the shared transform's one per two cycles needs, but
-  // a shallower one saves nothing: the deep, wide FIFO, 50 x 137 bits at the defaults, is a
+  // a shallower one saves nothing: the deep, wide FIFO, 54 x 137 bits at the defaults, is a
   // memory array (MemArray) that synthesis maps to RAM).
   if (Backpressure) begin : g_fifo
     logic credit;

@@ -29,9 +29,9 @@
 //   credit register and the input register's free flag) and never depends on valid_i or
 //   ready_i; valid_o never depends on ready_i. Results leave in order; nothing is dropped or
 //   duplicated. tag_i travels with the operation to tag_o.
-// - Latency: 21 cycles at the defaults from the taking edge to valid_o (input register 1 · z
+// - Latency: 22 cycles at the defaults from the taking edge to valid_o (input register 1 · z
 //   enters the slice 2 x 1 after x · divide 11, with the subtracts in parallel (an operand
-//   register, then rc_fp_add with 10 stages) · multiply 3 ·
+//   register, then rc_fp_add with 10 stages) · multiply 4 ·
 //   min/max of t0, t1: 1 · the chain step of z: 1 (those of x and y overlap the later axes) ·
 //   le: 1 · output FIFO 1), when the FIFO is empty and ready_i is 1.
 // - Throughput: one ray per 3 x CmpStages cycles (3 at the defaults) while ready_i is 1: ready_o

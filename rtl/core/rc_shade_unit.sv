@@ -15,8 +15,8 @@
 //   depends on valid_i or ready_i; valid_o never depends on ready_i. Results leave in order;
 //   nothing is dropped or duplicated. tag_i travels with the operation to tag_o.
 // - Latency: 4 * mul + cmp + add + to_u8 (2 * cmp + mul + 1) + 1 cycles from the taking edge to
-//   valid_o, 26 at the defaults of docs/spec.toml [fp_stages] (multiply 3 · multiply 3 · min 1 ·
-//   multiply 3 · add 6 · multiply 3 · to_u8 6 · output FIFO 1), when the FIFO is empty and
+//   valid_o, 31 at the defaults of docs/spec.toml [fp_stages] (multiply 4 · multiply 4 · min 1 ·
+//   multiply 4 · add 6 · multiply 4 · to_u8 7 · output FIFO 1), when the FIFO is empty and
 //   ready_i is 1.
 // - Throughput: one hit per cycle while ready_i is 1 (the FIFO holds Latency + 1 entries, enough
 //   credits for every operation in flight).

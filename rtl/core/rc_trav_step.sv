@@ -13,8 +13,8 @@
 //   when valid_i & ready_o. ready_o comes from a register (credits, see rc_credit_fifo) and never
 //   depends on valid_i or ready_i; valid_o never depends on ready_i. Results leave in order;
 //   nothing is dropped or duplicated. tag_i travels with the operation to tag_o.
-// - Latency: add + mul + cmp + 1 cycles from the taking edge to valid_o, 11 at the defaults of
-//   docs/spec.toml [fp_stages] (subtract 6 + multiply 3 + compare 1 + output FIFO 1), when the
+// - Latency: add + mul + cmp + 1 cycles from the taking edge to valid_o, 12 at the defaults of
+//   docs/spec.toml [fp_stages] (subtract 6 + multiply 4 + compare 1 + output FIFO 1), when the
 //   FIFO is empty and ready_i is 1.
 // - Throughput: one operation per cycle while ready_i is 1 (the FIFO holds Latency + 1 entries,
 //   enough credits for every operation in flight). With ready_i low the unit accepts until the

@@ -24,9 +24,9 @@
 //   one waits in the FIFO).
 //   Backpressure = 0: a bare valid-only pipeline for use inside other units: ready_o is always 1,
 //   ready_i is ignored, valid_o is valid_i delayed by exactly PipeLat cycles (no FIFO).
-// - Latency: PipeLat = MulStages + 3 * AddStages cycles through the arithmetic (21 at the
-//   defaults 3 and 6, the rc_fp_* default latencies). Backpressure = 1 adds the FIFO's output
-//   register: valid_o rises PipeLat + 1 cycles (22 at the defaults) after an accepted input when
+// - Latency: PipeLat = MulStages + 3 * AddStages cycles through the arithmetic (22 at the
+//   defaults 4 and 6, the rc_fp_* default latencies). Backpressure = 1 adds the FIFO's output
+//   register: valid_o rises PipeLat + 1 cycles (23 at the defaults) after an accepted input when
 //   ready_i is high.
 // - Throughput: one vector per cycle (with ready_i held high, ready_o stays 1).
 // - Parameters: ExpW (>= 2), FracW (>= 1): the format; TagW (>= 1): width of the tag carried
