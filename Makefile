@@ -64,7 +64,16 @@ RC_TESTS_ON := $(if $(filter-out render raycore fpga-ecp5,$(or $(MAKECMDGOALS),a
 $(BUILD)/CMakeCache.txt: | deps
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DRAYCORE_TESTS=$(RC_TESTS_ON)
 
-configure: deps $(BUILD)/CMakeCache.txt
+# A module added to rtl/rtl_files.f: Verilator's rules in a build directory configured earlier
+# name the old file list and run before CMake's own re-run could update them (the re-run needs
+# their output), so the build fails until CMake runs again; run it first when the list is newer
+# than the last configure (build.ninja; a fresh configure, just made, is not).
+$(BUILD)/rtl_files.stamp: rtl/rtl_files.f | $(BUILD)/CMakeCache.txt
+	@if [ -f $@ ] || [ rtl/rtl_files.f -nt $(BUILD)/build.ninja ]; then \
+	  cmake -S . -B $(BUILD); fi
+	@touch $@
+
+configure: deps $(BUILD)/CMakeCache.txt $(BUILD)/rtl_files.stamp
 
 configure-tests: configure
 	@grep -q '^RAYCORE_TESTS:BOOL=ON' $(BUILD)/CMakeCache.txt || \
