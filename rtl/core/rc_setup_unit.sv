@@ -107,6 +107,15 @@ module rc_setup_unit #(
     $error("rc_setup_unit: need 1 <= Threads <= CoreMaxThreads and SetupUnits 1 to 3");
   end
 
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+`endif
+
   function automatic logic [3*W-1:0] lane_3w(input logic [12*W-1:0] v, input logic [1:0] i);
     lane_3w = '0;
     for (int unsigned r = 0; r < 4; r++) if (i == 2'(r)) lane_3w = v[r*3*W +: 3*W];
@@ -374,9 +383,44 @@ module rc_setup_unit #(
   logic [NU-1:0]      su_act_all;
   logic               out_ready;
 
+  // The ray a unit is offered next, chosen a cycle ahead into a register per unit (st_*_q), so
+  // a unit's input starts at flip-flops and not at the feeder's ray counter through the packet
+  // copy's lane select (run 53 seed 1: feed_r_q -> a unit's ax_q, -1.63 ns, 5.22 ns on the
+  // select's last net). While unit u holds no offer (su_v_q[u] low; with one unit, also while
+  // it takes) its register loads the next offer's ray: ray 0 of the input register's packet and
+  // the thread being taken while the feeder is idle (an offer starts with the take), else ray
+  // feed_r_q + 1 of the feeder's copy (an offer moves on to u when u - 1 takes ray feed_r_q).
+  // Its enable is the unit's own valid flip-flop, so no unit's ready reaches these registers.
+  logic [1:0]      nx_r;
+  logic [3*W-1:0]  nx_org, nx_dir;
+  logic [TagW-1:0] nx_tag;
+  assign nx_r   = feed_idle_q ? 2'd0 : feed_r_q + 2'd1;
+  assign nx_org = feed_idle_q ? pin_org_q[0 +: 3*W] : lane_3w(feed_org_q, nx_r);
+  assign nx_dir = feed_idle_q ? pin_dir_q[0 +: 3*W] : lane_3w(feed_dir_q, nx_r);
+  assign nx_tag = feed_idle_q ? {pin_mask_q[0], acc_thr, 2'd0} :
+                                {feed_vmask_q[nx_r], feed_thr_q, nx_r};
+
   for (genvar u = 0; u < NU; u++) begin : g_setup
-    logic u_ready_i;
+    logic u_ready_i, st_en;
+    logic [3*W-1:0]  st_org_q, st_dir_q;
+    logic [TagW-1:0] st_tag_q;
     assign u_ready_i = out_ready && out_u_q == UW'(u);
+    assign st_en     = ~su_v_q[u] | ((NU == 1) & su_ready_all[u]);
+    always_ff @(posedge clk_i) begin
+      if (st_en) begin
+        st_org_q <= nx_org;
+        st_dir_q <= nx_dir;
+        st_tag_q <= nx_tag;
+      end
+    end
+`ifndef SYNTHESIS
+    // The offer's register holds what the feeder's state says it offers.
+    StagedRay_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  su_v_q[u] |-> st_org_q == feed_org_r &&
+                                                st_dir_q == feed_dir_r &&
+                                                st_tag_q == {feed_vmask_q[feed_r_q], feed_thr_q,
+                                                             feed_r_q});
+`endif
     rc_ray_setup #(
       .ExpW (rc_pkg::Fp24ExpW),
       .FracW(rc_pkg::Fp24FracW),
@@ -386,9 +430,9 @@ module rc_setup_unit #(
       .rst_ni,
       .valid_i (su_v_q[u]),
       .ready_o (su_ready_all[u]),
-      .tag_i   ({feed_vmask_q[feed_r_q], feed_thr_q, feed_r_q}),
-      .org_i   (feed_org_r),
-      .dir_i   (feed_dir_r),
+      .tag_i   (st_tag_q),
+      .org_i   (st_org_q),
+      .dir_i   (st_dir_q),
       .bounds_i(bounds_i),
       .valid_o (su_valid_all[u]),
       .ready_i (u_ready_i),
@@ -561,12 +605,6 @@ module rc_setup_unit #(
   assign perf_setup_o  = su_take;
 
 `ifndef SYNTHESIS
-  logic checks_on;
-  rc_checks_on u_checks_on (
-    .clk_i,
-    .rst_ni,
-    .on_o (checks_on)
-  );
   // acc_hot_o is the announced take's thread, one-hot.
   AccHot_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             acc_hot_o == (acc_valid_o ? Threads'(1) << acc_thr_o : '0));
