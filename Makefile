@@ -239,8 +239,9 @@ clean:
 include tests/fuzz/fuzz.mk
 
 # The core's benchmark: every regression scene through the verilated core at memory latencies 1, 16
-# and 64 and 16, 64 and the default threads, bit for bit: cycles, rays/cycle, efficiency and each
-# unit's utilisation in one table (tests/bench/bench_core.py; build/bench/core.md keeps it).
+# and 64 and 16, 64 and the default threads, and with one and two ray set-up units, bit for bit:
+# cycles, rays/cycle, efficiency and each unit's utilisation in one table
+# (tests/bench/bench_core.py; build/bench/core.md keeps it).
 MODELS_DIR ?= $(or $(RAYCORE_MODELS_PATH),../shared/models)
 .PHONY: bench-core
 bench-core: raycore

@@ -40,7 +40,8 @@ struct RenderArgs {
   uint32_t latency = 16;
   uint64_t stall_seed = 0;
   uint64_t watchdog = 200000;
-  std::string threads_rtl = "default", isect_interval_rtl = "default", trace, trace_window;
+  std::string threads_rtl = "default", isect_interval_rtl = "default", setup_units_rtl = "default";
+  std::string trace, trace_window;
   std::vector<std::string> rtl_options_given;  // the --engine rtl options on the command line
 };
 
@@ -151,20 +152,34 @@ double share(uint64_t part, uint64_t whole) {
   return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
 }
 
-// The verilated core model that --threads-rtl and --isect-interval-rtl name.
+// The verilated core model that --threads-rtl, --isect-interval-rtl and --setup-units-rtl name
+// (one of them at a time: each model differs from the default in one parameter).
 harness::CoreModel rtl_model(const RenderArgs& a) {
   if (a.threads_rtl != "1" && a.threads_rtl != "16" && a.threads_rtl != "64" &&
       a.threads_rtl != "default")
     throw Error("--threads-rtl: expected 1, 16, 64 or default, got '" + a.threads_rtl + "'");
   if (a.isect_interval_rtl != "1" && a.isect_interval_rtl != "default")
     throw Error("--isect-interval-rtl: expected 1 or default, got '" + a.isect_interval_rtl + "'");
-  if (a.threads_rtl != "default" && a.isect_interval_rtl == "1")
-    throw Error("--threads-rtl " + a.threads_rtl +
-                " and --isect-interval-rtl 1: no core model has both (one of them at a time)");
+  if (a.setup_units_rtl != "1" && a.setup_units_rtl != "2" && a.setup_units_rtl != "default")
+    throw Error("--setup-units-rtl: expected 1, 2 or default, got '" + a.setup_units_rtl + "'");
+  const std::pair<const char*, const std::string*> set[] = {
+      {"--threads-rtl", &a.threads_rtl},
+      {"--isect-interval-rtl", &a.isect_interval_rtl},
+      {"--setup-units-rtl", &a.setup_units_rtl}};
+  std::string given;
+  for (const auto& [name, value] : set) {
+    if (*value == "default") continue;
+    if (!given.empty())
+      throw Error(given + " and " + name + " " + *value +
+                  ": no core model has both (one of them at a time)");
+    given = std::string(name) + " " + *value;
+  }
   if (a.threads_rtl == "1") return harness::CoreModel::kThreads1;
   if (a.threads_rtl == "16") return harness::CoreModel::kThreads16;
   if (a.threads_rtl == "64") return harness::CoreModel::kThreads64;
   if (a.isect_interval_rtl == "1") return harness::CoreModel::kIsect1;
+  if (a.setup_units_rtl == "1") return harness::CoreModel::kSetup1;
+  if (a.setup_units_rtl == "2") return harness::CoreModel::kSetup2;
   return harness::CoreModel::kDefault;
 }
 
@@ -181,7 +196,8 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
                          {"shade", share(perf(spec::kCorePerfShadeBusy), r.cycles)},
                          {"core", share(perf(spec::kCorePerfBusyCycles), r.cycles)}};
   const harness::UnitUtilisation u =
-      harness::unit_utilisation(r.perf, r.cycles, harness::isect_interval(rtl_model(a)));
+      harness::unit_utilisation(r.perf, r.cycles, harness::isect_interval(rtl_model(a)),
+                                harness::model_setup_units(rtl_model(a)));
   nlohmann::json util = {{"setup", u.setup},
                          {"trav", u.trav},
                          {"list", u.list},
@@ -214,6 +230,7 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
           {"error_bits", r.error_bits},
           {"threads", harness::model_threads(rtl_model(a))},
           {"isect_interval", harness::isect_interval(rtl_model(a))},
+          {"setup_units", harness::model_setup_units(rtl_model(a))},
           {"latency", a.latency},
           {"stall_seed", a.stall_seed},
           {"perf", perf_all}};
@@ -388,7 +405,7 @@ int run_render(const RenderArgs& a) {
   if (a.engine != "rtl" && !a.rtl_options_given.empty())
     throw Error(a.rtl_options_given.front() + " needs --engine rtl");
   if (!a.trace_window.empty() && a.trace.empty()) throw Error("--trace-window needs --trace");
-  if (a.engine == "rtl") (void)rtl_model(a);   // --threads-rtl, --isect-interval-rtl
+  if (a.engine == "rtl") (void)rtl_model(a);   // the model options (--threads-rtl, ...)
   uint64_t window_first = 0, window_last = 0;  // checked here, used by run_rtl()
   if (!a.trace_window.empty()) parse_window(a.trace_window, window_first, window_last);
   const RaySource ray_source = a.ray_source.empty()
@@ -650,6 +667,10 @@ void add_render_commands(CLI::App& app, Action* action) {
                   "rtl: cycles per ray-triangle test of the core's intersection unit: default "
                   "(docs/spec.toml [core] isect_interval) or 1 (two transform units)")
       ->capture_default_str();
+  cmd->add_option("--setup-units-rtl", args->setup_units_rtl,
+                  "rtl: the core's ray set-up units: default (docs/spec.toml [core] setup_units), "
+                  "1 or 2 (models `make bench-core` builds)")
+      ->capture_default_str();
   cmd->add_option("--trace", args->trace, "rtl: write an FST waveform");
   cmd->add_option("--trace-window", args->trace_window, "rtl: trace only cycles FIRST:LAST");
   cmd->add_option("--watchdog", args->watchdog,
@@ -659,7 +680,7 @@ void add_render_commands(CLI::App& app, Action* action) {
       ->check(kDigits & CLI::Range(uint64_t{1}, uint64_t{1} << 40));
   cmd->callback([cmd, args, action] {
     for (const char* name : {"--latency", "--stall-seed", "--threads-rtl", "--isect-interval-rtl",
-                             "--trace", "--trace-window"})
+                             "--setup-units-rtl", "--trace", "--trace-window"})
       if (cmd->get_option(name)->count() > 0) args->rtl_options_given.push_back(name);
     *action = [args] { return run_render(*args); };
   });

@@ -1,6 +1,6 @@
 // The harness around the verilated core: the default model is linked in; the other
-// configurations (Threads = 1, IsectInterval = 1) are modules loaded when a run asks for them
-// (model_module.hpp, core_module.cpp).
+// configurations (Threads = 1, 16, 64, IsectInterval = 1, SetupUnits = 1, 2) are modules loaded
+// when a run asks for them (model_module.hpp, core_module.cpp).
 #include "core_sim.hpp"
 
 #include "Vrc_core.h"
@@ -39,6 +39,8 @@ CoreSimResult render_rtl(const scene::SceneImage& image, const RenderOptions& re
   if (model == CoreModel::kThreads16) return render_module("rc_core_t16", image, render, options);
   if (model == CoreModel::kThreads64) return render_module("rc_core_t64", image, render, options);
   if (model == CoreModel::kIsect1) return render_module("rc_core_i1", image, render, options);
+  if (model == CoreModel::kSetup1) return render_module("rc_core_s1", image, render, options);
+  if (model == CoreModel::kSetup2) return render_module("rc_core_s2", image, render, options);
   return CoreSim<Vrc_core>(image, options).render(render);
 }
 

@@ -128,8 +128,9 @@ class CoreSim {
 };
 
 // Which verilated model render_rtl() runs: the default parameters, Threads = 1, 16 or 64 (the
-// default is docs/spec.toml [core] threads), or IsectInterval = 1.
-enum class CoreModel { kDefault, kThreads1, kThreads16, kThreads64, kIsect1 };
+// default is docs/spec.toml [core] threads), IsectInterval = 1, or SetupUnits = 1 or 2 (the
+// default is [core] setup_units).
+enum class CoreModel { kDefault, kThreads1, kThreads16, kThreads64, kIsect1, kSetup1, kSetup2 };
 
 // The intersection interval (cycles per ray-triangle test) of a model.
 inline uint32_t isect_interval(CoreModel m) {
@@ -146,6 +147,15 @@ inline uint32_t model_threads(CoreModel m) {
   }
 }
 
+// The ray set-up units of a model.
+inline uint32_t model_setup_units(CoreModel m) {
+  switch (m) {
+    case CoreModel::kSetup1: return 1u;
+    case CoreModel::kSetup2: return 2u;
+    default: return static_cast<uint32_t>(spec::kCoreSetupUnits);
+  }
+}
+
 // The utilisation of each of the core's units in a run: the operations it took times the cycles
 // each occupies it, over the run's cycles (docs/architecture.md, "Counters"): ray set-up, rays x
 // 3 / setup_units (each rc_ray_setup takes a ray per 3 cycles); traversal, inner-node visits (a
@@ -157,7 +167,7 @@ struct UnitUtilisation {
   double busiest = 0;
 };
 UnitUtilisation unit_utilisation(const std::array<uint64_t, kCorePerfCount>& perf, uint64_t cycles,
-                                 uint32_t isect_interval);
+                                 uint32_t isect_interval, uint32_t setup_units);
 
 // Renders an fp24 image through the verilated core. Throws scene::Error for an image in another
 // format and CoreSimError for a failed run.

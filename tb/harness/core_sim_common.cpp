@@ -68,13 +68,13 @@ uint64_t root_node_record(const scene::SceneImage& image) {
 }
 
 UnitUtilisation unit_utilisation(const std::array<uint64_t, kCorePerfCount>& perf, uint64_t cycles,
-                                 uint32_t isect_interval) {
+                                 uint32_t isect_interval, uint32_t setup_units) {
   const auto share = [cycles](double ops) {
     return cycles ? ops / static_cast<double>(cycles) : 0.0;
   };
   const auto p = [&perf](int64_t k) { return static_cast<double>(perf[static_cast<size_t>(k)]); };
   UnitUtilisation u;
-  u.setup = share(p(spec::kCorePerfSetupBusy) * 3.0 / static_cast<double>(spec::kCoreSetupUnits));
+  u.setup = share(p(spec::kCorePerfSetupBusy) * 3.0 / static_cast<double>(setup_units));
   u.trav = share(p(spec::kCorePerfTravBusy));
   u.list = share(p(spec::kCorePerfListBusy));
   u.isect = share(p(spec::kCorePerfIsectBusy) * static_cast<double>(isect_interval));

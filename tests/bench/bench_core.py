@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """The core's benchmark (`make bench-core`): renders each scene through the verilated core at
-several memory latencies and thread counts, bit for bit against the golden model, and prints one
-table: cycles, rays per cycle, efficiency (ideal cycles / cycles), the utilisation of each unit
-and of the busiest one (docs/architecture.md, "Counters"), and the simulation's speed. It measures;
-it judges nothing but the bit-exact check (a run that differs from the golden model fails it).
+several memory latencies and thread counts, and at latency 16 with one and two ray set-up units,
+bit for bit against the golden model, and prints one table: cycles, rays per cycle, efficiency
+(ideal cycles / cycles), the utilisation of each unit and of the busiest one
+(docs/architecture.md, "Counters"), and the simulation's speed. It measures; it judges nothing
+but the bit-exact check (a run that differs from the golden model fails it).
 
 Usage: bench_core.py RAYCORE [--models DIR] [--jobs N] [--markdown FILE] [--quick]
 """
@@ -27,19 +28,23 @@ SCENES = [
 ]
 LATENCIES = [1, 16, 64]
 THREADS = ["16", "64", "default"]
+# The cores with fewer ray set-up units than the default (docs/spec.toml [core] setup_units), at
+# latency 16 and the default threads: what the set-up units buy.
+SETUP_UNITS = ["1", "2"]
 
 # SaarCOR's published figures (docs/architecture.md, "Performance"; ../shared/papers): the share
 # of the ideal rate one RTC reached with 16 and 32 threads, in cycle-accurate simulation.
 SAARCOR = "SaarCOR (simulated, 64-ray packets): 16 threads 70-80% of the ideal rate, 32 threads 80-90%"
 
 
-def run(raycore, root, models, scene, latency, threads):
+def run(raycore, root, models, scene, latency, threads, setup_units="default"):
     label, inp, size, extra = scene
     inp = inp.format(models=models)
     with tempfile.TemporaryDirectory() as tmp:
         stats = os.path.join(tmp, "s.json")
         cmd = [raycore, "render", inp, "--engine", "rtl", "--check", "--size", size,
-               "--latency", str(latency), "--threads-rtl", threads, "-q",
+               "--latency", str(latency), "--threads-rtl", threads,
+               "--setup-units-rtl", setup_units, "-q",
                "-o", os.path.join(tmp, "i.png"), "--stats", stats] + extra
         if models:
             cmd += ["--models-path", models]
@@ -47,12 +52,14 @@ def run(raycore, root, models, scene, latency, threads):
         p = subprocess.run(cmd, cwd=root, capture_output=True, text=True)
         wall = time.monotonic() - start
         if p.returncode != 0 or not os.path.exists(stats):
-            return {"label": label, "latency": latency, "threads": threads, "error":
+            return {"label": label, "latency": latency, "threads": threads,
+                    "setup_units": setup_units, "error":
                     (p.stderr or p.stdout).strip().splitlines()[-1:] or ["failed"], "wall": wall}
         with open(stats) as f:
             d = json.load(f)
     r = d["rtl"]
-    return {"label": label, "latency": latency, "threads": r["threads"], "size": size,
+    return {"label": label, "latency": latency, "threads": r["threads"],
+            "setup_units": r["setup_units"], "size": size,
             "cycles": r["cycles"], "rays_per_cycle": r["rays_per_cycle"],
             "efficiency": r["efficiency"], "util": r["utilisation"],
             "busiest": r["busiest_unit"], "pass": d["check"]["pass"],
@@ -60,17 +67,18 @@ def run(raycore, root, models, scene, latency, threads):
 
 
 def table(rows):
-    head = ("| scene | size | latency | threads | cycles | rays/cycle | efficiency | busiest unit "
-            "| setup | trav | list | isect | shade | bit-exact | sim cycles/s |")
-    lines = [head, "|" + "---|" * 15]
+    head = ("| scene | size | latency | threads | set-up units | cycles | rays/cycle | efficiency "
+            "| busiest unit | setup | trav | list | isect | shade | bit-exact | sim cycles/s |")
+    lines = [head, "|" + "---|" * 16]
     for x in rows:
         if "error" in x:
-            lines.append(f"| {x['label']} | | {x['latency']} | {x['threads']} | failed: "
-                         f"{' '.join(x['error'])} |" + " |" * 10)
+            lines.append(f"| {x['label']} | | {x['latency']} | {x['threads']} | "
+                         f"{x['setup_units']} | failed: {' '.join(x['error'])} |" + " |" * 10)
             continue
         u = x["util"]
         lines.append(
-            f"| {x['label']} | {x['size']} | {x['latency']} | {x['threads']} | {x['cycles']:,} | "
+            f"| {x['label']} | {x['size']} | {x['latency']} | {x['threads']} | "
+            f"{x['setup_units']} | {x['cycles']:,} | "
             f"{x['rays_per_cycle']:.3f} | {x['efficiency']:.3f} | {x['busiest']['unit']} "
             f"{x['busiest']['utilisation']:.3f} | {u['setup']:.2f} | {u['trav']:.2f} | "
             f"{u['list']:.2f} | {u['isect']:.2f} | {u['shade']:.2f} | "
@@ -84,7 +92,8 @@ def main():
     ap.add_argument("--models", default="", help="the shared test models' directory")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--markdown", help="also write the table to this file")
-    ap.add_argument("--quick", action="store_true", help="latency 16 and the default threads only")
+    ap.add_argument("--quick", action="store_true",
+                    help="latency 16, the default threads and set-up units only")
     a = ap.parse_args()
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     models = os.path.abspath(a.models) if a.models else ""
@@ -94,6 +103,8 @@ def main():
     lats = [16] if a.quick else LATENCIES
     thrs = ["default"] if a.quick else THREADS
     jobs = [(s, l, t) for s in scenes for t in thrs for l in lats]
+    if not a.quick:
+        jobs += [(s, 16, "default", n) for s in scenes for n in SETUP_UNITS]
     start = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
         rows = list(ex.map(lambda j: run(a.raycore, root, models, *j), jobs))
@@ -107,7 +118,8 @@ def main():
             f.write(text + "\n\n" + SAARCOR + "\n")
     bad = [x for x in rows if "error" in x or not x["pass"]]
     for x in bad:
-        print(f"bench-core: {x['label']} latency {x['latency']} threads {x['threads']}: "
+        print(f"bench-core: {x['label']} latency {x['latency']} threads {x['threads']} "
+              f"set-up units {x['setup_units']}: "
               f"{' '.join(x.get('error', ['not bit-exact']))}", file=sys.stderr)
     return 1 if bad else 0
 
