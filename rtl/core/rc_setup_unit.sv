@@ -387,23 +387,24 @@ module rc_setup_unit #(
   // a unit's input starts at flip-flops and not at the feeder's ray counter through the packet
   // copy's lane select (run 53 seed 1: feed_r_q -> a unit's ax_q, -1.63 ns, 5.22 ns on the
   // select's last net). While unit u holds no offer (su_v_q[u] low; with one unit, also while
-  // it takes) its register loads the next offer's ray: ray 0 of the input register's packet and
-  // the thread being taken while the feeder is idle (an offer starts with the take), else ray
+  // it takes) its register loads the next offer's ray: ray 0 of the input register's packet
+  // while the feeder is idle (an offer starts with the take), else ray
   // feed_r_q + 1 of the feeder's copy (an offer moves on to u when u - 1 takes ray feed_r_q).
   // Its enable is the unit's own valid flip-flop, so no unit's ready reaches these registers.
   logic [1:0]      nx_r;
   logic [3*W-1:0]  nx_org, nx_dir;
-  logic [TagW-1:0] nx_tag;
+  logic [2:0]      nx_tag;  // {ray exists, ray}
   assign nx_r   = feed_idle_q ? 2'd0 : feed_r_q + 2'd1;
   assign nx_org = feed_idle_q ? pin_org_q[0 +: 3*W] : lane_3w(feed_org_q, nx_r);
   assign nx_dir = feed_idle_q ? pin_dir_q[0 +: 3*W] : lane_3w(feed_dir_q, nx_r);
-  assign nx_tag = feed_idle_q ? {pin_mask_q[0], acc_thr, 2'd0} :
-                                {feed_vmask_q[nx_r], feed_thr_q, nx_r};
+  // The tag's thread is not staged: feed_thr_q holds it for the whole packet (staging it would
+  // take it from the free pick's choice while the feeder is idle: run 54, -0.06 and 0.00 ns).
+  assign nx_tag = feed_idle_q ? {pin_mask_q[0], 2'd0} : {feed_vmask_q[nx_r], nx_r};
 
   for (genvar u = 0; u < NU; u++) begin : g_setup
     logic u_ready_i, st_en;
     logic [3*W-1:0]  st_org_q, st_dir_q;
-    logic [TagW-1:0] st_tag_q;
+    logic [2:0]      st_tag_q;
     assign u_ready_i = out_ready && out_u_q == UW'(u);
     assign st_en     = ~su_v_q[u] | ((NU == 1) & su_ready_all[u]);
     always_ff @(posedge clk_i) begin
@@ -418,8 +419,7 @@ module rc_setup_unit #(
     StagedRay_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   su_v_q[u] |-> st_org_q == feed_org_r &&
                                                 st_dir_q == feed_dir_r &&
-                                                st_tag_q == {feed_vmask_q[feed_r_q], feed_thr_q,
-                                                             feed_r_q});
+                                                st_tag_q == {feed_vmask_q[feed_r_q], feed_r_q});
 `endif
     rc_ray_setup #(
       .ExpW (rc_pkg::Fp24ExpW),
@@ -430,7 +430,7 @@ module rc_setup_unit #(
       .rst_ni,
       .valid_i (su_v_q[u]),
       .ready_o (su_ready_all[u]),
-      .tag_i   (st_tag_q),
+      .tag_i   ({st_tag_q[2], feed_thr_q, st_tag_q[1:0]}),
       .org_i   (st_org_q),
       .dir_i   (st_dir_q),
       .bounds_i(bounds_i),
