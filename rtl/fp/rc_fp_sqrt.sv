@@ -32,8 +32,8 @@
 // keep r' otherwise (root bit 0). Each step is only as wide as its operands (j + 3 bits), so the
 // early steps are short. Slot 0 unpacks, classifies, forms the radicand and takes root bit 1
 // (always 1: the top pair is 1, 2 or 3); slots 1 .. N - 1 take root bits 2 .. N, and slot N - 1
-// also reduces the final remainder to the sticky bit (nonzero = inexact); slot N rounds to
-// nearest even and packs (rc_fp_round_pack).
+// also reduces the final remainder to the sticky bit (nonzero = inexact) and decides the
+// rounding increment (round to nearest even); slot N rounds and packs (rc_fp_round_pack).
 //
 // Slots in one cycle do not chain their subtractions (as in rc_fp_div): a slot k >= 2 in the
 // same cycle as slot k - 1 subtracts from slot k - 1's input state for both of its outcomes,
@@ -106,9 +106,9 @@ module rc_fp_sqrt #(
     st_off = k * (HdrW + N + 6) + 3 * k * (k - 1) / 2;  // the sum of st_w(0 .. k - 1)
   endfunction
   localparam int unsigned ChainW = st_off(N - 1);
-  // State after the last root bit: of the final remainder only whether it is nonzero (sticky);
-  // then the five rc_fp_round_flags bits.
-  localparam int unsigned FinW   = HdrW + 1 + N + 5;
+  // State after the last root bit: the header, the root, the rounding increment (decided from
+  // the round bit, the sticky bit and the root's last bit), then the five rc_fp_round_flags bits.
+  localparam int unsigned FinW   = HdrW + ManW + 1 + 5;
 
   //////////////////////////////////////////////////
   // Slot 0: unpack, classify, radicand, bit 1    //
@@ -246,9 +246,14 @@ module rc_fp_sqrt #(
       // subtraction's carry chain: run 47, -0.44 ns in rc_ray_gen).
       // The rounding cycle's range checks are made here too (the significand is the root so
       // far, the exponent the header's), so its override starts near flip-flops.
-      logic sticky, unused_next, man_ones_d;
+      // The rounding increment is decided here as well (round to nearest even: the round bit,
+      // and the sticky bit or the root's last bit), one cell beside the sticky bit's select, so
+      // the rounding cycle starts from it (run 54: the ray generator's square root, fin_q into
+      // the output register through the increment, -0.35 ns).
+      logic sticky, round_up_d, unused_next, man_ones_d;
       logic [1:0] uflow_d, oflow_d;
       assign sticky      = r_bit ? (rem_sh != {1'b0, root, 2'b01}) : (rem_sh != '0);
+      assign round_up_d  = r_bit & (sticky | root[0]);
       assign unused_next = ^{rem_next, t_inc, t_dec};
       rc_fp_round_flags #(
         .ExpW (ExpW),
@@ -261,7 +266,7 @@ module rc_fp_sqrt #(
         .uflow_o   (uflow_d),
         .oflow_o   (oflow_d)
       );
-      assign fin_d = {hdr, sticky, root, r_bit, man_ones_d, uflow_d, oflow_d};
+      assign fin_d = {hdr, root, round_up_d, man_ones_d, uflow_d, oflow_d};
       // By now every radicand bit has been brought down (the rest are the zeros shifted in).
       logic unused_rad;
       assign unused_rad = ^rad[N-3:0];
@@ -283,17 +288,13 @@ module rc_fp_sqrt #(
 
   logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
   logic [ExpW-1:0] exp_f;
-  logic            sticky_f;
-  logic [N-1:0]    root_f;
-  logic [ManW-1:0] man;
+  logic [ManW-1:0] man;  // man[ManW-1] = 1: the root lies in [1, 2)
   logic            round_up, man_ones_f;
   logic [1:0]      uflow_f, oflow_f;
   logic [W-1:0]    res_d;
 
-  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, sticky_f, root_f, man_ones_f, uflow_f,
+  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, man, round_up, man_ones_f, uflow_f,
           oflow_f} = fin_q;
-  assign man      = root_f[N-1:1];  // man[ManW-1] = 1: the root lies in [1, 2)
-  assign round_up = root_f[0] & (sticky_f | man[0]);
 
   rc_fp_round_pack #(
     .ExpW (ExpW),
