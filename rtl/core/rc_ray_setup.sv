@@ -21,7 +21,8 @@
 //   an input register and its axes enter the slice (one divider, two subtracters, two
 //   multipliers, the min/max compare, the chain's max and min compares) x first, then y, then z,
 //   one axis every CmpStages cycles (1 at the defaults); the chain step of an axis takes the
-//   interval straight from the compares' results for the axis before it. A skipped axis passes
+//   interval straight from the step registers' results for the axis before it, and the step of
+//   x selects max(+0, b) and min(+inf, b) behind the compares instead. A skipped axis passes
 //   through the chain's compares as max(tmin, -inf) and min(tmax, +inf), which are tmin and tmax
 //   bit for bit (both are canonical and never NaN), so the chain's bits are those above.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
@@ -339,63 +340,84 @@ module rc_ray_setup #(
   // The chain: one step per axis, x then y then z, fed back       //
   ///////////////////////////////////////////////////////////////////
 
-  // lo_in/hi_in: the interval entering this axis' step: [+0, +inf] for x, else the interval
-  // after the previous axis' step, which leaves the compares in this very cycle (the loop is one
-  // LUT level plus a compare). A skipped axis compares with max(tmin, -inf) and min(tmax, +inf)
-  // instead, which give tmin and tmax bit for bit: both are canonical (+0, +inf and every
-  // min/max result are) and never NaN (see TminNotNan_A). So the skip selects an operand beside
-  // the loop, not the result inside it. The selects are AND-OR masks, not muxes with constant
-  // inputs (see rc_fp_cmp).
+  // The step of an axis: tmin = max(tmin, min(t0, t1)), tmax = min(tmax, max(t0, t1)), where the
+  // interval entering it is the previous axis' result, which leaves the step's registers in this
+  // very cycle (the loop is a compare and its selects), or [+0, +inf] for x. The restart is
+  // selected behind the compares, not in front of them: max(+0, b) and min(+inf, b) are formed
+  // beside the loop, and the first flag picks them before the registers, so neither the flag nor
+  // a select sits between the registers and the compares' carry chains (run 54 seed 1: flag_q
+  // -> the minimum's register through a mask in front of the compare, -0.13 ns, 1.94 ns on the
+  // flag's net). The operand b of x, y and z is never NaN and canonical: min(t0, t1) and
+  // max(t0, t1) are rc_fp_cmp results, canonical, and NaN only when t0 or t1 is, and a skipped
+  // axis (t0 or t1 NaN: the axis does not restrict the ray) compares with -inf and +inf instead,
+  // which give tmin and tmax bit for bit. So max(+0, b) is +0 for a b with the sign set (-0, a
+  // negative value, -inf) and b otherwise, and min(+inf, b) is b (FirstOperand_A). The selects
+  // are AND-OR masks, not muxes with constant inputs (see rc_fp_cmp).
   localparam int unsigned KeepW = 1 + TagW;  // {last, tag}
   localparam logic [W-1:0] NegInf = {1'b1, {ExpW{1'b1}}, {FracW{1'b0}}};
-  logic [W-1:0]  lo_in, hi_in, lo_b, hi_b, max_res, min_res;
+  logic [W-1:0]  lo_b, hi_b, lo_first, max_c, min_c, max_d, min_d, max_res, min_res;
   logic          chain_valid, last_keep;
   logic [TagW-1:0] tag_keep;
   logic          unused_max_valid, unused_max_lt, unused_max_le, unused_max_eq;
-  logic          unused_min_lt, unused_min_le, unused_min_eq;
+  logic          unused_min_valid, unused_min_lt, unused_min_le, unused_min_eq;
   logic [W-1:0]  unused_max_min, unused_min_max;
 
-  assign lo_in = {W{~ch_first}} & max_res;                          // +0 is all zeros
-  assign hi_in = ({W{~ch_first}} & min_res) | ({W{ch_first}} & PosInf);
-  assign lo_b  = ({W{~skip}} & mn) | ({W{skip}} & NegInf);
-  assign hi_b  = ({W{~skip}} & mx) | ({W{skip}} & PosInf);
+  assign lo_b     = ({W{~skip}} & mn) | ({W{skip}} & NegInf);
+  assign hi_b     = ({W{~skip}} & mx) | ({W{skip}} & PosInf);
+  assign lo_first = {W{~lo_b[W-1]}} & lo_b;  // max(+0, lo_b); +0 is all zeros
 
-  // tmin = max(tmin, min(t0, t1))
+  // max(tmin, lo_b) and min(tmax, hi_b), without registers.
   rc_fp_cmp #(
     .ExpW  (ExpW),
     .FracW (FracW),
-    .Stages(CmpStages)
+    .Stages(0)
   ) u_max (
     .clk_i,
     .rst_ni,
     .valid_i(mm_valid),
-    .a_i    (lo_in),
+    .a_i    (max_res),
     .b_i    (lo_b),
     .valid_o(unused_max_valid),
     .lt_o   (unused_max_lt),
     .le_o   (unused_max_le),
     .eq_o   (unused_max_eq),
     .min_o  (unused_max_min),
-    .max_o  (max_res)
+    .max_o  (max_c)
   );
 
-  // tmax = min(tmax, max(t0, t1))
   rc_fp_cmp #(
     .ExpW  (ExpW),
     .FracW (FracW),
-    .Stages(CmpStages)
+    .Stages(0)
   ) u_min (
     .clk_i,
     .rst_ni,
     .valid_i(mm_valid),
-    .a_i    (hi_in),
+    .a_i    (min_res),
     .b_i    (hi_b),
-    .valid_o(chain_valid),
+    .valid_o(unused_min_valid),
     .lt_o   (unused_min_lt),
     .le_o   (unused_min_le),
     .eq_o   (unused_min_eq),
-    .min_o  (min_res),
+    .min_o  (min_c),
     .max_o  (unused_min_max)
+  );
+
+  assign max_d = ({W{~ch_first}} & max_c) | ({W{ch_first}} & lo_first);
+  assign min_d = ({W{~ch_first}} & min_c) | ({W{ch_first}} & hi_b);
+
+  // The step's registers: CmpStages, as the compares' own would be.
+  rc_pipe_out #(
+    .Width   (2 * W),
+    .DataRegs(CmpStages),
+    .Stages  (CmpStages)
+  ) u_step_out (
+    .clk_i,
+    .rst_ni,
+    .valid_i(mm_valid),
+    .data_i ({max_d, min_d}),
+    .valid_o(chain_valid),
+    .data_o ({max_res, min_res})
   );
 
   // The last-axis flag and the tag beside the compares.
@@ -485,13 +507,18 @@ module rc_ray_setup #(
                                     div_valid == sub_lo_valid && div_valid == sub_hi_valid);
   // Both multipliers, and the flags beside the slice, run in lock step with the axis stream.
   SliceLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                    mul_valid == mul_hi_valid && mm_valid == ch_valid_side &&
-                                    chain_valid == unused_max_valid);
+                                    mul_valid == mul_hi_valid && mm_valid == ch_valid_side);
   // A ray's axes reach the chain AxisGap cycles apart, x first: an axis other than x finds the
   // previous axis of its own ray just out of the compares, and x finds none in flight.
   ChainOrder_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  mm_valid |-> (ch_first ? !(chain_valid && !last_keep)
                                                         : chain_valid && !last_keep));
+  // The chain's operands are never NaN and canonical (a zero exponent with a zero fraction), so
+  // the restart's max(+0, b) and min(+inf, b) are the selects above.
+  FirstOperand_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                   mm_valid |-> !is_nan(lo_b[W-2:0]) && !is_nan(hi_b[W-2:0]) &&
+                                                (|lo_b[W-2 -: ExpW] || ~|lo_b[FracW-1:0]) &&
+                                                (|hi_b[W-2 -: ExpW] || ~|hi_b[FracW-1:0]));
   // tmin starts at +0 and only grows through non-NaN values, so it is never NaN.
   TminNotNan_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  le_valid |-> !is_nan(tmin_f[W-2:0]) && !is_nan(tmax_f[W-2:0]));
