@@ -509,7 +509,7 @@ module rc_ray_setup #(
   SliceLockStep_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     mul_valid == mul_hi_valid && mm_valid == ch_valid_side);
   // A ray's axes reach the chain AxisGap cycles apart, x first: an axis other than x finds the
-  // previous axis of its own ray just out of the compares, and x finds none in flight.
+  // previous axis of its own ray just out of the step registers, and x finds none in flight.
   ChainOrder_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  mm_valid |-> (ch_first ? !(chain_valid && !last_keep)
                                                         : chain_valid && !last_keep));
