@@ -189,9 +189,9 @@ FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
 # nextpnr's seed: 1, the faster of the two seeds placed on the current netlist (docs/history.md
-# run 54: 98.69 MHz, one endpoint failing by 0.13 ns; seed 3 96.58 MHz; seeds 2, 4 and 5 not
-# placed; docs/fpga.md, "Status"). Seed 3 closed the netlist before (run 53, 100.19 MHz); seed 4
-# closed the core before the unit redesign (runs 36 to 36s5). Every netlist needs its own sweep.
+# run 56: 96.81 MHz, 18 endpoints failing; seed 2 88.93 MHz; seeds 3, 4 and 5 not placed;
+# docs/fpga.md, "Status"). Seed 3 closed an earlier netlist (run 53, 100.19 MHz); seed 4 closed
+# the core before the unit redesign (runs 36 to 36s5). Every netlist needs its own sweep.
 FPGA_SEED  ?= 1
 ECPPACK    ?= yowasp-ecppack
 # The board build synthesises with YoWASP's Yosys (PyPI, a 2026 Yosys whose synth_ecp5 maps with
