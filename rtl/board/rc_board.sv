@@ -23,10 +23,11 @@
 //   BoardRegControl (or a start_i pulse, a cycle later) starts a frame when busy_o is 0: three
 //   cycles later the frame size is checked (width * height <= FbPixels, else status bit
 //   size_error and no frame) and the ray generation unit starts. BoardRegPerfLo/Hi show the
-//   core's counter BoardRegPerfSel through a register (perf_rd_q, loaded every cycle): a read
-//   shows the counter selected two cycles before its address is given, so after writing PerfSel
-//   wait one cycle before reading PerfLo/Hi. The counters' 64-bit multiplexer thus ends at a
-//   flip-flop and does not reach the read data's register in one cycle.
+//   core's counter BoardRegPerfSel through two register levels (rc_core's perf_o is a cycle
+//   late, then perf_rd_q, loaded every cycle): a read shows the counter selected three cycles
+//   before its address is given, so after writing PerfSel wait two cycles before reading
+//   PerfLo/Hi. The counters' 64-bit multiplexer thus ends at flip-flops and does not reach the
+//   read data's register in one cycle.
 // - Frame: the core renders every pixel into the framebuffer (pixel id y * width + x, 24-bit
 //   RGB). done_o rises two cycles after the first cycle in which the last packet has been
 //   generated and the core is idle; it stays until the next start. BoardRegCycles holds the

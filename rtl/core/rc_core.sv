@@ -31,9 +31,11 @@
 //   CoreStatus* bits: malformed node, bad address (also any error response), stack overflow,
 //   watchdog (work held and no handshake completed for WatchdogCycles cycles; error_o shows it
 //   from the edge WatchdogCycles + 2 after the last handshake's).
-// - Performance counters: perf_o = counter number perf_sel_i (CorePerf* of rc_pkg),
-//   combinational from registers; numbers >= CorePerfCount read 0. The counters count an event
-//   one cycle after it (registered increments): read them from the cycle after idle_o rises on.
+// - Performance counters: perf_o = counter number perf_sel_i (CorePerf* of rc_pkg) a cycle late:
+//   from a clock edge on, perf_o shows the counter numbered by perf_sel_i at that edge, as it
+//   was before the edge (rc_core_status); numbers >= CorePerfCount read 0. The counters count an
+//   event one cycle after it (registered increments): set perf_sel_i from the cycle after idle_o
+//   rises on, and read perf_o after the next edge.
 // - Debug: dbg_thread_state_o, every thread's state (rc_pkg::thread_state_e, ThreadStateBits per
 //   thread), kept from the units' events in simulation (zero in synthesis); no logic depends on
 //   it.

@@ -12,8 +12,11 @@
 //   its events by a cycle, and its bits 63..PerfLoW (32) by two: the low half's carry is
 //   registered, so no 64-bit carry chain ends at a counter); counter CorePerfMaxStack instead
 //   keeps the largest perf_depth_i seen with perf_inc_i's CorePerfStackPushes field non-zero.
-//   perf_o = counter perf_sel_i (64 bits, zero for numbers >= CorePerfCount), combinational from
-//   registers; it is exact from the second cycle after the last event on.
+//   perf_o = counter perf_sel_i (64 bits, zero for numbers >= CorePerfCount) one cycle late: the
+//   number is sampled at a clock edge and perf_o shows, from that edge on, the counter as it was
+//   before the edge (a multiplexer level between two register levels, see "The read"). So a
+//   reader sets perf_sel_i, lets one edge pass and reads; the value is exact when that edge comes
+//   two or more cycles after the last event.
 // - Parameters: WatchdogCycles (>= 2), EvW (watchdog events, >= 4), PerfLoW (the counters' low
 //   half, 3 .. 61; 32 in the core, small in tests/core/units/core_status_test.cpp so the carry
 //   into the high half is exercised).
@@ -94,7 +97,8 @@ module rc_core_status #(
   // registered (perf_cy_q) and added to the high half a cycle later. The largest stack depth has
   // a register of its own.
   localparam int unsigned HiW = 64 - PerfLoW;
-  logic [63:0]              perf_q [NPerf];
+  localparam int unsigned Groups = (NPerf + 7) / 8;  // the read's groups of 8 (see below)
+  logic [Groups*8*64-1:0]   perf_q;                   // counter k at [64k +: 64], zero padded
   logic [NPerf*PerfLoW-1:0] perf_lo_q;
   logic [NPerf*HiW-1:0]     perf_hi_q;
   logic [NPerf-1:0]         perf_cy_q;
@@ -125,18 +129,41 @@ module rc_core_status #(
     end
   end
   always_comb begin
+    perf_q = '0;
     for (int unsigned k = 0; k < NPerf; k++) begin
       if (k == rc_pkg::CorePerfMaxStack) begin
-        perf_q[k] = 64'(max_sp_q);
+        perf_q[k*64 +: 64] = 64'(max_sp_q);
       end else begin
-        perf_q[k] = {perf_hi_q[k*HiW +: HiW], perf_lo_q[k*PerfLoW +: PerfLoW]};
+        perf_q[k*64 +: 64] = {perf_hi_q[k*HiW +: HiW], perf_lo_q[k*PerfLoW +: PerfLoW]};
       end
     end
   end
-  // The read: an array indexed by the number's low bits, a multiplexer (the part select
-  // perf_q[perf_sel_i * 64 +: 64] of a flat vector became a shifter in Yosys, on a failing path
-  // of the board's counter read: run 54 seed 3, -0.29 ns).
-  localparam int unsigned SelW = $clog2(NPerf);
-  assign perf_o = (32'(perf_sel_i) < NPerf) ? perf_q[perf_sel_i[SelW-1:0]] : 64'd0;
+  // The read in two levels: each group of 8 counters (numbers 8g .. 8g+7) has a register
+  // loaded every cycle with the counter the number's low bits pick, beside the counters; the
+  // number's high bits, registered with it, then pick the group. The counters' 64-bit
+  // multiplexer thus ends at flip-flops near the counters and not at its reader (run 56 seed 2:
+  // the board's perf_sel_q -> perf_rd_q in one cycle, -1.25 ns, 9.03 ns of routing).
+  // Both levels are AND-OR selects (a variable part select became a shifter in Yosys).
+  logic [63:0] grp_d [Groups];
+  logic [63:0] grp_q [Groups];
+  logic [4:0]  sel_hi_q;
+  always_comb begin
+    for (int unsigned g = 0; g < Groups; g++) begin
+      grp_d[g] = '0;
+      for (int unsigned i = 0; i < 8; i++) begin
+        grp_d[g] = grp_d[g] | ({64{perf_sel_i[2:0] == 3'(i)}} & perf_q[(8*g + i)*64 +: 64]);
+      end
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    grp_q    <= grp_d;
+    sel_hi_q <= perf_sel_i[7:3];
+  end
+  always_comb begin
+    perf_o = '0;
+    for (int unsigned g = 0; g < Groups; g++) begin
+      perf_o = perf_o | ({64{sel_hi_q == 5'(g)}} & grp_q[g]);
+    end
+  end
 
 endmodule

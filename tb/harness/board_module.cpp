@@ -117,7 +117,9 @@ BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
   res.cycles = read_reg(spec::kBoardRegCycles);
   for (int k = 0; k < kCorePerfCount; ++k) {
     write_reg(spec::kBoardRegPerfSel, static_cast<uint32_t>(k));
-    tick();  // the counter reaches perf_lo/perf_hi through a register (rc_board's contract)
+    // The counter reaches perf_lo/perf_hi through two register levels (rc_board's contract).
+    tick();
+    tick();
     const uint64_t lo = read_reg(spec::kBoardRegPerfLo);
     const uint64_t hi = read_reg(spec::kBoardRegPerfHi);
     res.perf[static_cast<size_t>(k)] = lo | hi << 32;

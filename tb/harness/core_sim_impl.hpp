@@ -394,9 +394,11 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
                  static_cast<unsigned long long>(s.miss_payload));
 
   // ---- Status and counters ----
+  // perf_o is a cycle late (rc_core's contract): one edge per counter. The core is idle, so only
+  // the cycle counter moves on meanwhile.
   for (int k = 0; k < kCorePerfCount; ++k) {
     m.perf_sel_i = static_cast<uint8_t>(k);
-    m.eval();
+    tb.tick();
     res.perf[static_cast<size_t>(k)] = m.perf_o;
   }
   m.perf_sel_i = 0;

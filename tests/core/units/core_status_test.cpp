@@ -4,12 +4,13 @@
 // core's 32 (where a frame never carries, so the split is exercised only by the small one).
 //
 // The contract, as a model: with S(e) the sum of a counter's increments sampled at edges <= e,
-// after edge k the counter reads floor(S(k-2) / 2^L) * 2^L + (S(k-1) mod 2^L) (L = PerfLoW), so
-// it is exact from the second edge after the last event; the largest stack depth reads the
+// after edge k the counter holds floor(S(k-2) / 2^L) * 2^L + (S(k-1) mod 2^L) (L = PerfLoW), so
+// it is exact from the second edge after the last event; the largest stack depth holds the
 // largest perf_depth_i sampled with the stack-pushes field non-zero at edges <= k-1; numbers >=
-// CorePerfCount read 0. Seeded random increments (biased to large ones so the small low half
-// wraps often) and a random counter number read after every edge; then a quiet tail where every
-// counter must read its exact total.
+// CorePerfCount read 0. The read is a cycle late: perf_o after edge k shows the counter
+// perf_sel_i named at edge k, as it was after edge k-1. Seeded random increments (biased to large
+// ones so the small low half wraps often) and a random counter number at every edge; then a
+// quiet tail where every counter must read its exact total.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -55,7 +56,10 @@ void run(int low_bits, const char* what) {
   clear(tb->perf_inc_i);
   tb.reset(0);
 
-  const int busy = 3000, quiet = 3;
+  // The read is a cycle late: the number sampled at edge e shows, after edge e, the counter as it
+  // was after edge e - 1. So every edge samples a number (random while busy; in the quiet tail
+  // 0, 1, .. 31, 0, .. so that every number is read once the counters are exact).
+  const int busy = 3000, quiet = 40;
   uint64_t cases = 0, bad = 0;
   for (int e = 0; e < busy + quiet; ++e) {
     // The inputs sampled at edge e.
@@ -65,9 +69,11 @@ void run(int low_bits, const char* what) {
       if (e < busy) inc[k] = (rng() % 4u == 0) ? rng() % 8u : 7u - rng() % 2u;
     }
     if (e >= busy) depth = 0;
+    const int sel = e < busy ? static_cast<int>(rng() % 32u) : (e - busy) % 32;
     clear(tb->perf_inc_i);
     for (int k = 0; k < kN; ++k) put_field(tb->perf_inc_i, 3 * k, 3, inc[k]);
     put(tb->perf_depth_i, depth);
+    put(tb->perf_sel_i, static_cast<uint64_t>(sel));
     std::array<uint64_t, kN> next = sum.back();
     for (int k = 0; k < kN; ++k) next[k] += inc[k];
     sum.push_back(next);
@@ -75,38 +81,29 @@ void run(int low_bits, const char* what) {
 
     tb.tick();
 
-    // After edge e: read counters (a random one while busy, every one in the quiet tail).
-    std::vector<int> sels;
-    if (e < busy) {
-      sels.push_back(static_cast<int>(rng() % 32u));
+    // After edge e: counter sel as it read after edge r = e - 1.
+    const int r = e - 1;
+    const auto at = [&](int edge, int k) -> uint64_t {
+      return edge < 0 ? 0 : sum[static_cast<size_t>(edge) + 1][k];
+    };
+    uint64_t want = 0;
+    if (sel >= kN || r < 0) {
+      want = 0;  // no such counter, or the counters as reset
+    } else if (sel == kMaxStack) {
+      want = r >= 1 ? max_sp[static_cast<size_t>(r)] : 0;  // edges <= r - 1
     } else {
-      for (int k = 0; k < 32; ++k) sels.push_back(k);
+      want = (at(r - 2, sel) / low_mod) * low_mod + at(r - 1, sel) % low_mod;
     }
-    for (int sel : sels) {
-      put(tb->perf_sel_i, static_cast<uint64_t>(sel));
-      tb.eval();
-      const auto at = [&](int edge, int k) -> uint64_t {
-        return edge < 0 ? 0 : sum[static_cast<size_t>(edge) + 1][k];
-      };
-      uint64_t want = 0;
-      if (sel >= kN) {
-        want = 0;  // no such counter
-      } else if (sel == kMaxStack) {
-        want = e >= 1 ? max_sp[static_cast<size_t>(e)] : 0;  // edges <= e - 1
-      } else {
-        want = (at(e - 2, sel) / low_mod) * low_mod + at(e - 1, sel) % low_mod;
-      }
-      if (e >= busy + 1 && sel < kN && sel != kMaxStack) {
-        // Two edges after the last event the counter is exact.
-        EXPECT_EQ(want, at(busy - 1, sel)) << "model";
-      }
-      ++cases;
-      if (static_cast<uint64_t>(tb->perf_o) != want) {
-        if (bad < 8)
-          ADD_FAILURE() << what << ": after edge " << e << " counter " << sel << " reads "
-                        << static_cast<uint64_t>(tb->perf_o) << ", want " << want;
-        ++bad;
-      }
+    if (r >= busy + 1 && sel < kN && sel != kMaxStack) {
+      // Two edges after the last event the counter is exact.
+      EXPECT_EQ(want, at(busy - 1, sel)) << "model";
+    }
+    ++cases;
+    if (static_cast<uint64_t>(tb->perf_o) != want) {
+      if (bad < 8)
+        ADD_FAILURE() << what << ": after edge " << e << " counter " << sel << " reads "
+                      << static_cast<uint64_t>(tb->perf_o) << ", want " << want;
+      ++bad;
     }
   }
   // The small low half wrapped: its carries were exercised.
