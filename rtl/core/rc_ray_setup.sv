@@ -22,9 +22,9 @@
 //   multipliers, the min/max compare, the chain's max and min compares) x first, then y, then z,
 //   one axis every CmpStages cycles (1 at the defaults); the chain step of an axis takes the
 //   interval straight from the step registers' results for the axis before it, and the step of
-//   x selects max(+0, b) and min(+inf, b) behind the compares instead. A skipped axis passes
-//   through the chain's compares as max(tmin, -inf) and min(tmax, +inf), which are tmin and tmax
-//   bit for bit (both are canonical and never NaN), so the chain's bits are those above.
+//   x selects max(+0, b) and min(+inf, b) behind the compares instead. A skipped axis is selected
+//   behind the compares too: its step keeps the interval (or restarts it at [+0, +inf] for x),
+//   so the chain's bits are those above.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
 //   when valid_i & ready_o. ready_o is the AND of two flip-flops (rc_credit_fifo's
 //   credit register and the input register's free flag) and never depends on valid_i or
@@ -347,26 +347,27 @@ module rc_ray_setup #(
   // beside the loop, and the first flag picks them before the registers, so neither the flag nor
   // a select sits between the registers and the compares' carry chains (run 54 seed 1: flag_q
   // -> the minimum's register through a mask in front of the compare, -0.13 ns, 1.94 ns on the
-  // flag's net). The operand b of x, y and z is never NaN and canonical: min(t0, t1) and
-  // max(t0, t1) are rc_fp_cmp results, canonical, and NaN only when t0 or t1 is, and a skipped
-  // axis (t0 or t1 NaN: the axis does not restrict the ray) compares with -inf and +inf instead,
-  // which give tmin and tmax bit for bit. So max(+0, b) is +0 for a b with the sign set (-0, a
-  // negative value, -inf) and b otherwise, and min(+inf, b) is b (FirstOperand_A). The selects
+  // flag's net). The skip flag (t0 or t1 NaN: the axis does not restrict the ray) is selected
+  // there as well: the compares take min(t0, t1) and max(t0, t1) unmasked, and a skipped axis
+  // picks the step registers' own interval (or [+0, +inf] for x) instead of the compares'
+  // results (run 56 seed 2: skip_mm_q -> the step registers through the mask that once made a
+  // skipped axis compare with -inf and +inf, -0.23 ns). The operand b of an axis that is not
+  // skipped is never NaN and canonical: min(t0, t1) and max(t0, t1) are rc_fp_cmp results,
+  // canonical, and NaN only when t0 or t1 is. So max(+0, b) is +0 for a b with the sign set (-0,
+  // a negative value, -inf) and b otherwise, and min(+inf, b) is b (FirstOperand_A). The selects
   // are AND-OR masks, not muxes with constant inputs (see rc_fp_cmp).
   localparam int unsigned KeepW = 1 + TagW;  // {last, tag}
-  localparam logic [W-1:0] NegInf = {1'b1, {ExpW{1'b1}}, {FracW{1'b0}}};
-  logic [W-1:0]  lo_b, hi_b, lo_first, max_c, min_c, max_d, min_d, max_res, min_res;
+  logic [W-1:0]  lo_first, max_c, min_c, max_d, min_d, max_res, min_res;
+  logic          sel_c, sel_res, sel_first, sel_none;
   logic          chain_valid, last_keep;
   logic [TagW-1:0] tag_keep;
   logic          unused_max_valid, unused_max_lt, unused_max_le, unused_max_eq;
   logic          unused_min_valid, unused_min_lt, unused_min_le, unused_min_eq;
   logic [W-1:0]  unused_max_min, unused_min_max;
 
-  assign lo_b     = ({W{~skip}} & mn) | ({W{skip}} & NegInf);
-  assign hi_b     = ({W{~skip}} & mx) | ({W{skip}} & PosInf);
-  assign lo_first = {W{~lo_b[W-1]}} & lo_b;  // max(+0, lo_b); +0 is all zeros
+  assign lo_first = {W{~mn[W-1]}} & mn;  // max(+0, mn); +0 is all zeros
 
-  // max(tmin, lo_b) and min(tmax, hi_b), without registers.
+  // max(tmin, mn) and min(tmax, mx), without registers.
   rc_fp_cmp #(
     .ExpW  (ExpW),
     .FracW (FracW),
@@ -376,7 +377,7 @@ module rc_ray_setup #(
     .rst_ni,
     .valid_i(mm_valid),
     .a_i    (max_res),
-    .b_i    (lo_b),
+    .b_i    (mn),
     .valid_o(unused_max_valid),
     .lt_o   (unused_max_lt),
     .le_o   (unused_max_le),
@@ -394,7 +395,7 @@ module rc_ray_setup #(
     .rst_ni,
     .valid_i(mm_valid),
     .a_i    (min_res),
-    .b_i    (hi_b),
+    .b_i    (mx),
     .valid_o(unused_min_valid),
     .lt_o   (unused_min_lt),
     .le_o   (unused_min_le),
@@ -403,8 +404,15 @@ module rc_ray_setup #(
     .max_o  (unused_min_max)
   );
 
-  assign max_d = ({W{~ch_first}} & max_c) | ({W{ch_first}} & lo_first);
-  assign min_d = ({W{~ch_first}} & min_c) | ({W{ch_first}} & hi_b);
+  // The four cases: a step (the compares' results), a skipped axis after x (the interval kept),
+  // x (the restart), x skipped ([+0, +inf]: max's +0 is no select at all).
+  assign sel_c     = ~ch_first & ~skip;
+  assign sel_res   = ~ch_first &  skip;
+  assign sel_first =  ch_first & ~skip;
+  assign sel_none  =  ch_first &  skip;
+  assign max_d = ({W{sel_c}} & max_c) | ({W{sel_res}} & max_res) | ({W{sel_first}} & lo_first);
+  assign min_d = ({W{sel_c}} & min_c) | ({W{sel_res}} & min_res) | ({W{sel_first}} & mx) |
+                 ({W{sel_none}} & PosInf);
 
   // The step's registers: CmpStages, as the compares' own would be.
   rc_pipe_out #(
@@ -513,12 +521,14 @@ module rc_ray_setup #(
   ChainOrder_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  mm_valid |-> (ch_first ? !(chain_valid && !last_keep)
                                                         : chain_valid && !last_keep));
-  // The chain's operands are never NaN and canonical (a zero exponent with a zero fraction), so
-  // the restart's max(+0, b) and min(+inf, b) are the selects above.
+  // An axis that is not skipped gives the chain operands that are never NaN and canonical (a
+  // zero exponent with a zero fraction), so the restart's max(+0, b) and min(+inf, b) are the
+  // selects above.
   FirstOperand_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                   mm_valid |-> !is_nan(lo_b[W-2:0]) && !is_nan(hi_b[W-2:0]) &&
-                                                (|lo_b[W-2 -: ExpW] || ~|lo_b[FracW-1:0]) &&
-                                                (|hi_b[W-2 -: ExpW] || ~|hi_b[FracW-1:0]));
+                                   mm_valid && !skip |-> !is_nan(mn[W-2:0]) &&
+                                                         !is_nan(mx[W-2:0]) &&
+                                                         (|mn[W-2 -: ExpW] || ~|mn[FracW-1:0]) &&
+                                                         (|mx[W-2 -: ExpW] || ~|mx[FracW-1:0]));
   // tmin starts at +0 and only grows through non-NaN values, so it is never NaN.
   TminNotNan_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  le_valid |-> !is_nan(tmin_f[W-2:0]) && !is_nan(tmax_f[W-2:0]));
