@@ -143,15 +143,16 @@ module rc_core_status #(
   // number's high bits, registered with it, then pick the group. The counters' 64-bit
   // multiplexer thus ends at flip-flops near the counters and not at its reader (run 56 seed 2:
   // the board's perf_sel_q -> perf_rd_q in one cycle, -1.25 ns, 9.03 ns of routing).
-  // Both levels are AND-OR selects (a variable part select became a shifter in Yosys).
-  logic [63:0] grp_d [Groups];
-  logic [63:0] grp_q [Groups];
-  logic [4:0]  sel_hi_q;
+  // Both levels are AND-OR selects (a variable part select became a shifter in Yosys); group g
+  // at [64g +: 64] (flat: Yosys 0.23 assigns no whole unpacked arrays).
+  logic [Groups*64-1:0] grp_d, grp_q;
+  logic [4:0]           sel_hi_q;
   always_comb begin
+    grp_d = '0;
     for (int unsigned g = 0; g < Groups; g++) begin
-      grp_d[g] = '0;
       for (int unsigned i = 0; i < 8; i++) begin
-        grp_d[g] = grp_d[g] | ({64{perf_sel_i[2:0] == 3'(i)}} & perf_q[(8*g + i)*64 +: 64]);
+        grp_d[g*64 +: 64] = grp_d[g*64 +: 64] |
+                            ({64{perf_sel_i[2:0] == 3'(i)}} & perf_q[(8*g + i)*64 +: 64]);
       end
     end
   end
@@ -162,7 +163,7 @@ module rc_core_status #(
   always_comb begin
     perf_o = '0;
     for (int unsigned g = 0; g < Groups; g++) begin
-      perf_o = perf_o | ({64{sel_hi_q == 5'(g)}} & grp_q[g]);
+      perf_o = perf_o | ({64{sel_hi_q == 5'(g)}} & grp_q[g*64 +: 64]);
     end
   end
 
