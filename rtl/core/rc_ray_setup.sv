@@ -342,77 +342,52 @@ module rc_ray_setup #(
 
   // The step of an axis: tmin = max(tmin, min(t0, t1)), tmax = min(tmax, max(t0, t1)), where the
   // interval entering it is the previous axis' result, which leaves the step's registers in this
-  // very cycle (the loop is a compare and its selects), or [+0, +inf] for x. The restart is
-  // selected behind the compares, not in front of them: max(+0, b) and min(+inf, b) are formed
-  // beside the loop, and the first flag picks them before the registers, so neither the flag nor
-  // a select sits between the registers and the compares' carry chains (run 54 seed 1: flag_q
-  // -> the minimum's register through a mask in front of the compare, -0.13 ns, 1.94 ns on the
-  // flag's net). The skip flag (t0 or t1 NaN: the axis does not restrict the ray) is selected
-  // there as well: the compares take min(t0, t1) and max(t0, t1) unmasked, and a skipped axis
-  // picks the step registers' own interval (or [+0, +inf] for x) instead of the compares'
-  // results (run 56 seed 2: skip_mm_q -> the step registers through the mask that once made a
-  // skipped axis compare with -inf and +inf, -0.23 ns). The operand b of an axis that is not
-  // skipped is never NaN and canonical: min(t0, t1) and max(t0, t1) are rc_fp_cmp results,
-  // canonical, and NaN only when t0 or t1 is. So max(+0, b) is +0 for a b with the sign set (-0,
-  // a negative value, -inf) and b otherwise, and min(+inf, b) is b (FirstOperand_A). The selects
-  // are AND-OR masks, not muxes with constant inputs (see rc_fp_cmp).
+  // very cycle, or [+0, +inf] for x. The loop is a compare and a two-way select per bit: the
+  // compares are written here (no rc_fp_cmp: its min/max canonicalise, handle NaN and select
+  // behind the compare, which on this loop Yosys merged with the restart and the skip into two
+  // L6MUX levels per bit: run 57 seed 2, u_mm -> u_step_out, -3.24 ns), and everything else, the
+  // restart (x: max(+0, b), min(+inf, b)) and the skip flag (t0 or t1 NaN: the axis does not
+  // restrict the ray; y and z keep the interval, x takes [+0, +inf]), is folded beside the loop
+  // into the other operand and the select's condition. Neither flag sits in front of the
+  // compares' carry chains (run 54 seed 1: the restart flag, -0.13 ns; run 56 seed 2: the skip
+  // flag, -0.23 ns). The operands are canonical and never NaN when they count: the interval is
+  // built from such words and constants, and min(t0, t1), max(t0, t1) are rc_fp_cmp results,
+  // canonical, and NaN only when t0 or t1 is, i.e. when the axis is skipped (FirstOperand_A). So
+  // rc_fp_cmp's min/max are the compare below and its select, max(+0, b) is +0 for a b with the
+  // sign set (-0, a negative value, -inf) and b otherwise, and min(+inf, b) is b.
   localparam int unsigned KeepW = 1 + TagW;  // {last, tag}
-  logic [W-1:0]  lo_first, max_c, min_c, max_d, min_d, max_res, min_res;
-  logic          sel_c, sel_res, sel_first, sel_none;
+  logic [W-1:0]  b_max, b_min, max_d, min_d, max_res, min_res;
+  logic          take_max, take_min, pick_max, pick_min;
   logic          chain_valid, last_keep;
   logic [TagW-1:0] tag_keep;
-  logic          unused_max_valid, unused_max_lt, unused_max_le, unused_max_eq;
-  logic          unused_min_valid, unused_min_lt, unused_min_le, unused_min_eq;
-  logic [W-1:0]  unused_max_min, unused_min_max;
 
-  assign lo_first = {W{~mn[W-1]}} & mn;  // max(+0, mn); +0 is all zeros
+  // The chain's order: rc_fp_cmp's order for min/max, on words that are canonical and not NaN
+  // (the step registers' interval, and min(t0, t1), max(t0, t1) of an axis that is not skipped):
+  // a below b, with -0 below +0.
+  function automatic logic below(logic [W-1:0] a, logic [W-1:0] b);
+    if (a[W-1] != b[W-1]) begin
+      below = a[W-1];
+    end else if (a[W-1]) begin
+      below = b[W-2:0] < a[W-2:0];
+    end else begin
+      below = a[W-2:0] < b[W-2:0];
+    end
+  endfunction
 
-  // max(tmin, mn) and min(tmax, mx), without registers.
-  rc_fp_cmp #(
-    .ExpW  (ExpW),
-    .FracW (FracW),
-    .Stages(0)
-  ) u_max (
-    .clk_i,
-    .rst_ni,
-    .valid_i(mm_valid),
-    .a_i    (max_res),
-    .b_i    (mn),
-    .valid_o(unused_max_valid),
-    .lt_o   (unused_max_lt),
-    .le_o   (unused_max_le),
-    .eq_o   (unused_max_eq),
-    .min_o  (unused_max_min),
-    .max_o  (max_c)
-  );
-
-  rc_fp_cmp #(
-    .ExpW  (ExpW),
-    .FracW (FracW),
-    .Stages(0)
-  ) u_min (
-    .clk_i,
-    .rst_ni,
-    .valid_i(mm_valid),
-    .a_i    (min_res),
-    .b_i    (mx),
-    .valid_o(unused_min_valid),
-    .lt_o   (unused_min_lt),
-    .le_o   (unused_min_le),
-    .eq_o   (unused_min_eq),
-    .min_o  (min_c),
-    .max_o  (unused_min_max)
-  );
-
-  // The four cases: a step (the compares' results), a skipped axis after x (the interval kept),
-  // x (the restart), x skipped ([+0, +inf]: max's +0 is no select at all).
-  assign sel_c     = ~ch_first & ~skip;
-  assign sel_res   = ~ch_first &  skip;
-  assign sel_first =  ch_first & ~skip;
-  assign sel_none  =  ch_first &  skip;
-  assign max_d = ({W{sel_c}} & max_c) | ({W{sel_res}} & max_res) | ({W{sel_first}} & lo_first);
-  assign min_d = ({W{sel_c}} & min_c) | ({W{sel_res}} & min_res) | ({W{sel_first}} & mx) |
-                 ({W{sel_none}} & PosInf);
+  // Each step register takes either its own value (a) or the other operand (b): b is formed from
+  // registers beside the loop, so behind the compare each bit is a two-way select.
+  //   tmin: max(tmin, mn) takes mn when tmin is below it; x takes max(+0, mn), a skipped x +0,
+  //         a skipped y or z keeps tmin.
+  //   tmax: min(tmax, mx) takes mx unless tmax is below it; x takes mx, a skipped x +inf, a
+  //         skipped y or z keeps tmax.
+  assign take_max = below(max_res, mn);
+  assign take_min = ~below(min_res, mx);
+  assign pick_max = ch_first | (~skip & take_max);
+  assign pick_min = ch_first | (~skip & take_min);
+  assign b_max    = {W{~(ch_first & (skip | mn[W-1]))}} & mn;  // +0 is all zeros
+  assign b_min    = ({W{~(ch_first & skip)}} & mx) | ({W{ch_first & skip}} & PosInf);
+  assign max_d    = ({W{pick_max}} & b_max) | ({W{~pick_max}} & max_res);
+  assign min_d    = ({W{pick_min}} & b_min) | ({W{~pick_min}} & min_res);
 
   // The step's registers: CmpStages, as the compares' own would be.
   rc_pipe_out #(

@@ -6,9 +6,7 @@
 // - Handshake: valid only, no backpressure. valid_o is valid_i delayed by exactly Stages cycles;
 //   the outputs belong to the inputs presented Stages cycles earlier and are meaningful only
 //   while valid_o is 1. A new operation may be presented every cycle.
-// - Latency: Stages cycles; Stages = 0 makes the unit combinational (valid_o = valid_i, outputs
-//   from the inputs in the same cycle), for a caller that registers the result itself, as
-//   rc_ray_setup's chain does, which selects behind the compare before its register.
+// - Latency: Stages cycles (Stages >= 1, checked at elaboration).
 // - Parameters: ExpW exponent bits (>= 2), FracW fraction bits (>= 1); a word is
 //   {sign, exp[ExpW-1:0], frac[FracW-1:0]}. Stages = latency in cycles.
 // - Illegal input: none; every bit pattern of a_i and b_i is legal.
@@ -21,7 +19,7 @@
 //   +0, output canonical (a zero-exponent operand comes out as signed zero with frac 0).
 //
 // Pipeline: a single combinational segment (magnitude compare and selects); all Stages registers
-// (none at Stages = 0) sit at the output.
+// sit at the output.
 module rc_fp_cmp #(
   parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW  = rc_pkg::Fp24FracW,
@@ -44,6 +42,9 @@ module rc_fp_cmp #(
   // Parameters //
   ////////////////
 
+  if (Stages < 1) begin : g_stages_check
+    $error("rc_fp_cmp: Stages must be >= 1 (it is the latency in cycles)");
+  end
   if (ExpW < 2 || FracW < 1) begin : g_width_check
     $error("rc_fp_cmp: need ExpW >= 2 and FracW >= 1");
   end
@@ -116,31 +117,24 @@ module rc_fp_cmp #(
   logic [OutW-1:0] out_d;
   assign out_d = {lt_d, le_d, eq_d, min_d, max_d};
 
-  if (Stages == 0) begin : g_comb
-    assign valid_o = valid_i;
-    assign {lt_o, le_o, eq_o, min_o, max_o} = out_d;
-    logic unused_clk;
-    assign unused_clk = ^{clk_i, rst_ni};
-  end else begin : g_pipe
-    rc_pipe_out #(
-      .Width   (OutW),
-      .DataRegs(Stages),
-      .Stages  (Stages)
-    ) u_out (
-      .clk_i,
-      .rst_ni,
-      .valid_i,
-      .data_i (out_d),
-      .valid_o,
-      .data_o ({lt_o, le_o, eq_o, min_o, max_o})
-    );
+  rc_pipe_out #(
+    .Width   (OutW),
+    .DataRegs(Stages),
+    .Stages  (Stages)
+  ) u_out (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .data_i (out_d),
+    .valid_o,
+    .data_o ({lt_o, le_o, eq_o, min_o, max_o})
+  );
 
 `ifndef SYNTHESIS
-    // le is lt or eq, and lt excludes eq: a cheap internal consistency check (checked once
-    // u_out's own checks are on, i.e. after the first reset).
-    LeConsistent_A: assert property (@(posedge clk_i) disable iff (u_out.checks_on !== 1'b1)
-                                     valid_o |-> (le_o == (lt_o | eq_o)) && !(lt_o && eq_o));
+  // le is lt or eq, and lt excludes eq: a cheap internal consistency check (checked once u_out's
+  // own checks are on, i.e. after the first reset).
+  LeConsistent_A: assert property (@(posedge clk_i) disable iff (u_out.checks_on !== 1'b1)
+                                   valid_o |-> (le_o == (lt_o | eq_o)) && !(lt_o && eq_o));
 `endif
-  end
 
 endmodule
