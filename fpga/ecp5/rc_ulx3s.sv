@@ -195,14 +195,31 @@ module rc_ulx3s #(
     .frame_error_o(rx_frame_error)
   );
 
+  // The received byte and its strobe are registered once more in front of the host, so the
+  // receiver can sit near its pin and the host near the register file: run 57 (seed 1) placed
+  // them apart, and the receiver's output register -> the host's command decode -> rd_wait_q
+  // failed by 0.88 ns. The byte stream has no backpressure; a cycle's delay changes nothing.
+  logic       rx_valid_q;
+  logic [7:0] rx_data_q;
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      rx_valid_q <= 1'b0;
+    end else begin
+      rx_valid_q <= rx_valid;
+    end
+  end
+  always_ff @(posedge clk) begin
+    rx_data_q <= rx_data;
+  end
+
   rc_board_host #(
     .FbPixels     (FbPixels),
     .TimeoutCycles(CoreHz / 4)
   ) u_host (
     .clk_i      (clk),
     .rst_ni     (rst_n),
-    .rx_valid_i (rx_valid),
-    .rx_data_i  (rx_data),
+    .rx_valid_i (rx_valid_q),
+    .rx_data_i  (rx_data_q),
     .tx_valid_o (tx_valid),
     .tx_ready_i (tx_ready),
     .tx_data_o  (tx_data),

@@ -59,6 +59,10 @@ module rc_uart_rx #(
 
   state_e          state_q;
   logic [CntW-1:0] cnt_q;    // cycles to the next sample
+  // cnt_q == 0, decided a cycle ahead: the sample's decision (the shift register's enable, the
+  // state's and the output's updates) then starts at a flip-flop, not at a CntW-bit compare
+  // (run 57, seed 1: cnt_q -> shift_q -0.85 ns).
+  logic            cnt_zero_q;
   logic [2:0]      bit_q;    // data bit being received
   logic [7:0]      shift_q;  // data bits so far, shifted in from the top
   logic            valid_q, frame_error_q;
@@ -67,6 +71,7 @@ module rc_uart_rx #(
     if (!rst_ni) begin
       state_q       <= StIdle;
       cnt_q         <= '0;
+      cnt_zero_q    <= 1'b1;
       bit_q         <= '0;
       shift_q       <= '0;
       valid_q       <= 1'b0;
@@ -77,34 +82,40 @@ module rc_uart_rx #(
       unique case (state_q)
         StIdle: begin
           if (!rx) begin
-            state_q <= StStart;
-            cnt_q   <= CntW'(HalfBit - 1);
+            state_q    <= StStart;
+            cnt_q      <= CntW'(HalfBit - 1);
+            cnt_zero_q <= HalfBit == 1;
           end
         end
         StStart: begin
-          if (cnt_q != '0) begin
-            cnt_q <= cnt_q - 1'b1;
+          if (!cnt_zero_q) begin
+            cnt_q      <= cnt_q - 1'b1;
+            cnt_zero_q <= cnt_q == CntW'(1);
           end else if (rx) begin
             state_q <= StIdle;  // a glitch, not a start bit
           end else begin
-            state_q <= StData;
-            cnt_q   <= CntW'(ClksPerBit - 1);
-            bit_q   <= '0;
+            state_q    <= StData;
+            cnt_q      <= CntW'(ClksPerBit - 1);
+            cnt_zero_q <= 1'b0;  // ClksPerBit >= 2
+            bit_q      <= '0;
           end
         end
         StData: begin
-          if (cnt_q != '0) begin
-            cnt_q <= cnt_q - 1'b1;
+          if (!cnt_zero_q) begin
+            cnt_q      <= cnt_q - 1'b1;
+            cnt_zero_q <= cnt_q == CntW'(1);
           end else begin
-            shift_q <= {rx, shift_q[7:1]};
-            cnt_q   <= CntW'(ClksPerBit - 1);
-            bit_q   <= bit_q + 3'd1;
+            shift_q    <= {rx, shift_q[7:1]};
+            cnt_q      <= CntW'(ClksPerBit - 1);
+            cnt_zero_q <= 1'b0;
+            bit_q      <= bit_q + 3'd1;
             if (bit_q == 3'd7) state_q <= StStop;
           end
         end
         StStop: begin
-          if (cnt_q != '0) begin
-            cnt_q <= cnt_q - 1'b1;
+          if (!cnt_zero_q) begin
+            cnt_q      <= cnt_q - 1'b1;
+            cnt_zero_q <= cnt_q == CntW'(1);
           end else begin
             state_q       <= StIdle;
             valid_q       <= rx;
@@ -138,6 +149,9 @@ module rc_uart_rx #(
   // A byte is a one-cycle pulse (frames are at least 10 bit times apart).
   ValidPulse_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     valid_o |=> !valid_o);
+  // The flag decided a cycle ahead is the count's.
+  CntZero_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    cnt_zero_q == (cnt_q == '0));
 `endif
 
 endmodule
