@@ -89,6 +89,9 @@ module rc_ray_setup #(
   // previous axis' step, which the compares give CmpStages cycles after their inputs.
   localparam int unsigned AxisGap   = CmpStages;
   localparam int unsigned Interval  = 3 * AxisGap;  // cycles per ray
+  if (Interval != rc_pkg::CoreSetupInterval) begin : g_interval_check
+    $error("rc_ray_setup: 3 * fp_stages.cmp must be docs/spec.toml [core] setup_interval");
+  end
   // An axis entering the slice -> its min/max(t0, t1) at the chain: divide, multiply, compare.
   localparam int unsigned ChainDly  = DivStages + MulStages + CmpStages;
   // take -> FIFO write: input register, z enters 2 gaps after x, z's chain step, le.

@@ -158,9 +158,10 @@ inline uint32_t model_setup_units(CoreModel m) {
 
 // The utilisation of each of the core's units in a run: the operations it took times the cycles
 // each occupies it, over the run's cycles (docs/architecture.md, "Counters"): ray set-up, rays x
-// 3 / setup_units (each rc_ray_setup takes a ray per 3 cycles); traversal, inner-node visits (a
-// node step of the four sub-units, whatever the number of active rays); list, list requests;
-// intersection, ray-triangle tests x isect_interval; shading, shaded rays. busiest is the largest.
+// setup_interval / setup_units (each rc_ray_setup takes a ray per [core] setup_interval cycles);
+// traversal, inner-node visits (a node step of the four sub-units, whatever the number of active
+// rays); list, list requests; intersection, ray-triangle tests x isect_interval; shading, shaded
+// rays. busiest is the largest.
 struct UnitUtilisation {
   double setup = 0, trav = 0, list = 0, isect = 0, shade = 0;
   const char* busiest_name = "";

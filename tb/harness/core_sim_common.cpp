@@ -74,7 +74,8 @@ UnitUtilisation unit_utilisation(const std::array<uint64_t, kCorePerfCount>& per
   };
   const auto p = [&perf](int64_t k) { return static_cast<double>(perf[static_cast<size_t>(k)]); };
   UnitUtilisation u;
-  u.setup = share(p(spec::kCorePerfSetupBusy) * 3.0 / static_cast<double>(setup_units));
+  u.setup = share(p(spec::kCorePerfSetupBusy) * static_cast<double>(spec::kCoreSetupInterval) /
+                  static_cast<double>(setup_units));
   u.trav = share(p(spec::kCorePerfTravBusy));
   u.list = share(p(spec::kCorePerfListBusy));
   u.isect = share(p(spec::kCorePerfIsectBusy) * static_cast<double>(isect_interval));
