@@ -188,10 +188,10 @@ FPGA_SCENE ?= scenes/cornell.json
 FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
-# nextpnr's seed: 1, the faster of the two seeds placed on the last netlist placed
-# (docs/history.md run 57: 91.89 MHz, 13 endpoints failing; seed 2 75.55 MHz; docs/fpga.md,
-# "Status"; HEAD's RTL is not placed yet). Seed 3 closed an earlier netlist (run 53, 100.19 MHz); seed 4 closed
-# the core before the unit redesign (runs 36 to 36s5). Every netlist needs its own sweep.
+# nextpnr's seed: 1, the seed of five that closes HEAD's netlist (docs/history.md run 59: 101.83
+# MHz; seeds 2 to 5 at 92.11 to 97.61 MHz; docs/fpga.md, "Status"). Seed 3 closed an earlier
+# netlist (run 53, 100.19 MHz); seed 4 closed the core before the unit redesign (runs 36 to
+# 36s5). Every netlist needs its own sweep.
 FPGA_SEED  ?= 1
 ECPPACK    ?= yowasp-ecppack
 # The board build synthesises with YoWASP's Yosys (PyPI, a 2026 Yosys whose synth_ecp5 maps with
