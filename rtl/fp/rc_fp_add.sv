@@ -26,10 +26,8 @@
 //   segment 1: align the smaller significand (guard, round and sticky bits)          | cut K2
 //   segment 2: significand add or subtract                                            | cut K3
 //   segment 3: leading-zero count                                                     | cut K4
-//   segment 4: normalise, round/sticky bits, round-to-nearest-even decision, exponent,
-//              its range checks (rc_fp_round_flags)                                   | cut K5
-//   segment 5: the result's kind (rc_fp_round_kind), round increment, pack
-//              (rc_fp_round_pack)                                                     | output
+//   segment 4: normalise, round/sticky bits, round-to-nearest-even decision, exponent  | cut K5
+//   segment 5: round increment, flush/overflow, pack (rc_fp_round_pack)               | output
 //   Stages - 1 cuts (at most five) are enabled in the order K3, K1, K5, K4, K2: Stages = 1 is one
 //   combinational segment with a register at the output, Stages = 2 cuts after the add,
 //   Stages = 3 also before the align shifter, Stages = 4 also before the rounding increment,
@@ -294,13 +292,10 @@ module rc_fp_add #(
   // exponent is big_exp + 1 - lz (rc_fp_round_pack adds one when rounding carries out).
   assign exp_norm_s4 = ExW'(big_exp_s4) + ExW'(1) - ExW'(lz_s4);
   // An exact zero sum has exp_norm <= big_exp - 5 < all ones and no rounding carry, so gating
-  // the overflow with zero_i inside rc_fp_round_kind changes nothing here.
+  // the overflow with zero_i inside rc_fp_round_pack changes nothing here.
   assign sum_zero_s4 = lz_s4 == LzW'(SumW);
 
-  // The rounding's range checks, made here so the kind's select starts near flip-flops. The kind
-  // itself is decided after the cut: the checks sit two carry chains (the exponent's subtraction,
-  // then the compares) behind the leading-zero count, and the kind's two LUTs behind them made
-  // this segment the adder's longest alone (8.96 ns, against 6.8 for its first segment).
+  // The rounding cycle's range checks, made here so its override starts near flip-flops.
   logic       man_ones_s4;
   logic [1:0] uflow_s4, oflow_s4;
   rc_fp_round_flags #(
@@ -319,16 +314,17 @@ module rc_fp_add #(
   // Cut K5     //
   ////////////////
 
-  localparam int unsigned K5W = FlW + 1 + ExpW + FracW + 1 + 5;
-  logic [K5W-1:0]   k5_d, k5_q;
-  logic             spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5;
-  logic [ExpW-1:0]  exp_s5;
-  logic [FracW-1:0] frac_s5;
-  logic             round_up_s5, man_ones_s5;
-  logic [1:0]       uflow_s5, oflow_s5;
+  localparam int unsigned K5W = FlW + 1 + ExW + ManW + 1 + 5;
+  logic [K5W-1:0]  k5_d, k5_q;
+  logic            spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5;
+  logic [ExW-1:0]  exp_norm_s5;
+  logic [ManW-1:0] man_s5;
+  logic            round_up_s5, man_ones_s5;
+  logic [1:0]      uflow_s5, oflow_s5;
+  logic [W-1:0]    res_d;
 
-  assign k5_d = {fl_s4, sum_zero_s4, exp_norm_s4[ExpW-1:0], man_s4[FracW-1:0], round_up_s4,
-                 man_ones_s4, uflow_s4, oflow_s4};
+  assign k5_d = {fl_s4, sum_zero_s4, exp_norm_s4, man_s4, round_up_s4, man_ones_s4, uflow_s4,
+                 oflow_s4};
   if (CutK5) begin : g_cut_k5
     always_ff @(posedge clk_i) begin
       k5_q <= k5_d;
@@ -336,43 +332,30 @@ module rc_fp_add #(
   end else begin : g_no_cut_k5
     assign k5_q = k5_d;
   end
-  assign {spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5, exp_s5, frac_s5,
+  assign {spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5, exp_norm_s5, man_s5,
           round_up_s5, man_ones_s5, uflow_s5, oflow_s5} = k5_q;
 
-  //////////////////////////////////////////////
-  // Segment 5: kind, round increment, pack   //
-  //////////////////////////////////////////////
+  ////////////////////////////////////////////////////
+  // Segment 5: round increment, flush/overflow, pack //
+  ////////////////////////////////////////////////////
 
-  rc_pkg::fp_kind_e kind_s5;
-  logic             carry_s5, sign_s5;
-  logic [W-1:0]     res_d;
-
-  rc_fp_round_kind u_round_kind (
+  rc_fp_round_pack #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .ExW  (ExW)
+  ) u_round_pack (
     .nan_i      (spec_nan_s5),
     .inf_i      (spec_inf_s5),
     .zero_i     (sum_zero_s5),
     .zero_sign_i(zero_sign_s5),
     .sign_i     (big_sign_s5),
+    .exp_i      (exp_norm_s5),
+    .man_i      (man_s5),
+    .round_up_i (round_up_s5),
     .man_ones_i (man_ones_s5),
     .uflow_i    (uflow_s5),
     .oflow_i    (oflow_s5),
-    .round_up_i (round_up_s5),
-    .kind_o     (kind_s5),
-    .carry_o    (carry_s5),
-    .sign_o     (sign_s5)
-  );
-
-  rc_fp_round_pack #(
-    .ExpW (ExpW),
-    .FracW(FracW)
-  ) u_round_pack (
-    .kind_i    (kind_s5),
-    .carry_i   (carry_s5),
-    .sign_i    (sign_s5),
-    .exp_i     (exp_s5),
-    .frac_i    (frac_s5),
-    .round_up_i(round_up_s5),
-    .res_o     (res_d)
+    .res_o      (res_d)
   );
 
   ///////////////////////////////

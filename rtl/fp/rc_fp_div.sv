@@ -25,9 +25,8 @@
 // quotient lies in [1, 2)); slots 1..N (N = FracW + 2) each produce one quotient bit (FracW + 1
 // significand bits and a round bit). Slot 1's bit is always 1, so its subtraction is made in
 // slot 0, for both pre-normalisations side by side. Slot N also decides the rounding increment
-// (round to nearest even, with the sticky bit of a nonzero final remainder) and the result's
-// kind (rc_fp_round_kind); slot N + 1 adds the increment, adjusts the exponent and packs
-// (rc_fp_round_pack).
+// (round to nearest even, with the sticky bit of a nonzero final remainder); slot N + 1 adds
+// it, adjusts the exponent and packs.
 //
 // Slots in one cycle do not chain their subtractions: a slot k >= 3 in the same cycle as slot
 // k - 1 subtracts from slot k - 1's input remainder R for both of slot k - 1's outcomes side by
@@ -94,10 +93,10 @@ module rc_fp_div #(
   // Iteration state: {hdr, divisor fraction, 3 x divisor, partial remainder, quotient bits so
   // far}.
   localparam int unsigned StW   = HdrW + FracW + D3W + RemW + N;
-  // State after the last iteration, what rc_fp_round_pack takes: the result's kind, rounding
-  // carry and sign (rc_fp_round_kind), its exponent field, the quotient's fraction bits and the
-  // rounding increment.
-  localparam int unsigned FinW  = rc_pkg::FpResultKindBits + 2 + ExpW + FracW + 1;
+  // State after the last iteration: the divisor and the final remainder are no longer needed;
+  // the rounding increment is (round_up, in the place of the remainder); then the five
+  // rc_fp_round_flags bits.
+  localparam int unsigned FinW  = HdrW + 1 + N + 5;
 
   ///////////////////////////////////////
   // Slot 0: unpack, pre-normalise     //
@@ -230,17 +229,11 @@ module rc_fp_div #(
       // itself: two equality compares beside the subtraction, which only selects (rem_kept is
       // not needed). The increment rounds to nearest even: the round bit (this slot's) and the
       // sticky bit or the last significand bit (slot N - 1's).
-      // The result's kind, carry and sign are decided here too (the significand is slots 1 to
-      // N - 1's bits, the exponent the header's), so the rounding cycle's select of the output
-      // word starts at flip-flops (runs 58 and 59: the carry's select of the kind, 6 cells from
-      // fin_q into the intersection divider's output register, -0.77 ns).
-      logic             sticky, round_up_d, unused_kept, carry_d, sign_d, man_ones_d;
-      logic [1:0]       uflow_d, oflow_d;
-      logic             h_nan, h_inf, h_zero, h_sign;
-      logic [ExW-1:0]   h_exp;
-      rc_pkg::fp_kind_e kind_d;
-      assign {h_nan, h_inf, h_zero, h_sign, h_exp} = hdr;
-      assign unused_kept = ^{rem_kept, quo_next};  // (q_bit is in round_up_d)
+      // The rounding cycle's range checks are made here too (the significand is slots 1 to
+      // N - 1's bits, the exponent the header's), so its override starts near flip-flops.
+      logic sticky, round_up_d, unused_kept, man_ones_d;
+      logic [1:0] uflow_d, oflow_d;
+      assign unused_kept = ^rem_kept;
       assign sticky      = q_bit ? (rem != {2'b01, dvs_frac}) : (rem != '0);
       assign round_up_d  = q_bit & (sticky | quo[1]);
       rc_fp_round_flags #(
@@ -248,27 +241,13 @@ module rc_fp_div #(
         .FracW(FracW),
         .ExW  (ExW)
       ) u_round_flags (
-        .exp_i     (h_exp),
+        .exp_i     (hdr[ExW-1:0]),
         .man_i     (quo[N-1:1]),
         .man_ones_o(man_ones_d),
         .uflow_o   (uflow_d),
         .oflow_o   (oflow_d)
       );
-      rc_fp_round_kind u_round_kind (
-        .nan_i      (h_nan),
-        .inf_i      (h_inf),
-        .zero_i     (h_zero),
-        .zero_sign_i(h_sign),
-        .sign_i     (h_sign),
-        .man_ones_i (man_ones_d),
-        .uflow_i    (uflow_d),
-        .oflow_i    (oflow_d),
-        .round_up_i (round_up_d),
-        .kind_o     (kind_d),
-        .carry_o    (carry_d),
-        .sign_o     (sign_d)
-      );
-      assign fin_d = {kind_d, carry_d, sign_d, h_exp[ExpW-1:0], quo[N-2:1], round_up_d};
+      assign fin_d = {hdr, round_up_d, quo_next, man_ones_d, uflow_d, oflow_d};
     end
   end
 
@@ -282,28 +261,40 @@ module rc_fp_div #(
   end
 
   ///////////////////////////////////////////////
-  // Slot N + 1: round, pack                   //
+  // Slot N + 1: round, flush/overflow, pack   //
   ///////////////////////////////////////////////
 
-  rc_pkg::fp_kind_e kind_f;
-  logic             carry_f, sign_f, round_up_f;
-  logic [ExpW-1:0]  exp_f;
-  logic [FracW-1:0] frac_f;
-  logic [W-1:0]     res_d;
+  logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
+  logic [ExW-1:0]  exp_f;
+  logic            round_up, man_ones_f;
+  logic [1:0]      uflow_f, oflow_f;
+  logic [N-1:0]    quo_f;
+  logic [ManW-1:0] man;
+  logic [W-1:0]    res_d;
+  logic            unused_round_bit;
 
-  assign {kind_f, carry_f, sign_f, exp_f, frac_f, round_up_f} = fin_q;
+  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, round_up, quo_f, man_ones_f, uflow_f,
+          oflow_f} = fin_q;
+  assign man              = quo_f[N-1:1];
+  assign unused_round_bit = quo_f[0];  // (in round_up)
 
   rc_fp_round_pack #(
     .ExpW (ExpW),
-    .FracW(FracW)
+    .FracW(FracW),
+    .ExW  (ExW)
   ) u_round_pack (
-    .kind_i    (kind_f),
-    .carry_i   (carry_f),
-    .sign_i    (sign_f),
-    .exp_i     (exp_f),
-    .frac_i    (frac_f),
-    .round_up_i(round_up_f),
-    .res_o     (res_d)
+    .nan_i      (spec_nan_f),
+    .inf_i      (spec_inf_f),
+    .zero_i     (spec_zero_f),
+    .zero_sign_i(sign_f),
+    .sign_i     (sign_f),
+    .exp_i      (exp_f),
+    .man_i      (man),
+    .round_up_i (round_up),
+    .man_ones_i (man_ones_f),
+    .uflow_i    (uflow_f),
+    .oflow_i    (oflow_f),
+    .res_o      (res_d)
   );
 
   ///////////////////////////////

@@ -1,21 +1,20 @@
-// rc_fp_round_flags: the range checks of an fp unit's rounding, for rc_fp_round_kind.
+// rc_fp_round_flags: the range checks of rc_fp_round_pack, made a cycle ahead of it.
 //
 // Contract
-// - Function (purely combinational, no clock): for the result's biased exponent exp_i before the
-//   rounding carry (two's complement, unbounded: it may be <= 0 or >= all ones) and its
-//   normalised significand man_i (with the hidden bit man_i[FracW]),
+// - Function (purely combinational, no clock): for the exponent exp_i and significand man_i that
+//   the caller will hand to rc_fp_round_pack,
 //     man_ones_o = &man_i                          (a rounding increment carries out)
 //     uflow_o[0] = exp_i <= 0,     uflow_o[1] = exp_i + 1 <= 0      (flush to zero)
 //     oflow_o[0] = exp_i >= ones,  oflow_o[1] = exp_i + 1 >= ones   (overflow to infinity)
-//   with ones the all-ones exponent field. Index 1 is the exponent after a rounding carry.
-// - Use: every fp unit computes these beside its rounding increment (they do not need it), so
-//   the increment only selects between the flags of its two outcomes (rc_fp_round_kind); the
-//   adder registers them at its last cut (docs/fp24.md, "Rounding and packing").
+//   with exp_i read as a two's complement number and ones the all-ones exponent field. Index 1
+//   is the exponent after a rounding carry.
+// - Use: each fp unit computes these beside its last cut (they do not need the rounding bit) and
+//   registers them with the rest of the rounding cycle's input, so the special-case override of
+//   the output register starts two LUTs from flip-flops instead of after the significand's wide
+//   AND and the exponent's compares (docs/fpga.md, "What is left").
 // - Parameters: ExpW exponent bits (>= 2), FracW fraction bits (>= 1), ExW width of exp_i
-//   (>= ExpW + 2, checked at elaboration).
-// - Illegal input: exp_i + 1 must fit in ExW bits as a signed value (no wrap-around). When the
-//   result is a number (no special operand) that does not flush, man_i[FracW] must be 1:
-//   rc_fp_round_pack drops it.
+//   (>= ExpW + 2), as rc_fp_round_pack's.
+// - Illegal input: exp_i + 1 must fit in ExW bits as a signed value (rc_fp_round_pack's rule).
 module rc_fp_round_flags #(
   parameter int unsigned ExpW  = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW = rc_pkg::Fp24FracW,

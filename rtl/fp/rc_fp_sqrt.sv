@@ -33,8 +33,7 @@
 // early steps are short. Slot 0 unpacks, classifies, forms the radicand and takes root bit 1
 // (always 1: the top pair is 1, 2 or 3); slots 1 .. N - 1 take root bits 2 .. N, and slot N - 1
 // also reduces the final remainder to the sticky bit (nonzero = inexact) and decides the
-// rounding increment (round to nearest even) and the result's kind (rc_fp_round_kind); slot N
-// rounds and packs (rc_fp_round_pack).
+// rounding increment (round to nearest even); slot N rounds and packs (rc_fp_round_pack).
 //
 // Slots in one cycle do not chain their subtractions (as in rc_fp_div): a slot k >= 2 in the
 // same cycle as slot k - 1 subtracts from slot k - 1's input state for both of its outcomes,
@@ -82,7 +81,7 @@ module rc_fp_sqrt #(
   localparam int unsigned N     = ManW + 1;           // root bits: significand + round
   localparam int unsigned Slots = N + 1;
   localparam int unsigned Se    = (Stages < Slots) ? Stages : Slots;
-  localparam int unsigned ExW   = ExpW + 2;           // rc_fp_round_kind's exponent width
+  localparam int unsigned ExW   = ExpW + 2;           // rc_fp_round_pack's exponent width
   localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
   localparam int unsigned Base  = Slots / Se;           // slots per cycle (the short cycles)
   localparam int unsigned Rem   = Slots % Se;           // cycles with Base + 1 slots, first
@@ -107,10 +106,9 @@ module rc_fp_sqrt #(
     st_off = k * (HdrW + N + 6) + 3 * k * (k - 1) / 2;  // the sum of st_w(0 .. k - 1)
   endfunction
   localparam int unsigned ChainW = st_off(N - 1);
-  // State after the last root bit, what rc_fp_round_pack takes: the result's kind, rounding
-  // carry and sign (rc_fp_round_kind), its exponent field, the root without its hidden bit and
-  // the rounding increment (decided from the round bit, the sticky bit and the root's last bit).
-  localparam int unsigned FinW   = rc_pkg::FpResultKindBits + 2 + ExpW + FracW + 1;
+  // State after the last root bit: the header, the root, the rounding increment (decided from
+  // the round bit, the sticky bit and the root's last bit), then the five rc_fp_round_flags bits.
+  localparam int unsigned FinW   = HdrW + ManW + 1 + 5;
 
   //////////////////////////////////////////////////
   // Slot 0: unpack, classify, radicand, bit 1    //
@@ -246,19 +244,14 @@ module rc_fp_sqrt #(
       // when the trial equals the brought-down remainder, so the sticky bit is two equality
       // compares beside the subtraction, which only selects (not an OR over rem_next behind the
       // subtraction's carry chain: run 47, -0.44 ns in rc_ray_gen).
+      // The rounding cycle's range checks are made here too (the significand is the root so
+      // far, the exponent the header's), so its override starts near flip-flops.
       // The rounding increment is decided here as well (round to nearest even: the round bit,
       // and the sticky bit or the root's last bit), one cell beside the sticky bit's select, so
       // the rounding cycle starts from it (run 54: the ray generator's square root, fin_q into
-      // the output register through the increment, -0.35 ns). So are the result's kind, carry
-      // and sign (the significand is the root so far, the exponent the header's), so the
-      // rounding cycle's select of the output word starts at flip-flops (runs 58 and 59: the
-      // carry's select of the kind, 5 cells from fin_q into the output register, -0.86 ns).
-      logic             sticky, round_up_d, unused_next, carry_d, sign_d, man_ones_d;
-      logic [1:0]       uflow_d, oflow_d;
-      logic             h_nan, h_inf, h_zero, h_sign;
-      logic [ExpW-1:0]  h_exp;
-      rc_pkg::fp_kind_e kind_d;
-      assign {h_nan, h_inf, h_zero, h_sign, h_exp} = hdr;
+      // the output register through the increment, -0.35 ns).
+      logic sticky, round_up_d, unused_next, man_ones_d;
+      logic [1:0] uflow_d, oflow_d;
       assign sticky      = r_bit ? (rem_sh != {1'b0, root, 2'b01}) : (rem_sh != '0);
       assign round_up_d  = r_bit & (sticky | root[0]);
       assign unused_next = ^{rem_next, t_inc, t_dec};
@@ -267,27 +260,13 @@ module rc_fp_sqrt #(
         .FracW(FracW),
         .ExW  (ExW)
       ) u_round_flags (
-        .exp_i     (ExW'(h_exp)),
+        .exp_i     (ExW'(hdr[ExpW-1:0])),
         .man_i     (root),
         .man_ones_o(man_ones_d),
         .uflow_o   (uflow_d),
         .oflow_o   (oflow_d)
       );
-      rc_fp_round_kind u_round_kind (
-        .nan_i      (h_nan),
-        .inf_i      (h_inf),
-        .zero_i     (h_zero),
-        .zero_sign_i(h_sign),  // sqrt(-0) = -0
-        .sign_i     (1'b0),    // every other non-NaN result is positive
-        .man_ones_i (man_ones_d),
-        .uflow_i    (uflow_d),
-        .oflow_i    (oflow_d),
-        .round_up_i (round_up_d),
-        .kind_o     (kind_d),
-        .carry_o    (carry_d),
-        .sign_o     (sign_d)
-      );
-      assign fin_d = {kind_d, carry_d, sign_d, h_exp, root[FracW-1:0], round_up_d};
+      assign fin_d = {hdr, root, round_up_d, man_ones_d, uflow_d, oflow_d};
       // By now every radicand bit has been brought down (the rest are the zeros shifted in).
       logic unused_rad;
       assign unused_rad = ^rad[N-3:0];
@@ -307,25 +286,33 @@ module rc_fp_sqrt #(
   // Slot N: round, pack               //
   //////////////////////////////////////
 
-  rc_pkg::fp_kind_e kind_f;
-  logic             carry_f, sign_f, round_up_f;
-  logic [ExpW-1:0]  exp_f;
-  logic [FracW-1:0] frac_f;
-  logic [W-1:0]     res_d;
+  logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
+  logic [ExpW-1:0] exp_f;
+  logic [ManW-1:0] man;  // man[ManW-1] = 1: the root lies in [1, 2)
+  logic            round_up, man_ones_f;
+  logic [1:0]      uflow_f, oflow_f;
+  logic [W-1:0]    res_d;
 
-  assign {kind_f, carry_f, sign_f, exp_f, frac_f, round_up_f} = fin_q;
+  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, man, round_up, man_ones_f, uflow_f,
+          oflow_f} = fin_q;
 
   rc_fp_round_pack #(
     .ExpW (ExpW),
-    .FracW(FracW)
+    .FracW(FracW),
+    .ExW  (ExW)
   ) u_round_pack (
-    .kind_i    (kind_f),
-    .carry_i   (carry_f),
-    .sign_i    (sign_f),
-    .exp_i     (exp_f),
-    .frac_i    (frac_f),
-    .round_up_i(round_up_f),
-    .res_o     (res_d)
+    .nan_i      (spec_nan_f),
+    .inf_i      (spec_inf_f),
+    .zero_i     (spec_zero_f),
+    .zero_sign_i(sign_f),  // sqrt(-0) = -0
+    .sign_i     (1'b0),    // every other non-NaN result is positive
+    .exp_i      (ExW'(exp_f)),
+    .man_i      (man),
+    .round_up_i (round_up),
+    .man_ones_i (man_ones_f),
+    .uflow_i    (uflow_f),
+    .oflow_i    (oflow_f),
+    .res_o      (res_d)
   );
 
   ///////////////////////////////
