@@ -19,6 +19,7 @@ rtl/core/rc_rr_pick_flat.sv
 rtl/core/rc_rr_pick.sv
 rtl/core/rc_onehot.sv
 rtl/core/rc_flag_pair.sv
+rtl/core/rc_reg_copies.sv
 rtl/core/rc_ram.sv
 rtl/core/rc_fifo.sv
 rtl/core/rc_bit_read.sv
