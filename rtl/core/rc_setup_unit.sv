@@ -249,9 +249,10 @@ module rc_setup_unit #(
 
   // The feeder's flags, so that no one flip-flop drives everything: feed_busy_q for the take and
   // the step; feed_idle_q, its inverse, enables the feeder's copy of the packet (700
-  // flip-flops), and nx_idle_q, a kept copy of it (rc_reg_copies), selects the next offer (the
-  // set-up units' staging, 145 bits: run 59, u_feed_busy -> st_tag_q and st_dir_q, -0.24 ns on
-  // seed 5 and within 1 ns on seeds 1 and 4); su_v_q[u], set-up unit u's input valid (the feeder busy and the rotation
+  // flip-flops); each set-up unit selects its next offer from copies of its own of the idle flag
+  // and the ray counter (rc_reg_copies, below; runs 59 and 60: u_feed_busy -> st_tag_q and
+  // st_dir_q, -0.24 ns on run 59 seed 5, -2.41 on run 60 seed 4, one select shared by the units
+  // across the chip); su_v_q[u], set-up unit u's input valid (the feeder busy and the rotation
   // at u), registered from the next values, drives that unit only (its input registers, 450
   // flip-flops each).
   //
@@ -262,7 +263,9 @@ module rc_setup_unit #(
   // (last_q: feed_r_q is 3), stays at u while u is not ready, and starts at u when a packet is
   // taken with the rotation at u (arm_q[u]: the take's condition and the rotation at u, both
   // registered from the next values; acc_any, the pick's valid, completes the take).
-  logic          feed_idle_q, nx_idle_q, last_q;
+  logic          feed_idle_q, last_q;
+  logic [NU-1:0] st_idle_q;
+  logic [1:0]    st_r_q [NU];
   logic [NU-1:0] su_v_q, hot_q, hot_d, arm_q, su_v_d;
   logic [1:0]    feed_r_d;
   assign su_take = |(su_v_q & su_ready_all);
@@ -292,13 +295,11 @@ module rc_setup_unit #(
       arm_q       <= '0;
       last_q      <= 1'b0;
       feed_thr_q  <= '0;
-      feed_r_q    <= '0;
     end else begin
       su_v_q      <= su_v_d;
       hot_q       <= hot_d;
       arm_q       <= take_ok_d ? hot_d : '0;
       last_q      <= feed_r_d == 2'd3;
-      feed_r_q    <= feed_r_d;
       if (acc_take_f) feed_thr_q <= acc_thr;
     end
   end
@@ -309,19 +310,25 @@ module rc_setup_unit #(
       feed_busy_q <= feed_busy_d;
     end
   end
-  // The inverse is a different function, so Yosys keeps it apart from feed_busy_q; its two
-  // copies are kept apart by rc_reg_copies.
+  // The idle flag (the inverse: a different function, so Yosys keeps it apart from feed_busy_q)
+  // and the ray counter, in NU + 1 kept copies: copy 0 for the feeder (feed_idle_q, feed_r_q),
+  // copy u + 1 for set-up unit u's offer select (st_idle_q[u], st_r_q[u]).
+  logic [(NU+1)*3-1:0] feed_state_q;
   rc_reg_copies #(
-    .Width   (1),
-    .Copies  (2),
+    .Width   (3),
+    .Copies  (NU + 1),
     .HasReset(1'b1),
-    .ResetVal(1'b1)
-  ) u_feed_idle (
+    .ResetVal(3'b100)  // idle, ray 0
+  ) u_feed_state (
     .clk_i,
     .rst_ni,
-    .d_i   (~feed_busy_d),
-    .q_o   ({nx_idle_q, feed_idle_q})
+    .d_i   ({~feed_busy_d, feed_r_d}),
+    .q_o   (feed_state_q)
   );
+  assign {feed_idle_q, feed_r_q} = feed_state_q[2:0];
+  for (genvar u = 0; u < NU; u++) begin : g_state_copy
+    assign {st_idle_q[u], st_r_q[u]} = feed_state_q[(u+1)*3 +: 3];
+  end
   // The feeder's copy of the packet follows the input register while the feeder is idle (so the
   // take is not the enable of its 700 flip-flops): it holds the taken packet from the take on.
   always_ff @(posedge clk_i) begin
@@ -406,23 +413,21 @@ module rc_setup_unit #(
   // it takes) its register loads the next offer's ray: ray 0 of the input register's packet
   // while the feeder is idle (an offer starts with the take), else ray
   // feed_r_q + 1 of the feeder's copy (an offer moves on to u when u - 1 takes ray feed_r_q).
-  // Its enable is the unit's own valid flip-flop, so no unit's ready reaches these registers.
-  logic [1:0]      nx_r;
-  logic [3*W-1:0]  nx_org, nx_dir;
-  logic [2:0]      nx_tag;  // {ray exists, ray}
-  assign nx_r   = nx_idle_q ? 2'd0 : feed_r_q + 2'd1;
-  assign nx_org = nx_idle_q ? pin_org_q[0 +: 3*W] : lane_3w(feed_org_q, nx_r);
-  assign nx_dir = nx_idle_q ? pin_dir_q[0 +: 3*W] : lane_3w(feed_dir_q, nx_r);
+  // Its enable is the unit's own valid flip-flop, so no unit's ready reaches these registers,
+  // and its select is the unit's own copy of the idle flag and the ray counter.
   // The tag's thread is not staged: feed_thr_q holds it for the whole packet (staging it would
   // take it from the free pick's choice while the feeder is idle: run 54, -0.06 and 0.00 ns).
-  assign nx_tag = nx_idle_q ? {pin_mask_q[0], 2'd0} : {feed_vmask_q[nx_r], nx_r};
-
   for (genvar u = 0; u < NU; u++) begin : g_setup
     logic u_ready_i, st_en;
-    logic [3*W-1:0]  st_org_q, st_dir_q;
-    logic [2:0]      st_tag_q;
+    logic [3*W-1:0]  st_org_q, st_dir_q, nx_org, nx_dir;
+    logic [2:0]      st_tag_q, nx_tag;  // {ray exists, ray}
+    logic [1:0]      nx_r;
     assign u_ready_i = out_ready && out_u_q == UW'(u);
     assign st_en     = ~su_v_q[u] | ((NU == 1) & su_ready_all[u]);
+    assign nx_r      = st_idle_q[u] ? 2'd0 : st_r_q[u] + 2'd1;
+    assign nx_org    = st_idle_q[u] ? pin_org_q[0 +: 3*W] : lane_3w(feed_org_q, nx_r);
+    assign nx_dir    = st_idle_q[u] ? pin_dir_q[0 +: 3*W] : lane_3w(feed_dir_q, nx_r);
+    assign nx_tag    = st_idle_q[u] ? {pin_mask_q[0], 2'd0} : {feed_vmask_q[nx_r], nx_r};
     always_ff @(posedge clk_i) begin
       if (st_en) begin
         st_org_q <= nx_org;
