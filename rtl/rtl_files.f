@@ -2,6 +2,7 @@ build/gen/rc_pkg.sv
 rtl/fp/rc_checks_on.sv
 rtl/fp/rc_pipe_out.sv
 rtl/fp/rc_fp_round_flags.sv
+rtl/fp/rc_fp_round_kinds.sv
 rtl/fp/rc_fp_round_pack.sv
 rtl/fp/rc_fp_add.sv
 rtl/fp/rc_fp_mul.sv

@@ -27,7 +27,8 @@
 //   segment 2: significand add or subtract                                            | cut K3
 //   segment 3: leading-zero count                                                     | cut K4
 //   segment 4: normalise, round/sticky bits, round-to-nearest-even decision, exponent  | cut K5
-//   segment 5: round increment, flush/overflow, pack (rc_fp_round_pack)               | output
+//   segment 5: the result's kinds (rc_fp_round_kinds), round increment, pack
+//              (rc_fp_round_pack)                                                     | output
 //   Stages - 1 cuts (at most five) are enabled in the order K3, K1, K5, K4, K2: Stages = 1 is one
 //   combinational segment with a register at the output, Stages = 2 cuts after the add,
 //   Stages = 3 also before the align shifter, Stages = 4 also before the rounding increment,
@@ -314,17 +315,17 @@ module rc_fp_add #(
   // Cut K5     //
   ////////////////
 
-  localparam int unsigned K5W = FlW + 1 + ExW + ManW + 1 + 5;
-  logic [K5W-1:0]  k5_d, k5_q;
-  logic            spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5;
-  logic [ExW-1:0]  exp_norm_s5;
-  logic [ManW-1:0] man_s5;
-  logic            round_up_s5, man_ones_s5;
-  logic [1:0]      uflow_s5, oflow_s5;
-  logic [W-1:0]    res_d;
+  localparam int unsigned K5W = FlW + 1 + ExpW + FracW + 1 + 5;
+  logic [K5W-1:0]   k5_d, k5_q;
+  logic             spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5;
+  logic [ExpW-1:0]  exp_s5;
+  logic [FracW-1:0] frac_s5;
+  logic             round_up_s5, man_ones_s5;
+  logic [1:0]       uflow_s5, oflow_s5;
+  logic [W-1:0]     res_d;
 
-  assign k5_d = {fl_s4, sum_zero_s4, exp_norm_s4, man_s4, round_up_s4, man_ones_s4, uflow_s4,
-                 oflow_s4};
+  assign k5_d = {fl_s4, sum_zero_s4, exp_norm_s4[ExpW-1:0], man_s4[FracW-1:0], round_up_s4,
+                 man_ones_s4, uflow_s4, oflow_s4};
   if (CutK5) begin : g_cut_k5
     always_ff @(posedge clk_i) begin
       k5_q <= k5_d;
@@ -332,30 +333,41 @@ module rc_fp_add #(
   end else begin : g_no_cut_k5
     assign k5_q = k5_d;
   end
-  assign {spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5, exp_norm_s5, man_s5,
+  assign {spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5, exp_s5, frac_s5,
           round_up_s5, man_ones_s5, uflow_s5, oflow_s5} = k5_q;
 
-  ////////////////////////////////////////////////////
-  // Segment 5: round increment, flush/overflow, pack //
-  ////////////////////////////////////////////////////
+  //////////////////////////////////////////////////////
+  // Segment 5: kinds, round increment, pack          //
+  //////////////////////////////////////////////////////
 
-  rc_fp_round_pack #(
-    .ExpW (ExpW),
-    .FracW(FracW),
-    .ExW  (ExW)
-  ) u_round_pack (
+  // The kinds are made after the cut here: the range checks come two carry chains behind the
+  // leading-zero count, and a LUT more behind them lengthened segment 4 (run 60's trial: the
+  // whole kind before the cut made it the adder's longest alone, 8.96 ns).
+  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_s5;
+  logic                                  res_sign_s5;
+  rc_fp_round_kinds u_round_kinds (
     .nan_i      (spec_nan_s5),
     .inf_i      (spec_inf_s5),
     .zero_i     (sum_zero_s5),
     .zero_sign_i(zero_sign_s5),
     .sign_i     (big_sign_s5),
-    .exp_i      (exp_norm_s5),
-    .man_i      (man_s5),
-    .round_up_i (round_up_s5),
-    .man_ones_i (man_ones_s5),
     .uflow_i    (uflow_s5),
     .oflow_i    (oflow_s5),
-    .res_o      (res_d)
+    .kind_o     (kinds_s5),
+    .sign_o     (res_sign_s5)
+  );
+
+  rc_fp_round_pack #(
+    .ExpW (ExpW),
+    .FracW(FracW)
+  ) u_round_pack (
+    .kind_i    (kinds_s5),
+    .sign_i    (res_sign_s5),
+    .man_ones_i(man_ones_s5),
+    .exp_i     (exp_s5),
+    .frac_i    (frac_s5),
+    .round_up_i(round_up_s5),
+    .res_o     (res_d)
   );
 
   ///////////////////////////////

@@ -93,10 +93,10 @@ module rc_fp_div #(
   // Iteration state: {hdr, divisor fraction, 3 x divisor, partial remainder, quotient bits so
   // far}.
   localparam int unsigned StW   = HdrW + FracW + D3W + RemW + N;
-  // State after the last iteration: the divisor and the final remainder are no longer needed;
-  // the rounding increment is (round_up, in the place of the remainder); then the five
-  // rc_fp_round_flags bits.
-  localparam int unsigned FinW  = HdrW + 1 + N + 5;
+  // State after the last iteration, what rc_fp_round_pack takes: the result's kinds for both
+  // outcomes of the rounding carry and its sign (rc_fp_round_kinds), the all-ones flag, the
+  // exponent field, the quotient's fraction bits and the rounding increment.
+  localparam int unsigned FinW  = 2 * rc_pkg::FpResultKindBits + 2 + ExpW + FracW + 1;
 
   ///////////////////////////////////////
   // Slot 0: unpack, pre-normalise     //
@@ -229,11 +229,17 @@ module rc_fp_div #(
       // itself: two equality compares beside the subtraction, which only selects (rem_kept is
       // not needed). The increment rounds to nearest even: the round bit (this slot's) and the
       // sticky bit or the last significand bit (slot N - 1's).
-      // The rounding cycle's range checks are made here too (the significand is slots 1 to
-      // N - 1's bits, the exponent the header's), so its override starts near flip-flops.
-      logic sticky, round_up_d, unused_kept, man_ones_d;
-      logic [1:0] uflow_d, oflow_d;
-      assign unused_kept = ^rem_kept;
+      // The rounding cycle's range checks and the result's kinds for both outcomes of the carry
+      // are made here too, beside the increment (the significand is slots 1 to N - 1's bits,
+      // the exponent the header's: neither waits for this slot's bit), so the rounding cycle
+      // only selects a kind by the carry in front of the word's select.
+      logic                                sticky, round_up_d, unused_kept, man_ones_d, sign_d;
+      logic [1:0]                          uflow_d, oflow_d;
+      logic [2*rc_pkg::FpResultKindBits-1:0] kinds_d;
+      logic                                h_nan, h_inf, h_zero, h_sign;
+      logic [ExW-1:0]                      h_exp;
+      assign {h_nan, h_inf, h_zero, h_sign, h_exp} = hdr;
+      assign unused_kept = ^{rem_kept, quo_next};  // (q_bit is in round_up_d)
       assign sticky      = q_bit ? (rem != {2'b01, dvs_frac}) : (rem != '0);
       assign round_up_d  = q_bit & (sticky | quo[1]);
       rc_fp_round_flags #(
@@ -241,13 +247,24 @@ module rc_fp_div #(
         .FracW(FracW),
         .ExW  (ExW)
       ) u_round_flags (
-        .exp_i     (hdr[ExW-1:0]),
+        .exp_i     (h_exp),
         .man_i     (quo[N-1:1]),
         .man_ones_o(man_ones_d),
         .uflow_o   (uflow_d),
         .oflow_o   (oflow_d)
       );
-      assign fin_d = {hdr, round_up_d, quo_next, man_ones_d, uflow_d, oflow_d};
+      rc_fp_round_kinds u_round_kinds (
+        .nan_i      (h_nan),
+        .inf_i      (h_inf),
+        .zero_i     (h_zero),
+        .zero_sign_i(h_sign),
+        .sign_i     (h_sign),
+        .uflow_i    (uflow_d),
+        .oflow_i    (oflow_d),
+        .kind_o     (kinds_d),
+        .sign_o     (sign_d)
+      );
+      assign fin_d = {kinds_d, sign_d, man_ones_d, h_exp[ExpW-1:0], quo[N-2:1], round_up_d};
     end
   end
 
@@ -264,37 +281,25 @@ module rc_fp_div #(
   // Slot N + 1: round, flush/overflow, pack   //
   ///////////////////////////////////////////////
 
-  logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
-  logic [ExW-1:0]  exp_f;
-  logic            round_up, man_ones_f;
-  logic [1:0]      uflow_f, oflow_f;
-  logic [N-1:0]    quo_f;
-  logic [ManW-1:0] man;
-  logic [W-1:0]    res_d;
-  logic            unused_round_bit;
+  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_f;
+  logic                                  sign_f, man_ones_f, round_up_f;
+  logic [ExpW-1:0]                       exp_f;
+  logic [FracW-1:0]                      frac_f;
+  logic [W-1:0]                          res_d;
 
-  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, round_up, quo_f, man_ones_f, uflow_f,
-          oflow_f} = fin_q;
-  assign man              = quo_f[N-1:1];
-  assign unused_round_bit = quo_f[0];  // (in round_up)
+  assign {kinds_f, sign_f, man_ones_f, exp_f, frac_f, round_up_f} = fin_q;
 
   rc_fp_round_pack #(
     .ExpW (ExpW),
-    .FracW(FracW),
-    .ExW  (ExW)
+    .FracW(FracW)
   ) u_round_pack (
-    .nan_i      (spec_nan_f),
-    .inf_i      (spec_inf_f),
-    .zero_i     (spec_zero_f),
-    .zero_sign_i(sign_f),
-    .sign_i     (sign_f),
-    .exp_i      (exp_f),
-    .man_i      (man),
-    .round_up_i (round_up),
-    .man_ones_i (man_ones_f),
-    .uflow_i    (uflow_f),
-    .oflow_i    (oflow_f),
-    .res_o      (res_d)
+    .kind_i    (kinds_f),
+    .sign_i    (sign_f),
+    .man_ones_i(man_ones_f),
+    .exp_i     (exp_f),
+    .frac_i    (frac_f),
+    .round_up_i(round_up_f),
+    .res_o     (res_d)
   );
 
   ///////////////////////////////

@@ -24,8 +24,9 @@
 // Pipeline (segments, and the cuts between them in the order Stages enables them):
 //   segment 0: unpack, classify, exponent sum            | cut A (Stages >= 4)
 //   segment 1: significand product                       | cut B (Stages >= 2)
-//   segment 2: normalise (one-bit shift), round/sticky   | cut C (Stages >= 3)
-//   segment 3: round increment, flush/overflow, pack     | output register(s)
+//   segment 2: normalise (one-bit shift), round/sticky,  | cut C (Stages >= 3)
+//              range checks, the result's kinds for both carries (rc_fp_round_kinds)
+//   segment 3: round increment, the kind's select, pack  | output register(s)
 //   The output has Stages minus the enabled internal cuts registers (at least one).
 module rc_fp_mul #(
   parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
@@ -161,7 +162,9 @@ module rc_fp_mul #(
   assign round_up_s2 = prod_norm[ManW-1] & ((|prod_norm[ManW-2:0]) | man_s2[0]);
   assign exp_norm_s2 = exp_s2 + ExW'(prod_top);
 
-  // The rounding cycle's range checks, made here so its override starts near flip-flops.
+  // The rounding cycle's range checks and the result's kinds for both outcomes of the carry,
+  // made here beside the rounding decision (they do not wait for it), so the rounding segment
+  // only selects a kind by the carry in front of the word's select.
   logic       man_ones_s2;
   logic [1:0] uflow_s2, oflow_s2;
   rc_fp_round_flags #(
@@ -176,19 +179,35 @@ module rc_fp_mul #(
     .oflow_o   (oflow_s2)
   );
 
+  logic                                  spec_nan_s2, spec_inf_s2, spec_zero_s2, sign_s2;
+  logic                                  res_sign_s2;
+  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_s2;
+  assign {spec_nan_s2, spec_inf_s2, spec_zero_s2, sign_s2} = meta_s2;
+  rc_fp_round_kinds u_round_kinds (
+    .nan_i      (spec_nan_s2),
+    .inf_i      (spec_inf_s2),
+    .zero_i     (spec_zero_s2),
+    .zero_sign_i(sign_s2),
+    .sign_i     (sign_s2),
+    .uflow_i    (uflow_s2),
+    .oflow_i    (oflow_s2),
+    .kind_o     (kinds_s2),
+    .sign_o     (res_sign_s2)
+  );
+
   ////////////////
   // Cut C      //
   ////////////////
 
-  localparam int unsigned SCW = MetaW + ExW + ManW + 1 + 5;
-  logic [SCW-1:0]   sc_d, sc_q;
-  logic [MetaW-1:0] meta_s3;
-  logic [ExW-1:0]   exp_s3;
-  logic [ManW-1:0]  man_s3;
-  logic             round_up_s3, man_ones_s3;
-  logic [1:0]       uflow_s3, oflow_s3;
+  localparam int unsigned SCW = 2 * rc_pkg::FpResultKindBits + 2 + ExpW + FracW + 1;
+  logic [SCW-1:0]                        sc_d, sc_q;
+  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_s3;
+  logic                                  sign_s3, man_ones_s3, round_up_s3;
+  logic [ExpW-1:0]                       exp_s3;
+  logic [FracW-1:0]                      frac_s3;
 
-  assign sc_d = {meta_s2, exp_norm_s2, man_s2, round_up_s2, man_ones_s2, uflow_s2, oflow_s2};
+  assign sc_d = {kinds_s2, res_sign_s2, man_ones_s2, exp_norm_s2[ExpW-1:0], man_s2[FracW-1:0],
+                 round_up_s2};
   if (CutC) begin : g_cut_c
     always_ff @(posedge clk_i) begin
       sc_q <= sc_d;
@@ -196,34 +215,25 @@ module rc_fp_mul #(
   end else begin : g_no_cut_c
     assign sc_q = sc_d;
   end
-  assign {meta_s3, exp_s3, man_s3, round_up_s3, man_ones_s3, uflow_s3, oflow_s3} = sc_q;
+  assign {kinds_s3, sign_s3, man_ones_s3, exp_s3, frac_s3, round_up_s3} = sc_q;
 
-  ////////////////////////////////////////////
-  // Segment 3: round, flush/overflow, pack //
-  ////////////////////////////////////////////
+  //////////////////////////////////////////////////////
+  // Segment 3: round increment, kind's select, pack  //
+  //////////////////////////////////////////////////////
 
-  logic            spec_nan_s3, spec_inf_s3, spec_zero_s3, sign_s3;
-  logic [W-1:0]    res_d;
-
-  assign {spec_nan_s3, spec_inf_s3, spec_zero_s3, sign_s3} = meta_s3;
+  logic [W-1:0] res_d;
 
   rc_fp_round_pack #(
     .ExpW (ExpW),
-    .FracW(FracW),
-    .ExW  (ExW)
+    .FracW(FracW)
   ) u_round_pack (
-    .nan_i      (spec_nan_s3),
-    .inf_i      (spec_inf_s3),
-    .zero_i     (spec_zero_s3),
-    .zero_sign_i(sign_s3),
-    .sign_i     (sign_s3),
-    .exp_i      (exp_s3),
-    .man_i      (man_s3),
-    .round_up_i (round_up_s3),
-    .man_ones_i (man_ones_s3),
-    .uflow_i    (uflow_s3),
-    .oflow_i    (oflow_s3),
-    .res_o      (res_d)
+    .kind_i    (kinds_s3),
+    .sign_i    (sign_s3),
+    .man_ones_i(man_ones_s3),
+    .exp_i     (exp_s3),
+    .frac_i    (frac_s3),
+    .round_up_i(round_up_s3),
+    .res_o     (res_d)
   );
 
   ///////////////////////////////

@@ -106,9 +106,11 @@ module rc_fp_sqrt #(
     st_off = k * (HdrW + N + 6) + 3 * k * (k - 1) / 2;  // the sum of st_w(0 .. k - 1)
   endfunction
   localparam int unsigned ChainW = st_off(N - 1);
-  // State after the last root bit: the header, the root, the rounding increment (decided from
-  // the round bit, the sticky bit and the root's last bit), then the five rc_fp_round_flags bits.
-  localparam int unsigned FinW   = HdrW + ManW + 1 + 5;
+  // State after the last root bit, what rc_fp_round_pack takes: the result's kinds for both
+  // outcomes of the rounding carry and its sign (rc_fp_round_kinds), the all-ones flag, the
+  // exponent field, the root's fraction bits and the rounding increment (decided from the round
+  // bit, the sticky bit and the root's last bit).
+  localparam int unsigned FinW   = 2 * rc_pkg::FpResultKindBits + 2 + ExpW + FracW + 1;
 
   //////////////////////////////////////////////////
   // Slot 0: unpack, classify, radicand, bit 1    //
@@ -244,14 +246,19 @@ module rc_fp_sqrt #(
       // when the trial equals the brought-down remainder, so the sticky bit is two equality
       // compares beside the subtraction, which only selects (not an OR over rem_next behind the
       // subtraction's carry chain: run 47, -0.44 ns in rc_ray_gen).
-      // The rounding cycle's range checks are made here too (the significand is the root so
-      // far, the exponent the header's), so its override starts near flip-flops.
+      // The rounding cycle's range checks and the result's kinds for both outcomes of the carry
+      // are made here too (the significand is the root so far, the exponent the header's), so
+      // the rounding cycle only selects a kind by the carry in front of the word's select.
       // The rounding increment is decided here as well (round to nearest even: the round bit,
       // and the sticky bit or the root's last bit), one cell beside the sticky bit's select, so
       // the rounding cycle starts from it (run 54: the ray generator's square root, fin_q into
       // the output register through the increment, -0.35 ns).
-      logic sticky, round_up_d, unused_next, man_ones_d;
-      logic [1:0] uflow_d, oflow_d;
+      logic                                  sticky, round_up_d, unused_next, man_ones_d, sign_d;
+      logic [1:0]                            uflow_d, oflow_d;
+      logic [2*rc_pkg::FpResultKindBits-1:0] kinds_d;
+      logic                                  h_nan, h_inf, h_zero, h_sign;
+      logic [ExpW-1:0]                       h_exp;
+      assign {h_nan, h_inf, h_zero, h_sign, h_exp} = hdr;
       assign sticky      = r_bit ? (rem_sh != {1'b0, root, 2'b01}) : (rem_sh != '0);
       assign round_up_d  = r_bit & (sticky | root[0]);
       assign unused_next = ^{rem_next, t_inc, t_dec};
@@ -260,13 +267,24 @@ module rc_fp_sqrt #(
         .FracW(FracW),
         .ExW  (ExW)
       ) u_round_flags (
-        .exp_i     (ExW'(hdr[ExpW-1:0])),
+        .exp_i     (ExW'(h_exp)),
         .man_i     (root),
         .man_ones_o(man_ones_d),
         .uflow_o   (uflow_d),
         .oflow_o   (oflow_d)
       );
-      assign fin_d = {hdr, root, round_up_d, man_ones_d, uflow_d, oflow_d};
+      rc_fp_round_kinds u_round_kinds (
+        .nan_i      (h_nan),
+        .inf_i      (h_inf),
+        .zero_i     (h_zero),
+        .zero_sign_i(h_sign),  // sqrt(-0) = -0
+        .sign_i     (1'b0),    // every other non-NaN result is positive
+        .uflow_i    (uflow_d),
+        .oflow_i    (oflow_d),
+        .kind_o     (kinds_d),
+        .sign_o     (sign_d)
+      );
+      assign fin_d = {kinds_d, sign_d, man_ones_d, h_exp, root[FracW-1:0], round_up_d};
       // By now every radicand bit has been brought down (the rest are the zeros shifted in).
       logic unused_rad;
       assign unused_rad = ^rad[N-3:0];
@@ -286,33 +304,25 @@ module rc_fp_sqrt #(
   // Slot N: round, pack               //
   //////////////////////////////////////
 
-  logic            spec_nan_f, spec_inf_f, spec_zero_f, sign_f;
-  logic [ExpW-1:0] exp_f;
-  logic [ManW-1:0] man;  // man[ManW-1] = 1: the root lies in [1, 2)
-  logic            round_up, man_ones_f;
-  logic [1:0]      uflow_f, oflow_f;
-  logic [W-1:0]    res_d;
+  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_f;
+  logic                                  sign_f, man_ones_f, round_up_f;
+  logic [ExpW-1:0]                       exp_f;
+  logic [FracW-1:0]                      frac_f;
+  logic [W-1:0]                          res_d;
 
-  assign {spec_nan_f, spec_inf_f, spec_zero_f, sign_f, exp_f, man, round_up, man_ones_f, uflow_f,
-          oflow_f} = fin_q;
+  assign {kinds_f, sign_f, man_ones_f, exp_f, frac_f, round_up_f} = fin_q;
 
   rc_fp_round_pack #(
     .ExpW (ExpW),
-    .FracW(FracW),
-    .ExW  (ExW)
+    .FracW(FracW)
   ) u_round_pack (
-    .nan_i      (spec_nan_f),
-    .inf_i      (spec_inf_f),
-    .zero_i     (spec_zero_f),
-    .zero_sign_i(sign_f),  // sqrt(-0) = -0
-    .sign_i     (1'b0),    // every other non-NaN result is positive
-    .exp_i      (ExW'(exp_f)),
-    .man_i      (man),
-    .round_up_i (round_up),
-    .man_ones_i (man_ones_f),
-    .uflow_i    (uflow_f),
-    .oflow_i    (oflow_f),
-    .res_o      (res_d)
+    .kind_i    (kinds_f),
+    .sign_i    (sign_f),
+    .man_ones_i(man_ones_f),
+    .exp_i     (exp_f),
+    .frac_i    (frac_f),
+    .round_up_i(round_up_f),
+    .res_o     (res_d)
   );
 
   ///////////////////////////////
