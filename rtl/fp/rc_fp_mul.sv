@@ -23,9 +23,11 @@
 //
 // Pipeline (segments, and the cuts between them in the order Stages enables them):
 //   segment 0: unpack, classify, exponent sum            | cut A (Stages >= 4)
-//   segment 1: significand product                       | cut B (Stages >= 2)
+//   segment 1: significand product; beside it the range  | cut B (Stages >= 2)
+//              checks and the result's kinds for both carries (rc_fp_round_kinds), for both
+//              outcomes of the normalise shift (the product below 2, or from 2 up)
 //   segment 2: normalise (one-bit shift), round/sticky,  | cut C (Stages >= 3)
-//              range checks, the result's kinds for both carries (rc_fp_round_kinds)
+//              the shift's select of the kinds and the exponent
 //   segment 3: round increment, the kind's select, pack  | output register(s)
 //   The output has Stages minus the enabled internal cuts registers (at least one).
 module rc_fp_mul #(
@@ -109,8 +111,11 @@ module rc_fp_mul #(
   logic [ManW-1:0]  a_man_s1, b_man_s1;
 
   assign sa_d = {meta_s0, exp_s0, a_man_s0, b_man_s0};
+  // Kept: two multipliers with a common operand would otherwise share one merged register
+  // (Yosys's opt_merge), which then feeds both MULT18X18D across the chip (runs 60 and 61,
+  // seed 1: a transform row's operand register into another row's multiplier).
   if (CutA) begin : g_cut_a
-    always_ff @(posedge clk_i) begin
+    (* keep *) always_ff @(posedge clk_i) begin
       sa_q <= sa_d;
     end
   end else begin : g_no_cut_a
@@ -125,17 +130,65 @@ module rc_fp_mul #(
   logic [ProdW-1:0] prod_s1;
   assign prod_s1 = a_man_s1 * b_man_s1;
 
+  // Beside the product (it does not need it): the normalised exponent for both outcomes of the
+  // normalise shift (index 0: the product below 2, exponent exp; 1: from 2 up, exp + 1), each
+  // one's range checks (rc_fp_round_flags without its all-ones flag, which needs the
+  // significand) and the result's kinds for both rounding carries, so segment 2 only selects
+  // them by the product's top bit (runs 60 and 61: the checks and the kinds behind the shift
+  // made segment 2 the multipliers' longest, 13 to 14 cells).
+  // (Plain vectors, entry n at [n*width +: width]: Debian's Yosys 0.23, which makes the fp
+  // units' netlist test, takes no packed arrays of vectors.)
+  localparam int unsigned KindsW = 2 * rc_pkg::FpResultKindBits;  // two kinds: no carry, carry
+  logic [2*ExW-1:0]    exp_nrm_s1;
+  logic [3:0]          uflow_s1, oflow_s1;
+  logic [2*KindsW-1:0] kinds_s1;
+  logic [1:0]          res_sign_s1, unused_ones_s1;
+  logic                spec_nan_s1, spec_inf_s1, spec_zero_s1, sign_s1;
+  assign {spec_nan_s1, spec_inf_s1, spec_zero_s1, sign_s1} = meta_s1;
+  assign exp_nrm_s1 = {exp_s1 + ExW'(1), exp_s1};
+  for (genvar n = 0; n < 2; n++) begin : g_shift
+    rc_fp_round_flags #(
+      .ExpW (ExpW),
+      .FracW(FracW),
+      .ExW  (ExW)
+    ) u_round_flags (
+      .exp_i     (exp_nrm_s1[n*ExW +: ExW]),
+      .man_i     ('0),
+      .man_ones_o(unused_ones_s1[n]),
+      .uflow_o   (uflow_s1[2*n +: 2]),
+      .oflow_o   (oflow_s1[2*n +: 2])
+    );
+    rc_fp_round_kinds u_round_kinds (
+      .nan_i      (spec_nan_s1),
+      .inf_i      (spec_inf_s1),
+      .zero_i     (spec_zero_s1),
+      .zero_sign_i(sign_s1),
+      .sign_i     (sign_s1),
+      .uflow_i    (uflow_s1[2*n +: 2]),
+      .oflow_i    (oflow_s1[2*n +: 2]),
+      .kind_o     (kinds_s1[n*KindsW +: KindsW]),
+      .sign_o     (res_sign_s1[n])
+    );
+  end
+  // Unused: the all-ones flag (it needs the significand: segment 2 makes it) and the second sign
+  // (the same as the first).
+  logic unused_s1;
+  assign unused_s1 = ^{unused_ones_s1, res_sign_s1[1]};
+
   ////////////////
   // Cut B      //
   ////////////////
 
-  localparam int unsigned SBW = MetaW + ExW + ProdW;
-  logic [SBW-1:0]   sb_d, sb_q;
-  logic [MetaW-1:0] meta_s2;
-  logic [ExW-1:0]   exp_s2;
-  logic [ProdW-1:0] prod_s2;
+  localparam int unsigned SBW = 2 * KindsW + 1 + 2 * ExpW + ProdW;
+  logic [SBW-1:0]      sb_d, sb_q;
+  logic [2*KindsW-1:0] kinds_s2;
+  logic                res_sign_s2;
+  logic [2*ExpW-1:0]   exp_nrm_s2;
+  logic [ProdW-1:0]    prod_s2;
 
-  assign sb_d = {meta_s1, exp_s1, prod_s1};
+  // The sign does not depend on the range checks: both instances give the same one.
+  assign sb_d = {kinds_s1, res_sign_s1[0], exp_nrm_s1[ExW +: ExpW], exp_nrm_s1[0 +: ExpW],
+                 prod_s1};
   if (CutB) begin : g_cut_b
     always_ff @(posedge clk_i) begin
       sb_q <= sb_d;
@@ -143,70 +196,42 @@ module rc_fp_mul #(
   end else begin : g_no_cut_b
     assign sb_q = sb_d;
   end
-  assign {meta_s2, exp_s2, prod_s2} = sb_q;
+  assign {kinds_s2, res_sign_s2, exp_nrm_s2, prod_s2} = sb_q;
 
   ///////////////////////////////////////
   // Segment 2: normalise, round bits  //
   ///////////////////////////////////////
 
   // The product of two significands in [1, 2) lies in [1, 4): its top bit says which.
-  logic             prod_top;
-  logic [ProdW-1:0] prod_norm;
-  logic [ManW-1:0]  man_s2;
-  logic             round_up_s2;
-  logic [ExW-1:0]   exp_norm_s2;
+  logic                                  prod_top;
+  logic [ProdW-1:0]                      prod_norm;
+  logic [ManW-1:0]                       man_s2;
+  logic                                  round_up_s2, man_ones_s2;
+  logic [ExpW-1:0]                       exp_norm_s2;
+  logic [KindsW-1:0]                     kind_sel_s2;
 
   assign prod_top    = prod_s2[ProdW-1];
   assign prod_norm   = prod_top ? prod_s2 : (prod_s2 << 1);
   assign man_s2      = prod_norm[ProdW-1 -: ManW];
   assign round_up_s2 = prod_norm[ManW-1] & ((|prod_norm[ManW-2:0]) | man_s2[0]);
-  assign exp_norm_s2 = exp_s2 + ExW'(prod_top);
-
-  // The rounding cycle's range checks and the result's kinds for both outcomes of the carry,
-  // made here beside the rounding decision (they do not wait for it), so the rounding segment
-  // only selects a kind by the carry in front of the word's select.
-  logic       man_ones_s2;
-  logic [1:0] uflow_s2, oflow_s2;
-  rc_fp_round_flags #(
-    .ExpW (ExpW),
-    .FracW(FracW),
-    .ExW  (ExW)
-  ) u_round_flags (
-    .exp_i     (exp_norm_s2),
-    .man_i     (man_s2),
-    .man_ones_o(man_ones_s2),
-    .uflow_o   (uflow_s2),
-    .oflow_o   (oflow_s2)
-  );
-
-  logic                                  spec_nan_s2, spec_inf_s2, spec_zero_s2, sign_s2;
-  logic                                  res_sign_s2;
-  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_s2;
-  assign {spec_nan_s2, spec_inf_s2, spec_zero_s2, sign_s2} = meta_s2;
-  rc_fp_round_kinds u_round_kinds (
-    .nan_i      (spec_nan_s2),
-    .inf_i      (spec_inf_s2),
-    .zero_i     (spec_zero_s2),
-    .zero_sign_i(sign_s2),
-    .sign_i     (sign_s2),
-    .uflow_i    (uflow_s2),
-    .oflow_i    (oflow_s2),
-    .kind_o     (kinds_s2),
-    .sign_o     (res_sign_s2)
-  );
+  // rc_fp_round_flags' all-ones flag (a rounding increment carries out); its range checks were
+  // made in segment 1 for both shifts.
+  assign man_ones_s2 = &man_s2;
+  assign exp_norm_s2 = prod_top ? exp_nrm_s2[ExpW +: ExpW] : exp_nrm_s2[0 +: ExpW];
+  assign kind_sel_s2 = prod_top ? kinds_s2[KindsW +: KindsW] : kinds_s2[0 +: KindsW];
 
   ////////////////
   // Cut C      //
   ////////////////
 
-  localparam int unsigned SCW = 2 * rc_pkg::FpResultKindBits + 2 + ExpW + FracW + 1;
+  localparam int unsigned SCW = KindsW + 2 + ExpW + FracW + 1;
   logic [SCW-1:0]                        sc_d, sc_q;
-  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_s3;
+  logic [KindsW-1:0]                     kinds_s3;
   logic                                  sign_s3, man_ones_s3, round_up_s3;
   logic [ExpW-1:0]                       exp_s3;
   logic [FracW-1:0]                      frac_s3;
 
-  assign sc_d = {kinds_s2, res_sign_s2, man_ones_s2, exp_norm_s2[ExpW-1:0], man_s2[FracW-1:0],
+  assign sc_d = {kind_sel_s2, res_sign_s2, man_ones_s2, exp_norm_s2, man_s2[FracW-1:0],
                  round_up_s2};
   if (CutC) begin : g_cut_c
     always_ff @(posedge clk_i) begin
