@@ -188,8 +188,9 @@ FPGA_SCENE ?= scenes/cornell.json
 FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
-# nextpnr's seed: 1, the seed of five that closes HEAD's netlist (docs/history.md run 59: 101.83
-# MHz; seeds 2 to 5 at 92.11 to 97.61 MHz; docs/fpga.md, "Status"). Seed 3 closed an earlier
+# nextpnr's seed: 1, the seed of five that closed run 59's netlist (60976b9, docs/history.md:
+# 101.83 MHz; seeds 2 to 5 at 92.11 to 97.61 MHz). HEAD's netlist is not placed yet and run 61's
+# closed on none of seeds 1 to 4 (docs/fpga.md, "Status"). Seed 3 closed an earlier
 # netlist (run 53, 100.19 MHz); seed 4 closed the core before the unit redesign (runs 36 to
 # 36s5). Every netlist needs its own sweep.
 FPGA_SEED  ?= 1
