@@ -11,7 +11,10 @@
 // - Use: each fp unit computes these beside its last cut (they do not need the rounding bit) and
 //   registers them with the rest of the rounding cycle's input, so the special-case override of
 //   the output register starts two LUTs from flip-flops instead of after the significand's wide
-//   AND and the exponent's compares (docs/fpga.md, "What is left").
+//   AND and the exponent's compares (docs/fpga.md, "What is left"). The multiplier makes the
+//   range checks a cycle earlier still, beside its product, for both outcomes of its one-bit
+//   normalise (exp and exp + 1, man_i tied to 0 and man_ones_o unused), and its all-ones flag
+//   after the shift, where the significand is known.
 // - Parameters: ExpW exponent bits (>= 2), FracW fraction bits (>= 1), ExW width of exp_i
 //   (>= ExpW + 2), as rc_fp_round_pack's.
 // - Illegal input: exp_i + 1 must fit in ExW bits as a signed value (rc_fp_round_pack's rule).
