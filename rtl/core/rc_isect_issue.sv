@@ -147,19 +147,26 @@ module rc_isect_issue #(
   // loaded with the triangle (from the pool's {one ray only, lowest ray}) and updated at each
   // test.
   assign ti_rem_next = ti_rem_q & (ti_rem_q - 4'd1);
+  // ti_r_d and ti_thr_d are the next values of ti_r and ti_thr_q, which the hit bits' read also
+  // registers in copies of its own (below).
+  logic [1:0]      ti_r_d;
+  logic [ThrW-1:0] ti_thr_d;
+  assign ti_r_d   = ti_load ? tp_first_i[1:0] : is_take ? rc_pkg::ray_lowest(ti_rem_next) : ti_r;
+  assign ti_thr_d = ti_load ? tp_thr_i : ti_thr_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       ti_rem_q  <= '0;
       ti_last_q <= 1'b0;
       ti_r      <= '0;
-    end else if (ti_load) begin
-      ti_rem_q  <= tp_mask_i;
-      ti_last_q <= tp_first_i[2];
-      ti_r      <= tp_first_i[1:0];
-    end else if (is_take) begin
-      ti_rem_q  <= ti_rem_next;
-      ti_last_q <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
-      ti_r      <= rc_pkg::ray_lowest(ti_rem_next);
+    end else begin
+      ti_r <= ti_r_d;
+      if (ti_load) begin
+        ti_rem_q  <= tp_mask_i;
+        ti_last_q <= tp_first_i[2];
+      end else if (is_take) begin
+        ti_rem_q  <= ti_rem_next;
+        ti_last_q <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
+      end
     end
   end
 
@@ -210,14 +217,30 @@ module rc_isect_issue #(
     .hit_ray_i  (hitset_ray_i),
     .hit_o      (hit_bits)
   );
+  // The read's index {thread, ray}: one kept copy of {ti_thr_q, ti_r} per group of the read,
+  // placed beside its group (ti_r alone drove every group, the ray store's address and its own
+  // update logic: run 61 seed 2, ti_r -> u_hit_read.grp_q, -1.44 ns).
+  localparam int unsigned HitIdxW   = ThrW + 2;
+  localparam int unsigned HitGroups = (HitIdxW > 5) ? (1 << (HitIdxW - 5)) : 1;
+  logic [HitGroups*HitIdxW-1:0] hit_idx_q;
+  rc_reg_copies #(
+    .Width (HitIdxW),
+    .Copies(HitGroups)
+  ) u_hit_idx (
+    .clk_i,
+    .rst_ni,
+    .d_i ({ti_thr_d, ti_r_d}),
+    .q_o (hit_idx_q)
+  );
   rc_bit_read #(
-    .N   (Threads * 4),
-    .IdxW(ThrW + 2),
-    .LoW (5)
+    .N        (Threads * 4),
+    .IdxW     (HitIdxW),
+    .LoW      (5),
+    .IdxCopies(HitGroups)
   ) u_hit_read (
     .clk_i,
     .bits_i(hit_bits),
-    .idx_i ({ti_thr_q, ti_r}),
+    .idx_i (hit_idx_q),
     .bit_o (i1_hit)
   );
 
@@ -329,6 +352,9 @@ module rc_isect_issue #(
   TiRem_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             ti_v_q && !ti_err_q |-> ti_r == rc_pkg::ray_lowest(ti_rem_q) &&
                             ti_last_q == ((ti_rem_q & (ti_rem_q - 4'd1)) == 4'd0));
+  // The hit read's index copies hold the current {thread, ray} (their next values are the same).
+  HitIdx_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            ti_v_q |-> hit_idx_q[HitIdxW-1:0] == {ti_thr_q, ti_r});
 `endif
 
 endmodule

@@ -154,6 +154,7 @@ module rc_isect_unit #(
     logic [9*W-1:0]  v_q;  // one copy per row of the transform unit
     logic [SbW-1:0]  sb_q;
     logic            pass1_q, pass2_q;
+    logic [4:0]      hold_q;
     logic            xf_valid, xf_ready, xf_pass2;
     logic [3*W-1:0]  xf_r;
     logic [SbW-1:0]  xf_sb;
@@ -167,27 +168,45 @@ module rc_isect_unit #(
         pass2_q <= pass1_q;
       end
     end
+    // The input registers load at the end of every cycle but pass 1's. Passes 1 and 2 read what
+    // the accepted pair's edge loaded, and pass 1's end, the only edge between, keeps it; no
+    // pair is accepted in pass 1 (ready_o is 0), and what the other edges load is never read.
+    // So the enables come from kept copies of pass1_q, each placed beside its group (hold_q:
+    // m_q's rows and v_q's copies 0-2, org_q 3, sb_q 4), not from in_fire, one net to all of
+    // them (run 61 seed 3: i2_v_q -> sb_q, 56 enables).
+    rc_reg_copies #(
+      .Width   (1),
+      .Copies  (5),
+      .HasReset(1'b1)
+    ) u_hold (
+      .clk_i,
+      .rst_ni,
+      .d_i (in_fire),
+      .q_o (hold_q)
+    );
     always_ff @(posedge clk_i) begin
-      if (in_fire) begin
-        m_q   <= m_i;
+      for (int r = 0; r < 3; r++) begin
+        if (!hold_q[r]) begin
+          m_q[4*W*r +: 4*W] <= m_i[4*W*r +: 4*W];
+        end
+        // The operand vector, one copy beside each row's three multipliers (a single register
+        // drove all nine with their classification logic shared: run 47, v_q -> sb_q, -1.23
+        // ns): dir at the accepted pair's edge, org at pass 1's. The copies' selects are
+        // separate registers, so synthesis does not merge them.
+        v_q[3*W*r +: 3*W] <= hold_q[r] ? org_q : dir_i;
+      end
+      if (!hold_q[3]) begin
         org_q <= org_i;
-        sb_q  <= {tag_i, tri_i, best_t_i, best_tri_i};
       end
-      // The operand vector, one copy beside each row's three multipliers (a single register
-      // drove all nine with their classification logic shared: run 47, v_q -> sb_q, -1.23 ns).
-      // The copies differ in what they load in the cycles whose value is not used (only pass
-      // 1's dir and pass 2's org are), so synthesis does not merge them: row 0 holds, row 1
-      // loads org_q, row 2 loads dir_i. (No take in pass 1's cycle: issue_busy.)
-      if (in_fire) begin
-        v_q[0 +: 3*W] <= dir_i;
-      end else if (pass1_q) begin
-        v_q[0 +: 3*W] <= org_q;
+      if (!hold_q[4]) begin
+        sb_q <= {tag_i, tri_i, best_t_i, best_tri_i};
       end
-      v_q[3*W +: 3*W] <= in_fire ? dir_i : org_q;
-      v_q[6*W +: 3*W] <= pass1_q ? org_q : dir_i;
     end
     assign issue_busy = pass1_q;
 `ifndef SYNTHESIS
+    // The enables' copies are pass1_q (the same input, registered with the same reset).
+    HoldCopy_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 hold_q[0] == pass1_q);
     // The rows' copies of the operand vector agree whenever the transform unit uses them.
     VCopies_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 pass1_q || pass2_q |-> v_q[3*W +: 3*W] == v_q[0 +: 3*W] &&
