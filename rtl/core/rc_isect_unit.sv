@@ -223,11 +223,12 @@ module rc_isect_unit #(
       .valid_o(xf_valid), .ready_i(1'b1), .r_o(xf_r), .tag_o({xf_sb, xf_pass2})
     );
 
+    // d' is read one cycle after it leaves, with o' (PassOrder_A), so the register loads at
+    // every edge, without an enable (run 61 seed 1 at 9 ns: the transform's output valid into
+    // xd_q's 72 enables, -0.90 ns).
     logic [3*W-1:0] xd_q;
     always_ff @(posedge clk_i) begin
-      if (xf_valid && !xf_pass2) begin
-        xd_q <= xf_r;
-      end
+      xd_q <= xf_r;
     end
     assign xo_valid = xf_valid & xf_pass2;
     assign xo       = xf_r;

@@ -171,6 +171,22 @@ module rc_ray_setup #(
   logic [W-1:0] ax_org, ax_dir, ax_lo, ax_hi;
   assign {ax_org, ax_dir, ax_lo, ax_hi} = ax_q[0 +: AxW];
 
+  // The divider's operand (the next axis' dir) from a kept register of its own, with ax_q's
+  // next value, so the divider's first slot starts beside it instead of at ax_q, which the
+  // feeder's data, the shift and the subtracters' operands also pull (run 61 seed 4: ax_q ->
+  // u_div.st_in, -0.75 ns).
+  logic [W-1:0] div_dir_d, div_dir_q;
+  assign div_dir_d = in_free_q ? ax_in[2*W +: W] : issue ? ax_q[AxW + 2*W +: W] : ax_dir;
+  rc_reg_copies #(
+    .Width (W),
+    .Copies(1)
+  ) u_div_dir (
+    .clk_i,
+    .rst_ni,
+    .d_i (div_dir_d),
+    .q_o (div_dir_q)
+  );
+
   //////////////////////////////////////////////////
   // Slice 1: inv = 1 / dir, lo - org, hi - org   //
   //////////////////////////////////////////////////
@@ -187,7 +203,7 @@ module rc_ray_setup #(
     .rst_ni,
     .valid_i(issue),
     .a_i    (One),
-    .b_i    (ax_dir),
+    .b_i    (div_dir_q),
     .valid_o(div_valid),
     .res_o  (inv)
   );
@@ -488,6 +504,9 @@ module rc_ray_setup #(
     .on_o (checks_on)
   );
 
+  // The divider's operand register holds the next axis' dir whenever an axis enters.
+  DivDir_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             issue |-> div_dir_q == ax_dir);
   // The divider and the subtracts are aligned (same Stages), so their results meet.
   SubDivAligned_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     div_valid == sub_lo_valid && div_valid == sub_hi_valid);
