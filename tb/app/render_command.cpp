@@ -32,6 +32,7 @@ using rc::scene::Error;
 struct RenderArgs {
   std::string input, output, hits, stats, diff, size, camera, engine = "golden", reference;
   std::string format = "7/16", ray_source;  // ray_source "": host, raygen for the board
+  std::string lighting = "headlight";
   std::vector<std::string> models_path;
   bool auto_camera = false, quiet = false;
   unsigned threads = 0;
@@ -103,7 +104,7 @@ Frame run_engine(const std::string& engine, const RenderInput& in, const RenderO
         "--engine embree needs the scene's triangles: give the scene or OBJ file, not "
         "the memory image '" +
         in.name + "'");
-  return render_embree<T>(triangle_soup(*in.scene), opt);
+  return render_embree<T>(triangle_soup(*in.scene), opt, soup_lights(*in.scene));
 }
 
 Frame run_any(const std::string& engine, const RenderInput& in, const RenderOptions& opt) {
@@ -398,6 +399,12 @@ int run_render(const RenderArgs& a) {
         "--engine board generates its rays on chip: --ray-source raygen (the default "
         "with the board), not '" +
         a.ray_source + "'");
+  const Lighting lighting = parse_lighting(a.lighting);
+  if (lighting == Lighting::kScene && (a.engine == "rtl" || a.engine == "board"))
+    throw Error(
+        "--lighting scene: the core shades with the headlight only so far (the scene's "
+        "lights and shadow rays are in the golden model and the Embree reference); use "
+        "--engine golden or embree");
   if (!a.reference.empty() && a.reference != "embree" && a.reference != "golden")
     throw Error("--reference: expected embree or golden, got '" + a.reference + "'");
   if (!a.diff.empty() && a.reference.empty() && !a.check)
@@ -443,6 +450,7 @@ int run_render(const RenderArgs& a) {
   opt.threads = a.threads;
   opt.progress = !a.quiet;
   opt.ray_source = ray_source;
+  opt.lighting = lighting;
 
   std::optional<harness::CoreSimResult> rtl;
   std::optional<harness::BoardSimResult> board;
@@ -463,7 +471,10 @@ int run_render(const RenderArgs& a) {
                        {"rays_per_second", rays_per_s},
                        {"threads", a.threads},
                        {"ray_source", ray_source_name(opt.ray_source)},
+                       {"lighting", lighting_name(opt.lighting)},
                        {"counters", counters_json(f.counters)}};
+  if (!f.light_mask.empty() && a.engine != "embree")
+    js["shadow_counters"] = counters_json(f.shadow_counters);
   if (!a.quiet) {
     std::printf("%s: %ux%u, %s, engine %s: %.3f s, %.0f rays/s\n", a.input.c_str(), f.width,
                 f.height, in.image.format().name().c_str(), a.engine.c_str(), f.seconds,
@@ -478,6 +489,16 @@ int run_render(const RenderArgs& a) {
           static_cast<unsigned long long>(c.triangle_tests),
           static_cast<unsigned long long>(c.leaf_visits),
           static_cast<unsigned long long>(c.max_stack), static_cast<unsigned long long>(c.errors));
+      if (!f.light_mask.empty()) {
+        const Counters& sc = f.shadow_counters;
+        std::printf(
+            "  shadow rays %llu in %llu packets, traversal steps %llu, triangle tests %llu, "
+            "failed packets %llu\n",
+            static_cast<unsigned long long>(sc.rays), static_cast<unsigned long long>(sc.packets),
+            static_cast<unsigned long long>(sc.traversal_steps),
+            static_cast<unsigned long long>(sc.triangle_tests),
+            static_cast<unsigned long long>(sc.errors));
+      }
     }
   }
   bool check_ok = true;
@@ -535,6 +556,20 @@ int run_render(const RenderArgs& a) {
           static_cast<unsigned long long>(ag.same_depth),
           static_cast<unsigned long long>(ag.only_a_hits), a.engine.c_str(),
           static_cast<unsigned long long>(ag.only_b_hits), a.reference.c_str(), ag.psnr_db);
+    if (!f.light_mask.empty() && !ref.light_mask.empty()) {
+      const LightAgreement la = compare_lights(f, ref, in.image.light_count());
+      js["reference"]["light_agreement"] = la.share();
+      js["reference"]["light_tests"] = la.tests;
+      js["reference"]["only_this_lit"] = la.only_a_lit;
+      js["reference"]["only_reference_lit"] = la.only_b_lit;
+      if (!a.quiet)
+        std::printf(
+            "  shadow test against %s: %.4f%% of %llu (pixel, light) pairs agree (%llu lit only "
+            "by %s, %llu only by %s)\n",
+            a.reference.c_str(), 100.0 * la.share(), static_cast<unsigned long long>(la.tests),
+            static_cast<unsigned long long>(la.only_a_lit), a.engine.c_str(),
+            static_cast<unsigned long long>(la.only_b_lit), a.reference.c_str());
+    }
   }
   if (!a.stats.empty()) {
     std::ofstream out(a.stats);
@@ -622,6 +657,10 @@ void add_render_commands(CLI::App& app, Action* action) {
                   "board (the verilated board build: ROMs, on-chip ray generation)")
       ->capture_default_str();
   cmd->add_option("--size", args->size, "frame size WxH (default: the scene's)");
+  cmd->add_option("--lighting", args->lighting,
+                  "headlight (the core's shading) or scene (the scene's lights with shadow rays: "
+                  "golden and embree only so far; a scene without lights keeps the headlight)")
+      ->capture_default_str();
   cmd->add_option("--ray-source", args->ray_source,
                   "host (double-precision camera, rounded once; the default) or raygen (the "
                   "board's ray generation unit: fp arithmetic from camera registers; the default "

@@ -123,4 +123,27 @@ std::vector<CounterDifference> counter_differences(const Counters& expected,
   return out;
 }
 
+LightAgreement compare_lights(const Frame& a, const Frame& b, size_t lights) {
+  LightAgreement la;
+  if (a.light_mask.size() != a.hit_tri.size() || b.light_mask.size() != b.hit_tri.size() ||
+      a.hit_tri.size() != b.hit_tri.size())
+    return la;
+  const size_t n = lights < 32 ? lights : 32;
+  for (size_t p = 0; p < a.hit_tri.size(); ++p) {
+    if (a.hit_tri[p] < 0 || a.hit_tri[p] != b.hit_tri[p]) continue;
+    for (size_t l = 0; l < n; ++l) {
+      const bool la_lit = (a.light_mask[p] >> l & 1u) != 0,
+                 lb_lit = (b.light_mask[p] >> l & 1u) != 0;
+      ++la.tests;
+      if (la_lit == lb_lit)
+        ++la.agree;
+      else if (la_lit)
+        ++la.only_a_lit;
+      else
+        ++la.only_b_lit;
+    }
+  }
+  return la;
+}
+
 }  // namespace rc

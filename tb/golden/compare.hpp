@@ -27,6 +27,18 @@ struct Agreement {
 
 Agreement compare_frames(const Frame& a, const Frame& b);
 
+// The shadow test's agreement (scene lighting): over the pixels where both frames hit the same
+// triangle, each of the first `lights` lights (at most 32) counts once: agree when both say it
+// reaches the hit or both say it does not (behind the surface or occluded).
+struct LightAgreement {
+  uint64_t tests = 0, agree = 0;
+  uint64_t only_a_lit = 0, only_b_lit = 0;
+  double share() const {
+    return tests ? static_cast<double>(agree) / static_cast<double>(tests) : 1.0;
+  }
+};
+LightAgreement compare_lights(const Frame& a, const Frame& b, size_t lights);
+
 // A difference image: pixels where the hits agree are the darkened image a; disagreeing pixels
 // are red (different triangle), green (only a hits) or blue (only b hits).
 std::vector<uint8_t> hit_difference_image(const Frame& a, const Frame& b);

@@ -2,9 +2,11 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <limits>
 #include <stdexcept>
@@ -32,7 +34,8 @@ struct EmbreeScene {
     device = rtcNewDevice(nullptr);
     if (!device) throw std::runtime_error("embree: cannot create a device");
     scene = rtcNewScene(device);
-    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(scene, static_cast<RTCSceneFlags>(RTC_SCENE_FLAG_ROBUST |
+                                                       RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION));
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -58,10 +61,80 @@ struct EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 };
 
+// A shadow ray's context: the triangle it starts on never occludes it.
+struct ShadowContext {
+  RTCIntersectContext ctx;  // first: Embree passes &ctx to the filter
+  unsigned exclude;
+};
+
+void exclude_start(const RTCFilterFunctionNArguments* args) {
+  const auto* sc = reinterpret_cast<const ShadowContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i)
+    if (args->valid[i] != 0 && RTCHitN_primID(args->hit, args->N, i) == sc->exclude)
+      args->valid[i] = 0;
+}
+
+struct LitResult {
+  std::array<uint8_t, 3> rgb;
+  uint32_t lights;
+};
+
+// The lighting rules in double, shadow rays through Embree in float32.
+LitResult shade_lit_double(const EmbreeScene& es, const SoupTriangle& tri, unsigned prim,
+                           const glm::dvec3& org, const glm::dvec3& dir, double t,
+                           const std::vector<SoupLight>& lights, double t_eps) {
+  const double ambient = static_cast<double>(spec::kShadeAmbientPermille) / 1000.0;
+  const glm::dvec3 p = org + t * dir;
+  glm::dvec3 n = glm::normalize(glm::cross(tri.v[1] - tri.v[0], tri.v[2] - tri.v[0]));
+  if (glm::dot(n, dir) > 0.0) n = -n;
+  const glm::dvec3 v = glm::normalize(dir);
+  const uint32_t ns = light_exponent(fp32ftz::from_double(tri.ns));
+  glm::dvec3 sum(tri.kd[0] * ambient, tri.kd[1] * ambient, tri.kd[2] * ambient);
+  LitResult out{{0, 0, 0}, 0};
+  for (size_t li = 0; li < lights.size(); ++li) {
+    const SoupLight& l = lights[li];
+    glm::dvec3 lh = l.pos;
+    double dist = std::numeric_limits<double>::infinity();
+    if (!l.directional) {
+      const glm::dvec3 d = l.pos - p;
+      dist = glm::length(d);
+      lh = d / dist;
+    }
+    const double cos_l = glm::dot(n, lh);
+    if (!(cos_l > 0.0)) continue;
+    ShadowContext sc;
+    rtcInitIntersectContext(&sc.ctx);
+    sc.ctx.filter = exclude_start;
+    sc.exclude = prim;
+    RTCRay ray{};
+    ray.org_x = static_cast<float>(p.x);
+    ray.org_y = static_cast<float>(p.y);
+    ray.org_z = static_cast<float>(p.z);
+    ray.dir_x = static_cast<float>(lh.x);
+    ray.dir_y = static_cast<float>(lh.y);
+    ray.dir_z = static_cast<float>(lh.z);
+    ray.tnear = static_cast<float>(t_eps);
+    ray.tfar = static_cast<float>(dist);
+    ray.mask = 0xffffffffu;
+    rtcOccluded1(es.scene, &sc.ctx, &ray);
+    if (ray.tfar < 0.0f) continue;  // occluded: Embree sets tfar to -inf
+    if (li < 32) out.lights |= 1u << li;
+    const glm::dvec3 h = glm::normalize(lh - v);
+    const double nh = glm::dot(n, h);
+    const double spec = nh > 0.0 ? std::pow(nh, static_cast<double>(ns)) : 0.0;
+    for (int c = 0; c < 3; ++c)
+      sum[c] += std::clamp((tri.kd[c] * cos_l + tri.ks[c] * spec) * l.color[c], 0.0, 1.0);
+  }
+  for (int c = 0; c < 3; ++c)
+    out.rgb[c] = static_cast<uint8_t>(std::nearbyint(std::min(sum[c], 1.0) * 255.0));
+  return out;
+}
+
 }  // namespace
 
 template <class T>
-Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& opt) {
+Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& opt,
+                    const std::vector<SoupLight>& lights) {
   const auto start = std::chrono::steady_clock::now();
   const EmbreeScene es(tris);
   const PacketSource<T> gen(opt.camera, opt.width, opt.height, opt.ray_source);
@@ -72,6 +145,15 @@ Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& 
   f.rgb.assign(npix * 3, 0);
   f.hit_tri.assign(npix, -1);
   f.hit_t.assign(npix, 0.0f);
+  const bool lit = opt.lighting == Lighting::kScene && !lights.empty();
+  double t_eps = 0.0;
+  if (lit) {
+    f.light_mask.assign(npix, 0);
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    for (const auto& t : tris)
+      for (const auto& v : t.v) lo = glm::min(lo, v), hi = glm::max(hi, v);
+    t_eps = tris.empty() ? 0.0 : glm::length(hi - lo) * kShadowEpsScale;
+  }
   parallel_rows(opt.height, opt.threads, opt.progress, "embree", [&](uint32_t y) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -94,8 +176,16 @@ Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& 
       if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
         f.hit_tri[pix] = static_cast<int32_t>(rh.hit.primID);
         f.hit_t[pix] = rh.ray.tfar;
-        rgb =
-            shade_double(tris[rh.hit.primID], glm::dvec3(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z));
+        const glm::dvec3 dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+        if (lit) {
+          const glm::dvec3 org(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z);
+          const LitResult lr = shade_lit_double(es, tris[rh.hit.primID], rh.hit.primID, org, dir,
+                                                rh.ray.tfar, lights, t_eps);
+          rgb = lr.rgb;
+          f.light_mask[pix] = lr.lights;
+        } else {
+          rgb = shade_double(tris[rh.hit.primID], dir);
+        }
       }
       std::memcpy(&f.rgb[pix * 3], rgb.data(), 3);
     }
@@ -105,7 +195,9 @@ Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& 
   return f;
 }
 
-template Frame render_embree<fp24>(const std::vector<SoupTriangle>&, const RenderOptions&);
-template Frame render_embree<fp32ftz>(const std::vector<SoupTriangle>&, const RenderOptions&);
+template Frame render_embree<fp24>(const std::vector<SoupTriangle>&, const RenderOptions&,
+                                   const std::vector<SoupLight>&);
+template Frame render_embree<fp32ftz>(const std::vector<SoupTriangle>&, const RenderOptions&,
+                                      const std::vector<SoupLight>&);
 
 }  // namespace rc

@@ -1,5 +1,7 @@
 #include "geometry.hpp"
 
+#include <cmath>
+#include <glm/geometric.hpp>
 #include <string>
 
 #include "error.hpp"
@@ -22,17 +24,46 @@ Geometry<T> load_geometry(const scene::SceneImage& img) {
   g.tris.resize(n);
   g.normal_len.resize(n);
   g.material.resize(n);
+  g.normal.resize(n);
   for (size_t i = 0; i < n; ++i) {
     g.tris[i] = img.triangle<T>(i);
     const scene::ShadingRecord s = img.shading(i);
     g.material[i] = s.dropped() ? 0 : s.material;
     g.normal_len[i] = T::from_bits(s.normal_len_bits);
+    for (int a = 0; a < 3; ++a) g.normal[i][a] = T::from_bits(s.normal_bits[a]);
   }
-  g.kd.resize(std::max<size_t>(img.material_count(), 1), {T::zero(), T::zero(), T::zero()});
+  const size_t materials = std::max<size_t>(img.material_count(), 1);
+  g.kd.resize(materials, {T::zero(), T::zero(), T::zero()});
+  g.ks.resize(materials, {T::zero(), T::zero(), T::zero()});
+  g.ns.resize(materials, 0);
   for (size_t i = 0; i < img.material_count(); ++i) {
     const scene::MaterialRecord m = img.material(i);
-    for (int c = 0; c < 3; ++c) g.kd[i][c] = T::from_bits(m.kd[c]);
+    for (int c = 0; c < 3; ++c) {
+      g.kd[i][c] = T::from_bits(m.kd[c]);
+      g.ks[i][c] = T::from_bits(m.ks[c]);
+    }
+    g.ns[i] = light_exponent(T::from_bits(m.ns));
   }
+  // Lighting (docs/architecture.md, "Lighting"): each value computed in double from the image's
+  // float32 fields and rounded to the format once.
+  for (size_t i = 0; i < img.light_count(); ++i) {
+    const scene::LightRecord r = img.light(i);
+    typename Geometry<T>::Light l;
+    l.directional = r.type == spec::kImageLightTypeDirectional;
+    const glm::dvec3 v(r.position[0], r.position[1], r.position[2]);
+    const glm::dvec3 toward = l.directional ? -v / glm::length(v) : v;
+    for (int a = 0; a < 3; ++a) {
+      l.pos[a] = T::from_double(toward[a]);
+      l.color[a] = T::from_double(static_cast<double>(r.color[a]) * r.intensity);
+    }
+    g.lights.push_back(l);
+  }
+  double diag2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double e = g.bounds[a + 3].to_double() - g.bounds[a].to_double();
+    diag2 += e * e;
+  }
+  g.t_eps = T::from_double(std::sqrt(diag2) * kShadowEpsScale);
   for (size_t i = 0; i < n; ++i)
     if (g.material[i] >= g.kd.size())
       throw scene::Error(img.name() + ": triangle " + std::to_string(i) + " names material " +
@@ -50,10 +81,29 @@ std::vector<SoupTriangle> triangle_soup(const scene::Scene& s) {
     for (size_t i = 0; i < m.triangles.size(); ++i) {
       SoupTriangle t;
       for (int k = 0; k < 3; ++k) t.v[k] = m.vertices[m.triangles[i][k]];
-      const glm::dvec3 kd = m.materials.empty() ? glm::dvec3(0.8) : m.materials[m.material[i]].kd;
-      t.kd = {kd.x, kd.y, kd.z};
+      const scene::Material mat =
+          m.materials.empty() ? scene::Material{} : m.materials[m.material[i]];
+      t.kd = {mat.kd.x, mat.kd.y, mat.kd.z};
+      t.ks = {mat.ks.x, mat.ks.y, mat.ks.z};
+      t.ns = mat.ns;
       out.push_back(t);
     }
+  return out;
+}
+
+}  // namespace rc
+
+namespace rc {
+
+std::vector<SoupLight> soup_lights(const scene::Scene& s) {
+  std::vector<SoupLight> out;
+  for (const auto& l : s.lights) {
+    SoupLight sl;
+    sl.directional = l.type == scene::Light::Type::kDirectional;
+    sl.pos = sl.directional ? -l.position / glm::length(l.position) : l.position;
+    sl.color = l.color * l.intensity;
+    out.push_back(sl);
+  }
   return out;
 }
 

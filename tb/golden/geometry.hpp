@@ -18,5 +18,7 @@ Geometry<T> load_geometry(const scene::SceneImage& img);
 
 // The scene's triangles in OBJ order (after fan triangulation), with their diffuse colours.
 std::vector<SoupTriangle> triangle_soup(const scene::Scene& s);
+// The scene's lights for the reference engine, in the scene's order.
+std::vector<SoupLight> soup_lights(const scene::Scene& s);
 
 }  // namespace rc

@@ -74,8 +74,11 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
   f.hit_tri.assign(static_cast<size_t>(opt.width) * opt.height, -1);
   f.hit_t.assign(static_cast<size_t>(opt.width) * opt.height, 0.0f);
   f.hits.assign(static_cast<size_t>(opt.width) * opt.height, HitRecord{});
+  if (opt.lighting == Lighting::kScene && !g.lights.empty())
+    f.light_mask.assign(static_cast<size_t>(opt.width) * opt.height, 0);
   const uint32_t pw = (opt.width + 1) / 2, ph = (opt.height + 1) / 2;
-  std::vector<Counters> row_counters(ph);
+  std::vector<Counters> row_counters(ph), row_shadow(ph);
+  const bool lit = opt.lighting == Lighting::kScene && !g.lights.empty();
   parallel_rows(ph, opt.threads, opt.progress, "golden", [&](uint32_t py) {
     Counters& c = row_counters[py];
     std::array<Ray<T>, kPacketRays> rays;
@@ -83,13 +86,18 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
     for (uint32_t px = 0; px < pw; ++px) {
       const uint32_t mask = gen.packet(px, py, rays);
       trace_packet(g, rays, mask, hits, c);  // errors are counted in c
+      LitPacket lp;
+      if (lit) lp = shade_lit(g, rays, mask, hits, row_shadow[py]);
       for (int r = 0; r < kPacketRays; ++r) {
         if (!(mask >> r & 1)) continue;
         const size_t pix =
             static_cast<size_t>(2 * py + (static_cast<uint32_t>(r) >> 1)) * opt.width + 2 * px +
             (static_cast<uint32_t>(r) & 1u);
         const auto& h = hits[r];
-        const std::array<uint8_t, 3> rgb = h.tri >= 0 ? shade(g, rays[r], h) : opt.background;
+        const std::array<uint8_t, 3> rgb = h.tri < 0 ? opt.background
+                                           : lit     ? lp.rgb[r]
+                                                     : shade(g, rays[r], h);
+        if (lit) f.light_mask[pix] = lp.lights[r];
         std::memcpy(&f.rgb[pix * 3], rgb.data(), 3);
         f.hit_tri[pix] = h.tri;
         f.hit_t[pix] = h.tri >= 0 ? h.t.to_float() : 0.0f;
@@ -98,12 +106,21 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
     }
   });
   for (const Counters& c : row_counters) f.counters.add(c);  // in row order: same totals always
+  for (const Counters& c : row_shadow) f.shadow_counters.add(c);
   f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return f;
 }
 
 template Frame render_golden<fp24>(const Geometry<fp24>&, const RenderOptions&);
 template Frame render_golden<fp32ftz>(const Geometry<fp32ftz>&, const RenderOptions&);
+
+Lighting parse_lighting(const std::string& name) {
+  if (name == "headlight") return Lighting::kHeadlight;
+  if (name == "scene") return Lighting::kScene;
+  throw std::runtime_error("unknown lighting '" + name + "' (headlight, scene)");
+}
+
+const char* lighting_name(Lighting l) { return l == Lighting::kHeadlight ? "headlight" : "scene"; }
 
 RaySource parse_ray_source(const std::string& name) {
   if (name == "host") return RaySource::kHost;

@@ -32,7 +32,11 @@ struct Frame {
   std::vector<int32_t> hit_tri;  // -1 for a miss
   std::vector<float> hit_t;      // hit distance (0 for a miss)
   std::vector<HitRecord> hits;   // exact hit records (golden model and RTL; empty for Embree)
-  Counters counters;
+  // Scene lighting: per pixel, bit l set when light l reaches the hit (in front of the surface
+  // and unoccluded; lights 0 to 31); empty with the headlight.
+  std::vector<uint32_t> light_mask;
+  Counters counters;         // primary rays
+  Counters shadow_counters;  // shadow rays (scene lighting)
   double seconds = 0.0;
 };
 
@@ -41,6 +45,13 @@ struct Frame {
 enum class RaySource { kHost, kRayGen };
 RaySource parse_ray_source(const std::string& name);  // "host" | "raygen"; throws otherwise
 const char* ray_source_name(RaySource s);
+
+// How hits are shaded (docs/architecture.md, "Shading" and "Lighting"): the headlight (the
+// core's rule today), or the scene's lights with shadow rays (the golden model only so far; a
+// scene without lights keeps the headlight).
+enum class Lighting { kHeadlight, kScene };
+Lighting parse_lighting(const std::string& name);  // "headlight" | "scene"; throws otherwise
+const char* lighting_name(Lighting l);
 
 // The most threads a render takes (the command line's --threads bound).
 constexpr unsigned kMaxRenderThreads = 256;
@@ -52,6 +63,7 @@ struct RenderOptions {
   unsigned threads = 0;  // 0: all hardware threads; at most kMaxRenderThreads
   bool progress = true;  // progress bar on stderr for renders longer than a second
   RaySource ray_source = RaySource::kHost;
+  Lighting lighting = Lighting::kHeadlight;
 };
 
 // A generated ray as the core sees it: each component rounded to the format once.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -49,6 +50,17 @@ struct Geometry {
   std::vector<T> normal_len;            // |(B-A) x (C-A)| per triangle (shading)
   std::vector<uint32_t> material;       // material index per triangle
   std::vector<std::array<T, 3>> kd;     // diffuse colour per material
+  // Scene lighting (docs/architecture.md, "Lighting"); empty lights: the headlight.
+  std::vector<std::array<T, 3>> normal;  // unit geometric normal n / |n| per triangle
+  std::vector<std::array<T, 3>> ks;      // specular colour per material
+  std::vector<uint32_t> ns;              // Blinn-Phong exponent per material, an integer
+  struct Light {
+    bool directional = false;
+    std::array<T, 3> pos;    // point: the position; directional: the unit vector toward it
+    std::array<T, 3> color;  // colour x intensity per channel
+  };
+  std::vector<Light> lights;
+  T t_eps = T::zero();  // a shadow ray's hits need t_eps < t
 };
 
 template <class T>
@@ -103,11 +115,12 @@ struct Counters {
 // One ray against one triangle (the intersection unit's fixed operation order):
 //   o' = M (o, 1), d' = M d, each row as ((m0*x + m1*y) + m2*z) [+ m3]
 //   t = (-o'z) / d'z, u = o'x + t*d'x, v = o'y + t*d'y
-// Fills h and returns true when the hit is accepted: 0 < t, 0 <= u, 0 <= v, u + v <= 1, and
-// (t < best.t, or t == best.t and tri < best.tri).
+// Fills h and returns true when the hit is accepted: t_lo < t, 0 <= u, 0 <= v, u + v <= 1,
+// tri != exclude, and (t < best.t, or t == best.t and tri < best.tri). A primary ray has t_lo = 0
+// and no excluded triangle; a shadow ray t_lo = t_eps and the triangle it starts on.
 template <class T>
 bool intersect(const std::array<T, 12>& m, const Ray<T>& r, int32_t tri, const Hit<T>& best,
-               Hit<T>& h) {
+               Hit<T>& h, T t_lo = T::zero(), int32_t exclude = -1) {
   const auto& o = r.org;
   const auto& d = r.dir;
   const T ox = ((m[0] * o[0] + m[1] * o[1]) + m[2] * o[2]) + m[3];
@@ -120,7 +133,8 @@ bool intersect(const std::array<T, 12>& m, const Ray<T>& r, int32_t tri, const H
   const T u = ox + t * dx;
   const T v = oy + t * dy;
   const T zero = T::zero(), one = T::one();
-  if (!(lt(zero, t) && le(zero, u) && le(zero, v) && le(u + v, one))) return false;
+  if (!(lt(t_lo, t) && le(zero, u) && le(zero, v) && le(u + v, one))) return false;
+  if (tri == exclude) return false;
   if (!(lt(t, best.t) || (eq(t, best.t) && tri < best.tri))) return false;
   h.tri = tri;
   h.t = t;
@@ -184,11 +198,25 @@ StepResult<T> trav_step(T split, T org, T inv, T tmin, T tmax) {
   return {t, StepCase::kBothSplit};
 }
 
+// What a shadow packet's rays carry beside the primary rule (docs/architecture.md, "Lighting"):
+// per ray the lower bound of its hits' t, the triangle it starts on (never hit) and its initial
+// best t (the light's distance: only hits before the light occlude); and any-hit termination
+// (a ray with a hit is culled at the next pop).
+template <class T>
+struct ShadowLimits {
+  T t_lo;
+  std::array<int32_t, kPacketRays> exclude{-1, -1, -1, -1};
+  std::array<T, kPacketRays> t_hi;
+};
+
 // Traces one packet of up to four rays (valid_mask bit r set: ray r exists) through the tree.
-// Returns the error bits (0 on success). The rules are those of docs/architecture.md.
+// Returns the error bits (0 on success). The rules are those of docs/architecture.md. With
+// shadow limits (a shadow packet), each ray's best starts at {t_hi, -1} and a ray with a hit is
+// culled at the next pop.
 template <class T>
 uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
-                      uint32_t valid_mask, std::array<Hit<T>, kPacketRays>& hits, Counters& c) {
+                      uint32_t valid_mask, std::array<Hit<T>, kPacketRays>& hits, Counters& c,
+                      const ShadowLimits<T>* shadow = nullptr) {
   constexpr int kStackDepth = static_cast<int>(spec::kKdtreeStackDepth);
   struct Entry {
     uint32_t node, mask;
@@ -201,7 +229,7 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
   Entry cur{0, 0, {}, {}};
   for (int r = 0; r < kPacketRays; ++r) {
     hits[r] = Hit<T>{};
-    hits[r].t = T::inf();
+    hits[r].t = shadow ? shadow->t_hi[r] : T::inf();
     if (!(valid_mask >> r & 1)) continue;
     ++c.rays;
     const RaySetup<T> su = setup_ray(rays[r], g.bounds);
@@ -275,7 +303,11 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
           if (!(cur.mask >> r & 1)) continue;
           ++c.triangle_tests;
           Hit<T> h;
-          if (intersect(g.tris[tri], rays[r], static_cast<int32_t>(tri), hits[r], h)) hits[r] = h;
+          const bool hit =
+              shadow ? intersect(g.tris[tri], rays[r], static_cast<int32_t>(tri), hits[r], h,
+                                 shadow->t_lo, shadow->exclude[r])
+                     : intersect(g.tris[tri], rays[r], static_cast<int32_t>(tri), hits[r], h);
+          if (hit) hits[r] = h;
         }
       }
     }
@@ -284,7 +316,8 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
     cur = stack[--sp];
     ++c.stack_pops;
     for (int r = 0; r < kPacketRays; ++r)
-      if ((cur.mask >> r & 1) && !le(cur.tmin[r], hits[r].t)) cur.mask &= ~(1u << r);
+      if ((cur.mask >> r & 1) && (!le(cur.tmin[r], hits[r].t) || (shadow && hits[r].tri >= 0)))
+        cur.mask &= ~(1u << r);
     if (cur.mask == 0) ++c.culled_pops;
   }
 }
@@ -325,6 +358,197 @@ std::array<uint8_t, 3> shade(const Geometry<T>& g, const Ray<T>& r, const Hit<T>
   const T f = ambient + diffuse * c;
   const auto& kd = g.kd[g.material[h.tri]];
   return {to_u8(kd[0] * f), to_u8(kd[1] * f), to_u8(kd[2] * f)};
+}
+
+// ---- Scene lighting (docs/architecture.md, "Lighting") ----------------------------------------
+
+// The fixed-point scale of a pixel's sums: a term in [0, 1] counts as round(term * 2^fixed_bits).
+constexpr uint32_t kLightOne = 1u << spec::kLightFixedBits;
+
+// x^n for an integer n below 2^exponent_bits by square and multiply, low bit first: r = 1, b = x;
+// for bit i = 0 .. exponent_bits - 1: if bit i of n is set, r = r * b; then b = b * b.
+template <class T>
+T pow_int(T x, uint32_t n) {
+  T r = T::one(), b = x;
+  for (int i = 0; i < static_cast<int>(spec::kLightExponentBits); ++i) {
+    if (n >> i & 1u) r = r * b;
+    b = b * b;
+  }
+  return r;
+}
+
+// A term as a fixed-point integer: round_to_nearest_even(min(max(x, 0), 1) * 2^fixed_bits),
+// NaN -> 0.
+template <class T>
+uint32_t light_fixed(T x) {
+  T v = max(x, T::zero());
+  if (v.is_nan()) return 0;
+  v = min(v, T::one()) * T::from_double(static_cast<double>(kLightOne));  // exact: a power of 2
+  const double dv = v.to_double();
+  double ip = static_cast<double>(static_cast<uint32_t>(dv));
+  const double frac = dv - ip;
+  if (frac > 0.5 || (frac == 0.5 && (static_cast<uint32_t>(ip) & 1u))) ip += 1.0;
+  return static_cast<uint32_t>(ip);
+}
+
+// A channel's byte from its sum: round_to_nearest_even(min(sum, 2^fixed_bits) * 255 /
+// 2^fixed_bits).
+inline uint8_t light_byte(uint64_t sum) {
+  constexpr int kBits = static_cast<int>(spec::kLightFixedBits);
+  const uint64_t x = (sum < kLightOne ? sum : kLightOne) * 255u;
+  uint64_t q = x >> kBits;
+  const uint64_t rem = x & (kLightOne - 1u), half = kLightOne / 2;
+  if (rem > half || (rem == half && (q & 1u))) ++q;
+  return static_cast<uint8_t>(q);
+}
+
+// A shadow ray's hits need t > t_eps = |root box diagonal| * kShadowEpsScale (double, rounded
+// once), and never its own triangle.
+constexpr double kShadowEpsScale =
+    1.0 / static_cast<double>(uint64_t{1} << spec::kLightShadowEpsLog2);
+constexpr uint32_t kLightExponentMax = (1u << spec::kLightExponentBits) - 1;
+
+// The Blinn-Phong exponent of a material's Ns: round_to_nearest_even(Ns), clamped to
+// [0, 2^exponent_bits - 1] (NaN: 0).
+template <class T>
+uint32_t light_exponent(T ns) {
+  const double d = ns.to_double();
+  if (!(d > 0.0)) return 0;  // NaN too
+  if (d >= kLightExponentMax) return kLightExponentMax;
+  return static_cast<uint32_t>(std::nearbyint(d));  // the default rounding: nearest, ties even
+}
+
+// One light as seen from one primary hit: the shadow ray (present when the light is in front of
+// the surface) and the light's contribution per channel if nothing occludes it.
+template <class T>
+struct LightSample {
+  bool present = false;                   // cos > 0: a shadow ray is traced
+  Ray<T> ray;                             // from the hit point toward the light (unit direction)
+  T t_hi;                                 // the light's distance (+inf for a directional light)
+  std::array<uint32_t, 3> term{0, 0, 0};  // fixed-point contribution per channel
+};
+
+// The hit point, the facing unit normal and the unit view direction of a primary hit.
+template <class T>
+struct SurfacePoint {
+  std::array<T, 3> p, n, v;
+  uint32_t material;
+};
+
+template <class T>
+SurfacePoint<T> surface_point(const Geometry<T>& g, const Ray<T>& r, const Hit<T>& h) {
+  SurfacePoint<T> sp;
+  // The ray travels along n when d'z > 0 (d'z = (d . n) / |n|^2): the facing normal is -n.
+  const bool back = lt(T::zero(), h.dz);
+  for (int a = 0; a < 3; ++a) {
+    sp.p[a] = r.org[a] + h.t * r.dir[a];
+    const T n = g.normal[h.tri][a];
+    sp.n[a] = back ? -n : n;
+    sp.v[a] = r.dir[a] * r.inv_len;
+  }
+  sp.material = g.material[h.tri];
+  return sp;
+}
+
+template <class T>
+T dot3(const std::array<T, 3>& a, const std::array<T, 3>& b) {
+  return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
+}
+
+// The ambient term per channel: Kd * ambient, fixed point.
+template <class T>
+std::array<uint32_t, 3> ambient_terms(const Geometry<T>& g, uint32_t material) {
+  const T ambient = shade_ambient<T>();
+  const auto& kd = g.kd[material];
+  return {light_fixed(kd[0] * ambient), light_fixed(kd[1] * ambient), light_fixed(kd[2] * ambient)};
+}
+
+template <class T>
+LightSample<T> light_sample(const Geometry<T>& g, const SurfacePoint<T>& sp,
+                            const typename Geometry<T>::Light& l) {
+  LightSample<T> s;
+  std::array<T, 3> lh;
+  if (l.directional) {
+    lh = l.pos;
+    s.t_hi = T::inf();
+  } else {
+    std::array<T, 3> d;
+    for (int a = 0; a < 3; ++a) d[a] = l.pos[a] - sp.p[a];
+    const T dist2 = dot3(d, d);
+    const T inv_dist = T::one() / sqrt(dist2);
+    for (int a = 0; a < 3; ++a) lh[a] = d[a] * inv_dist;
+    s.t_hi = dist2 * inv_dist;
+  }
+  const T cos_l = dot3(sp.n, lh);
+  if (!lt(T::zero(), cos_l)) return s;  // behind the surface (or NaN): no ray, no light
+  s.present = true;
+  s.ray.org = sp.p;
+  s.ray.dir = lh;
+  s.ray.inv_len = T::one();
+  std::array<T, 3> hv;
+  for (int a = 0; a < 3; ++a) hv[a] = lh[a] - sp.v[a];
+  const T nh = dot3(sp.n, hv) * (T::one() / sqrt(dot3(hv, hv)));
+  const T spec = lt(T::zero(), nh) ? pow_int(nh, g.ns[sp.material]) : T::zero();
+  const auto& kd = g.kd[sp.material];
+  const auto& ks = g.ks[sp.material];
+  for (int c = 0; c < 3; ++c) s.term[c] = light_fixed((kd[c] * cos_l + ks[c] * spec) * l.color[c]);
+  return s;
+}
+
+// A primary packet shaded with the scene's lights (docs/architecture.md, "Lighting"): per hit
+// the ambient term; then per light, in the image's order, one shadow packet of the hits that face
+// it (traced with any-hit termination, counted in shadow), whose unoccluded rays add the light's
+// term. A shadow packet that ends with an error lets no light through. Misses get {0, 0, 0} here
+// (the caller gives them the background).
+struct LitPacket {
+  std::array<std::array<uint8_t, 3>, kPacketRays> rgb{};
+  std::array<uint32_t, kPacketRays> lights{};  // bit l: light l reaches the ray's hit
+};
+
+template <class T>
+LitPacket shade_lit(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
+                    uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits, Counters& shadow) {
+  LitPacket out;
+  std::array<SurfacePoint<T>, kPacketRays> sp;
+  std::array<std::array<uint64_t, 3>, kPacketRays> sum{};
+  uint32_t hit_mask = 0;
+  for (int r = 0; r < kPacketRays; ++r) {
+    if (!(mask >> r & 1) || hits[r].tri < 0) continue;
+    hit_mask |= 1u << r;
+    sp[r] = surface_point(g, rays[r], hits[r]);
+    const auto amb = ambient_terms(g, sp[r].material);
+    for (int c = 0; c < 3; ++c) sum[r][c] = amb[c];
+  }
+  for (size_t li = 0; li < g.lights.size(); ++li) {
+    const auto& l = g.lights[li];
+    ShadowLimits<T> lim;
+    lim.t_lo = g.t_eps;
+    std::array<Ray<T>, kPacketRays> srays;
+    std::array<LightSample<T>, kPacketRays> ls;
+    uint32_t smask = 0;
+    for (int r = 0; r < kPacketRays; ++r) {
+      lim.t_hi[r] = T::inf();
+      if (!(hit_mask >> r & 1)) continue;
+      ls[r] = light_sample(g, sp[r], l);
+      if (!ls[r].present) continue;
+      srays[r] = ls[r].ray;
+      lim.exclude[r] = hits[r].tri;
+      lim.t_hi[r] = ls[r].t_hi;
+      smask |= 1u << r;
+    }
+    if (smask == 0) continue;
+    std::array<Hit<T>, kPacketRays> shits;
+    const uint32_t err = trace_packet(g, srays, smask, shits, shadow, &lim);
+    for (int r = 0; r < kPacketRays; ++r) {
+      if (!(smask >> r & 1) || err != 0 || shits[r].tri >= 0) continue;
+      for (int c = 0; c < 3; ++c) sum[r][c] += ls[r].term[c];
+      if (li < 32) out.lights[r] |= 1u << li;
+    }
+  }
+  for (int r = 0; r < kPacketRays; ++r)
+    if (hit_mask >> r & 1)
+      for (int c = 0; c < 3; ++c) out.rgb[r][c] = light_byte(sum[r][c]);
+  return out;
 }
 
 }  // namespace rc
