@@ -18,6 +18,7 @@
 #include "embree_engine.hpp"
 #include "fp.hpp"
 #include "geometry.hpp"
+#include "hand_geometry.hpp"
 #include "image.hpp"
 #include "job.hpp"
 #include "trace.hpp"
@@ -30,39 +31,11 @@ using scene::KdNode;
 
 const std::string kRoot = RC_SOURCE_DIR;
 
-T f(double x) { return T::from_double(x); }
-
-// Appends triangle (a, b, c) as the compiler stores it, with its unit normal; returns its index.
-uint32_t add_tri(Geometry<T>& g, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
-  std::array<double, 12> m;
-  EXPECT_TRUE(scene::unit_triangle_transform(a, b, c, &m));
-  std::array<T, 12> mt;
-  for (int k = 0; k < 12; ++k) mt[k] = f(m[k]);
-  g.tris.push_back(mt);
-  const glm::dvec3 n = glm::cross(b - a, c - a);
-  g.normal_len.push_back(f(glm::length(n)));
-  const glm::dvec3 u = n / glm::length(n);
-  g.normal.push_back({f(u.x), f(u.y), f(u.z)});
-  g.material.push_back(0);
-  return static_cast<uint32_t>(g.tris.size() - 1);
-}
-
-// A square at depth z spanning [x0, x1] x [y0, y1], facing +z.
-std::array<uint32_t, 2> add_quad(Geometry<T>& g, double x0, double x1, double y0, double y1,
-                                 double z) {
-  return {add_tri(g, {x0, y0, z}, {x1, y0, z}, {x0, y1, z}),
-          add_tri(g, {x1, y0, z}, {x1, y1, z}, {x0, y1, z})};
-}
-
-Ray<T> ray(glm::dvec3 o, glm::dvec3 d) {
-  Ray<T> r;
-  for (int a = 0; a < 3; ++a) {
-    r.org[a] = f(o[a]);
-    r.dir[a] = f(d[a]);
-  }
-  r.inv_len = f(1.0 / glm::length(d));
-  return r;
-}
+using hand::add_quad;
+using hand::add_tri;
+using hand::f;
+using hand::ray;
+using hand::set_box;
 
 void set_material(Geometry<T>& g, double kd, double ks, uint32_t ns) {
   g.kd = {{f(kd), f(kd), f(kd)}};
@@ -89,10 +62,7 @@ struct ShadowScene {
     occluder = add_quad(g, 1, 2, -4, 4, -3);
     g.nodes = {KdNode::leaf(0, 4).raw};
     g.lists = {floor[0], floor[1], occluder[0], occluder[1]};
-    for (int a = 0; a < 3; ++a) {
-      g.bounds[a] = f(-8);
-      g.bounds[a + 3] = f(8);
-    }
+    set_box(g, -8, 8);
     g.t_eps = f(16.0 * std::sqrt(3.0) / 4096.0);
     set_material(g, 0.5, 0.0, 0);
     g.lights = {point_light({4, 0, -1}, 1.0)};
@@ -223,10 +193,7 @@ TEST(GoldenLight, ShadowRayEndsAtTheFirstOccluder) {
   g.nodes = {KdNode::inner(0, 1, f(0.0).bits()).raw, KdNode::leaf(0, 2).raw,
              KdNode::leaf(2, 2).raw};
   g.lists = {left[0], left[1], right[0], right[1]};
-  for (int a = 0; a < 3; ++a) {
-    g.bounds[a] = f(-8);
-    g.bounds[a + 3] = f(8);
-  }
+  set_box(g, -8, 8);
   const Ray<T> r = ray({-0.5, 0.25, 0}, {0.125, 0, -1});
   std::array<Hit<T>, kPacketRays> hits;
   Counters closest;
