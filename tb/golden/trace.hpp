@@ -116,11 +116,12 @@ struct Counters {
 //   o' = M (o, 1), d' = M d, each row as ((m0*x + m1*y) + m2*z) [+ m3]
 //   t = (-o'z) / d'z, u = o'x + t*d'x, v = o'y + t*d'y
 // Fills h and returns true when the hit is accepted: t_lo < t, 0 <= u, 0 <= v, u + v <= 1,
-// tri != exclude, and (t < best.t, or t == best.t and tri < best.tri). A primary ray has t_lo = 0
-// and no excluded triangle; a shadow ray t_lo = t_eps and the triangle it starts on.
+// tri != *exclude (when exclude is given), and (t < best.t, or t == best.t and tri < best.tri). A
+// primary ray has t_lo = 0 and no excluded triangle; a shadow ray t_lo = t_eps and the triangle it
+// starts on.
 template <class T>
 bool intersect(const std::array<T, 12>& m, const Ray<T>& r, int32_t tri, const Hit<T>& best,
-               Hit<T>& h, T t_lo = T::zero(), int32_t exclude = -1) {
+               Hit<T>& h, T t_lo = T::zero(), const int32_t* exclude = nullptr) {
   const auto& o = r.org;
   const auto& d = r.dir;
   const T ox = ((m[0] * o[0] + m[1] * o[1]) + m[2] * o[2]) + m[3];
@@ -134,7 +135,7 @@ bool intersect(const std::array<T, 12>& m, const Ray<T>& r, int32_t tri, const H
   const T v = oy + t * dy;
   const T zero = T::zero(), one = T::one();
   if (!(lt(t_lo, t) && le(zero, u) && le(zero, v) && le(u + v, one))) return false;
-  if (tri == exclude) return false;
+  if (exclude != nullptr && tri == *exclude) return false;
   if (!(lt(t, best.t) || (eq(t, best.t) && tri < best.tri))) return false;
   h.tri = tri;
   h.t = t;
@@ -305,7 +306,7 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
           Hit<T> h;
           const bool hit =
               shadow ? intersect(g.tris[tri], rays[r], static_cast<int32_t>(tri), hits[r], h,
-                                 shadow->t_lo, shadow->exclude[r])
+                                 shadow->t_lo, &shadow->exclude[r])
                      : intersect(g.tris[tri], rays[r], static_cast<int32_t>(tri), hits[r], h);
           if (hit) hits[r] = h;
         }
