@@ -304,11 +304,9 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
           if (!(cur.mask >> r & 1)) continue;
           ++c.triangle_tests;
           Hit<T> h;
-          const bool hit =
-              shadow ? intersect(g.tris[tri], rays[r], static_cast<int32_t>(tri), hits[r], h,
-                                 shadow->t_lo, &shadow->exclude[r])
-                     : intersect(g.tris[tri], rays[r], static_cast<int32_t>(tri), hits[r], h);
-          if (hit) hits[r] = h;
+          if (intersect(g.tris[tri], rays[r], static_cast<int32_t>(tri), hits[r], h,
+                        shadow ? shadow->t_lo : T::zero(), shadow ? &shadow->exclude[r] : nullptr))
+            hits[r] = h;
         }
       }
     }
@@ -326,18 +324,24 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
 // Headlight shading of one hit (docs/architecture.md, "Shading"):
 //   c = min(|(d'z * nlen) * inv_len|, 1), f = ambient + (1 - ambient) * c, channel = Kd * f,
 //   byte = round_to_nearest_even(min(max(channel, 0), 1) * 255).
+// min(max(x, 0), 1) * scale (format operations) rounded to the nearest integer, ties to even
+// (exact: the format's value as a double); a NaN gives 0. to_u8 (scale 255) and the lighting's
+// fixed point (scale 2^fixed_bits) share it.
 template <class T>
-uint8_t to_u8(T x) {
-  const T zero = T::zero(), one = T::one();
-  T v = max(x, zero);
+uint32_t clamp_scale_round(T x, T scale) {
+  T v = max(x, T::zero());
   if (v.is_nan()) return 0;
-  v = min(v, one) * T::from_double(255.0);
-  // v is in [0, 255]: round to the nearest integer, ties to even (exact: the format's double).
+  v = min(v, T::one()) * scale;
   const double dv = v.to_double();
   double ip = static_cast<double>(static_cast<uint32_t>(dv));
   const double frac = dv - ip;
   if (frac > 0.5 || (frac == 0.5 && (static_cast<uint32_t>(ip) & 1u))) ip += 1.0;
-  return static_cast<uint8_t>(ip);
+  return static_cast<uint32_t>(ip);
+}
+
+template <class T>
+uint8_t to_u8(T x) {
+  return static_cast<uint8_t>(clamp_scale_round(x, T::from_double(255.0)));
 }
 
 // The shading constants as format values: ambient and 1 - ambient, each rounded from double once
@@ -382,14 +386,7 @@ T pow_int(T x, uint32_t n) {
 // NaN -> 0.
 template <class T>
 uint32_t light_fixed(T x) {
-  T v = max(x, T::zero());
-  if (v.is_nan()) return 0;
-  v = min(v, T::one()) * T::from_double(static_cast<double>(kLightOne));  // exact: a power of 2
-  const double dv = v.to_double();
-  double ip = static_cast<double>(static_cast<uint32_t>(dv));
-  const double frac = dv - ip;
-  if (frac > 0.5 || (frac == 0.5 && (static_cast<uint32_t>(ip) & 1u))) ip += 1.0;
-  return static_cast<uint32_t>(ip);
+  return clamp_scale_round(x, T::from_double(static_cast<double>(kLightOne)));  // exact scale
 }
 
 // A channel's byte from its sum: round_to_nearest_even(min(sum, 2^fixed_bits) * 255 /
