@@ -6,17 +6,22 @@
 // - Triangle port responses (rc_core's tri_rsp_*, tag = the list entry's pool tag): taken through
 //   a one-entry skid buffer (tri_rsp_ready_o is the buffer's emptiness, a flip-flop) into the
 //   issue register, with the tag's thread, rays and triangle index read from the list unit's tag
-//   pool (tp_*); the tag is then freed (free_*). A failed read (error response) raises bad
-//   address for its thread (err_*) and finishes its entry (fin_te_*).
+//   pool (tp_*, always at the port's tag: a response waiting in the skid buffer keeps what the
+//   read gave when it arrived; a tag's entry does not change until the tag is freed); the tag is
+//   then freed (free_*). A failed read (error response) raises bad address for its thread
+//   (err_*) and finishes its entry (fin_te_*).
 // - Tests: from the issue register one ray per IsectInterval cycles (the intersection unit's
 //   rate), lowest ray first: the ray's origin and direction (rc_ray_store, per {thread, ray}) and
 //   its best hit (t and triangle, the hit store's copy for this unit) are read from block RAMs,
-//   the ray's hit bit (this unit's copy of the hit bits, rc_hit_bits) is sampled at the same
-//   edge (rc_bit_read: the multiplexer split by a register) (the best hit is +inf and triangle -1
-//   without it; a bit and word sampled together are the same commit's, or the word is newer and
-//   the bit older, which only lets through a test the write-back rejects), and two cycles later
-//   the test enters rc_isect_unit, which is then always ready (its results are always taken,
-//   and the tests are spaced by its interval).
+//   and two cycles later the test enters rc_isect_unit, which is then always ready (its results
+//   are always taken, and the tests are spaced by its interval). The best counts only if the
+//   ray's hit bit (this unit's copy of the hit bits, rc_hit_bits) was set at the read's edge
+//   (else +inf and triangle -1: rc_isect_unit's best_valid_i). The bit is read a cycle later,
+//   from the index registered with the test (rc_bit_read: the multiplexer split by a register),
+//   and a commit to the same ray in the read's cycle, which that later sample sees and the
+//   read's edge does not, clears it: so it is the bit the read's edge sampled. A bit and word
+//   sampled together are the same commit's, or the word is newer and the bit older, which only
+//   lets through a test the write-back rejects.
 // - Results (res_*): every test's result, one per cycle at most, never refused: {thread, ray, last
 //   (its list entry's last ray), triangle, hit, t, u, v, dz}.
 // - Counters: perf_test_o, a test issued.
@@ -86,7 +91,6 @@ module rc_isect_issue #(
   // Parameters //
   ////////////////
 
-  localparam logic [W-1:0] FpInf = {1'b0, {rc_pkg::Fp24ExpW{1'b1}}, {rc_pkg::Fp24FracW{1'b0}}};
   localparam int unsigned  IuTagW = ThrW + 3;
 
   if (Threads < 1 || IsectInterval < 1 || IsectInterval > 2 || LtW > TagW) begin : g_param_check
@@ -101,9 +105,10 @@ module rc_isect_issue #(
   logic            tk_v_q, tk_err_q, src_v, src_err, rsp_take;
   logic [LtW-1:0]  tk_tag_q, src_tag;
   logic [12*W-1:0] tk_data_q, src_data, ti_m_q;
-  logic [ThrW-1:0] ti_thr_q;
-  logic [31:0]     ti_tri_q;
-  logic [3:0]      ti_rem_q, ti_rem_next;
+  logic [ThrW-1:0] tk_thr_q, src_thr, ti_thr_q;
+  logic [31:0]     tk_tri_q, src_tri, ti_tri_q;
+  logic [3:0]      tk_mask_q, src_mask, ti_rem_q, ti_rem_next;
+  logic [2:0]      tk_first_q, src_first;
   logic [1:0]      ti_r;
 
   assign tri_rsp_ready_o = ~tk_v_q;
@@ -112,7 +117,13 @@ module rc_isect_issue #(
   assign src_tag         = tk_v_q ? tk_tag_q : tri_rsp_tag_i[LtW-1:0];
   assign src_err         = tk_v_q ? tk_err_q : tri_rsp_error_i;
   assign src_data        = tk_v_q ? tk_data_q : tri_rsp_data_i;
-  assign tp_tag_o        = src_tag;
+  // The pool is read at the port's tag, not the selected one, so its read does not wait for the
+  // skid buffer's select (run 63 seeds 1 and 4: tk_v_q and ti_last_q through the read into ti_r).
+  assign tp_tag_o        = tri_rsp_tag_i[LtW-1:0];
+  assign src_thr         = tk_v_q ? tk_thr_q : tp_thr_i;
+  assign src_mask        = tk_v_q ? tk_mask_q : tp_mask_i;
+  assign src_first       = tk_v_q ? tk_first_q : tp_first_i;
+  assign src_tri         = tk_v_q ? tk_tri_q : tp_tri_i;
   // The register takes the next response in the cycle its last ray goes (or its error does).
   assign ti_free         = ~ti_v_q | ti_err_q | (is_take & ti_last_q);
   assign ti_load         = src_v & ti_free;
@@ -132,13 +143,17 @@ module rc_isect_issue #(
   end
   always_ff @(posedge clk_i) begin
     if (rsp_take) begin
-      tk_tag_q  <= tri_rsp_tag_i[LtW-1:0];
-      tk_err_q  <= tri_rsp_error_i;
-      tk_data_q <= tri_rsp_data_i;
+      tk_tag_q   <= tri_rsp_tag_i[LtW-1:0];
+      tk_err_q   <= tri_rsp_error_i;
+      tk_data_q  <= tri_rsp_data_i;
+      tk_thr_q   <= tp_thr_i;
+      tk_mask_q  <= tp_mask_i;
+      tk_first_q <= tp_first_i;
+      tk_tri_q   <= tp_tri_i;
     end
     if (ti_load) begin
-      ti_thr_q <= tp_thr_i;
-      ti_tri_q <= tp_tri_i;
+      ti_thr_q <= src_thr;
+      ti_tri_q <= src_tri;
       ti_m_q   <= src_data;
     end
   end
@@ -147,25 +162,20 @@ module rc_isect_issue #(
   // loaded with the triangle (from the pool's {one ray only, lowest ray}) and updated at each
   // test.
   assign ti_rem_next = ti_rem_q & (ti_rem_q - 4'd1);
-  // ti_r_d and ti_thr_d are the next values of ti_r and ti_thr_q, which the hit bits' read also
-  // registers in copies of its own (below).
-  logic [1:0]      ti_r_d;
-  logic [ThrW-1:0] ti_thr_d;
-  assign ti_r_d   = ti_load ? tp_first_i[1:0] : is_take ? rc_pkg::ray_lowest(ti_rem_next) : ti_r;
-  assign ti_thr_d = ti_load ? tp_thr_i : ti_thr_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       ti_rem_q  <= '0;
       ti_last_q <= 1'b0;
       ti_r      <= '0;
     end else begin
-      ti_r <= ti_r_d;
       if (ti_load) begin
-        ti_rem_q  <= tp_mask_i;
-        ti_last_q <= tp_first_i[2];
+        ti_rem_q  <= src_mask;
+        ti_last_q <= src_first[2];
+        ti_r      <= src_first[1:0];
       end else if (is_take) begin
         ti_rem_q  <= ti_rem_next;
         ti_last_q <= (ti_rem_next & (ti_rem_next - 4'd1)) == 4'd0;
+        ti_r      <= rc_pkg::ray_lowest(ti_rem_next);
       end
     end
   end
@@ -193,8 +203,8 @@ module rc_isect_issue #(
   //////////////////////////////
 
   // The ray's words and best hit are read at is_take (block RAMs with a fabric register), the hit
-  // bit sampled at the same edge; the test's own values travel beside them (i1, i2).
-  logic              i1_v_q, i2_v_q, i1_hit, i2_hit_q, i1_last_q, i2_last_q;
+  // bit a cycle later (i1); the test's own values travel beside them (i1, i2).
+  logic              i1_v_q, i2_v_q, i2_hit, i1_last_q, i2_last_q, i1_hs_q, i2_hs_q;
   logic [ThrW-1:0]   i1_thr_q, i2_thr_q;
   logic [1:0]        i1_r_q, i2_r_q;
   logic [31:0]       i1_tri_q, i2_tri_q;
@@ -202,9 +212,8 @@ module rc_isect_issue #(
 
   // The hit bits: this unit's copy of rc_thread_ctrl's (rc_hit_bits, the same events), placed
   // beside the unit, read by {thread, ray} through a multiplexer split by a register
-  // (rc_bit_read: within each group of 8 threads before the edge, between the groups after it;
-  // 8, not 16 as in the hit store, because ti_r comes from the issue's own update logic): the bit
-  // the edge at is_take sampled, given in i1.
+  // (rc_bit_read: within each group of 8 threads before the edge, between the groups after it):
+  // sampled at the edge that ends i1, given in i2.
   logic [Threads*4-1:0] hit_bits;
   rc_hit_bits #(
     .Threads(Threads)
@@ -217,19 +226,21 @@ module rc_isect_issue #(
     .hit_ray_i  (hitset_ray_i),
     .hit_o      (hit_bits)
   );
-  // The read's index {thread, ray}: one kept copy of {ti_thr_q, ti_r} per group of the read,
-  // placed beside its group (ti_r alone drove every group, the ray store's address and its own
-  // update logic: run 61 seed 2, ti_r -> u_hit_read.grp_q, -1.44 ns).
+  // The read's index {thread, ray}: i1's, one kept copy per group of the read, placed beside
+  // its group, loaded from the registers ti_thr_q and ti_r. (ti_r alone drove every group at
+  // is_take: run 61 seed 2, ti_r -> u_hit_read.grp_q, -1.44 ns; copies loaded with ti_r's next
+  // value fanned the tag pool's read out to every group: run 63 seeds 1 and 4, -1.91 ns.)
   localparam int unsigned HitIdxW   = ThrW + 2;
   localparam int unsigned HitGroups = (HitIdxW > 5) ? (1 << (HitIdxW - 5)) : 1;
   logic [HitGroups*HitIdxW-1:0] hit_idx_q;
+  logic                         hit_bit;
   rc_reg_copies #(
     .Width (HitIdxW),
     .Copies(HitGroups)
   ) u_hit_idx (
     .clk_i,
     .rst_ni,
-    .d_i ({ti_thr_d, ti_r_d}),
+    .d_i ({ti_thr_q, ti_r}),
     .q_o (hit_idx_q)
   );
   rc_bit_read #(
@@ -241,8 +252,12 @@ module rc_isect_issue #(
     .clk_i,
     .bits_i(hit_bits),
     .idx_i (hit_idx_q),
-    .bit_o (i1_hit)
+    .bit_o (hit_bit)
   );
+  // The bit i1's edge sampled also holds the commits of the test's read cycle (is_take's); a
+  // commit to the test's own ray there (i1_hs_q) set it after the read's edge, so it reads 0.
+  // Nothing clears a bit while its thread has a test in flight (NoClearInFlight_A).
+  assign i2_hit = hit_bit & ~i2_hs_q;
 
   assign ray_re_o  = is_take;
   assign ray_thr_o = ti_thr_q;
@@ -268,7 +283,8 @@ module rc_isect_issue #(
     i2_last_q <= i1_last_q;
     i2_tri_q  <= i1_tri_q;
     i2_m_q    <= i1_m_q;
-    i2_hit_q  <= i1_hit;
+    i1_hs_q   <= hitset_valid_i & (hitset_thr_i == ti_thr_q) & (hitset_ray_i == ti_r);
+    i2_hs_q   <= i1_hs_q;
   end
 
   logic              iu_ready, ix_v, ix_hit;
@@ -292,8 +308,9 @@ module rc_isect_issue #(
     .m_i       (i2_m_q),
     .org_i     (ray_orgdir_i[0 +: 3*W]),
     .dir_i     (ray_orgdir_i[3*W +: 3*W]),
-    .best_t_i  (i2_hit_q ? best_i[W-1:0] : FpInf),
-    .best_tri_i(i2_hit_q ? best_i[W +: 32] : 32'hffff_ffff),
+    .best_t_i    (best_i[W-1:0]),
+    .best_tri_i  (best_i[W +: 32]),
+    .best_valid_i(i2_hit),
     .valid_o   (ix_v),
     .ready_i   (1'b1),
     .tag_o     (ix_tag),
@@ -327,12 +344,12 @@ module rc_isect_issue #(
   assign fin_te_valid_o = ti_err_take;
   assign fin_te_thr_o   = ti_thr_q;
   assign load_valid_o   = ti_load;
-  assign load_thr_o     = tp_thr_i;
+  assign load_thr_o     = src_thr;
   assign perf_test_o    = is_take;
   assign wd_rsp_o       = tri_rsp_valid_i & tri_rsp_ready_o;
 
   logic unused_bits;
-  assign unused_bits = ^{tri_rsp_tag_i, tp_first_i};
+  assign unused_bits = ^{tri_rsp_tag_i};
 
 `ifndef SYNTHESIS
   logic checks_on;
@@ -352,9 +369,13 @@ module rc_isect_issue #(
   TiRem_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             ti_v_q && !ti_err_q |-> ti_r == rc_pkg::ray_lowest(ti_rem_q) &&
                             ti_last_q == ((ti_rem_q & (ti_rem_q - 4'd1)) == 4'd0));
-  // The hit read's index copies hold the current {thread, ray} (their next values are the same).
+  // The hit read's index copies hold i1's {thread, ray}.
   HitIdx_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                            ti_v_q |-> hit_idx_q[HitIdxW-1:0] == {ti_thr_q, ti_r});
+                            i1_v_q |-> hit_idx_q[HitIdxW-1:0] == {i1_thr_q, i1_r_q});
+  // No packet is taken into a thread with a test being read: its hit bits, which the bit read a
+  // cycle after the word relies on, only rise while the test is in flight.
+  NoClearInFlight_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                      is_take |-> !acc_hot_i[ti_thr_q]);
 `endif
 
 endmodule

@@ -9,11 +9,14 @@
 //     u  = o'x + t * d'x         v = o'y + t * d'y
 //     hit_o = lt(0, t) && le(0, u) && le(0, v) && le(u + v, 1.0)
 //             && (lt(t, best_t) || (eq(t, best_t) && $signed(tri) < $signed(best_tri)))
+//   with (best_t, best_tri) = (best_t_i, best_tri_i) when best_valid_i is 1, and (+inf, -1), no
+//   hit yet, when it is 0 (best_t_i and best_tri_i are then not read).
 //   t_o, u_o, v_o, dz_o (= d'z) are the computed values whether or not the hit is accepted;
 //   intersect() records them only for an accepted hit. tri_o and tag_o are tri_i and tag_i.
 // - Packing: a word is {sign, exp[ExpW-1:0], frac[FracW-1:0]}, W = 1 + ExpW + FracW bits.
 //   m_i[k*W +: W] = m_k (k = 0..11, row-major 3x4), org_i/dir_i[c*W +: W] = component c (x, y, z).
-//   tri_i and best_tri_i are 32-bit two's complement (best_tri_i = -1: no hit yet).
+//   tri_i and best_tri_i are 32-bit two's complement. best_valid_i travels with the pair and
+//   selects the best only at the far end (beside the compares), so a caller may derive it late.
 // - Handshake: valid_i/ready_o at the input, valid_o/ready_i at the output, AXI-style (a transfer
 //   happens on a clock edge where valid and ready are both 1). valid_o never depends on ready_i,
 //   ready_o depends only on registered state, and once valid_o is 1 it stays 1 with all outputs
@@ -83,6 +86,7 @@ module rc_isect_unit #(
   input  logic [3*(1+ExpW+FracW)-1:0]  dir_i,
   input  logic [ExpW+FracW:0]          best_t_i,
   input  logic [31:0]                  best_tri_i,
+  input  logic                         best_valid_i,
   // Output
   output logic                         valid_o,
   input  logic                         ready_i,
@@ -113,6 +117,7 @@ module rc_isect_unit #(
                                      CmpStages;
 
   localparam logic [W-1:0] Zero = '0;
+  localparam logic [W-1:0] Inf  = {1'b0, {ExpW{1'b1}}, {FracW{1'b0}}};
   // 1.0: sign 0, exponent field = bias, fraction 0.
   localparam logic [W-1:0] One  = {1'b0, ExpW'((1 << (ExpW - 1)) - 1), {FracW{1'b0}}};
 
@@ -133,10 +138,11 @@ module rc_isect_unit #(
   // Transforms: o' and d'     //
   ///////////////////////////////
 
-  // Side band carried through the o' transform's tag: {tag, tri, best_t, best_tri}. The
-  // triangle order (tri < best_tri, a 32-bit compare) is taken at the far end, between two
-  // registers, so it is not on the path from the core's best-hit read into the unit.
-  localparam int unsigned SbW = TagW + 32 + W + 32;
+  // Side band carried through the o' transform's tag: {tag, tri, best_t, best_tri, best_valid}.
+  // The best's select and the triangle order (tri < best_tri, a 32-bit compare) are taken at the
+  // far end, between two registers, so neither is on the path from the core's best-hit read into
+  // the unit.
+  localparam int unsigned SbW = TagW + 32 + W + 32 + 1;
   logic [SbW-1:0] sb_x;
   logic           xo_valid;
   logic [3*W-1:0] xo, xd;
@@ -199,7 +205,7 @@ module rc_isect_unit #(
         org_q <= org_i;
       end
       if (!hold_q[4]) begin
-        sb_q <= {tag_i, tri_i, best_t_i, best_tri_i};
+        sb_q <= {tag_i, tri_i, best_t_i, best_tri_i, best_valid_i};
       end
     end
     assign issue_busy = pass1_q;
@@ -260,7 +266,7 @@ module rc_isect_unit #(
     ) u_xform_org (
       .clk_i, .rst_ni,
       .valid_i(in_fire), .ready_o(xo_ready), .m_i, .v_i({3{org_i}}), .translate_i(1'b1),
-      .tag_i({tag_i, tri_i, best_t_i, best_tri_i}),
+      .tag_i({tag_i, tri_i, best_t_i, best_tri_i, best_valid_i}),
       .valid_o(xo_valid), .ready_i(1'b1), .r_o(xo), .tag_o(sb_x)
     );
 
@@ -307,14 +313,17 @@ module rc_isect_unit #(
     d1_q <= (d1_q << D1W) | (DivStages * D1W)'({sb_x, xd, xo[2*W-1:0]});
   end
 
-  logic [W-1:0]    ox1, oy1, dx1, dy1, dz1, best_t1;
+  logic [W-1:0]    ox1, oy1, dx1, dy1, dz1, best_t1, best_t1_in;
   logic [TagW-1:0] tag1;
   logic [31:0]     tri_s1;
-  logic [31:0]     best_tri1;
-  logic            tri_lt1;
-  assign {tag1, tri_s1, best_t1, best_tri1, dz1, dy1, dx1, oy1, ox1} =
+  logic [31:0]     best_tri1, best_tri1_in;
+  logic            best_v1, tri_lt1;
+  assign {tag1, tri_s1, best_t1_in, best_tri1_in, best_v1, dz1, dy1, dx1, oy1, ox1} =
       d1_q[DivStages*D1W-1 -: D1W];
-  assign tri_lt1 = $signed(tri_s1) < $signed(best_tri1);
+  // The best: the given one, or +inf and -1 (no hit yet).
+  assign best_t1   = best_v1 ? best_t1_in : Inf;
+  assign best_tri1 = best_v1 ? best_tri1_in : 32'hffff_ffff;
+  assign tri_lt1   = $signed(tri_s1) < $signed(best_tri1);
 
   ///////////////////////////////////////////////
   // t*d'x, t*d'y and the comparisons on t     //

@@ -189,6 +189,7 @@ struct Case {
   int32_t tri = 0;
   T best_t = T::inf();
   int32_t best_tri = -1;
+  bool best_valid = true;  // false: no hit yet, whatever best_t and best_tri hold
 };
 
 struct IsectExp {
@@ -204,9 +205,9 @@ IsectExp golden(const Case& c) {
   IsectExp e;
   e.c = c;
   const Ray<T> r{c.org, c.dir, T::from_double(1.0)};
-  Hit<T> best;
-  best.t = c.best_t;
-  best.tri = c.best_tri;
+  Hit<T> best;  // {+inf, -1} without a valid best
+  best.t = c.best_valid ? c.best_t : T::inf();
+  best.tri = c.best_valid ? c.best_tri : -1;
   e.hit = intersect(c.m, r, c.tri, best, e.h);
   Hit<T> open;
   open.t = T::inf();
@@ -221,7 +222,7 @@ std::string case_text(const Case& c) {
   s += " org=(" + c.org[0].hex() + "," + c.org[1].hex() + "," + c.org[2].hex() + ")";
   s += " dir=(" + c.dir[0].hex() + "," + c.dir[1].hex() + "," + c.dir[2].hex() + ")";
   s += " tri=" + std::to_string(c.tri) + " best=(" + c.best_t.hex() + "," +
-       std::to_string(c.best_tri) + ")";
+       std::to_string(c.best_tri) + (c.best_valid ? ")" : ", not valid)");
   return s;
 }
 
@@ -239,6 +240,7 @@ struct IsectDrv {
     }
     d.best_t_i = c.best_t.bits();
     d.best_tri_i = static_cast<uint32_t>(c.best_tri);
+    d.best_valid_i = c.best_valid;
   }
   template <class V>
   static uint32_t tag(const V& d) {
@@ -328,9 +330,13 @@ class CaseGen {
     c.tri = static_cast<int32_t>(rng_() % 1000000);
     if (pick(50) == 0) c.tri = static_cast<int32_t>(static_cast<uint32_t>(rng_()));
     const uint32_t bk = pick(100);
-    if (bk < 65) {
+    if (bk < 50) {
       c.best_t = T::inf();
       c.best_tri = -1;
+    } else if (bk < 65) {  // no valid best: the words hold anything, and must not count
+      c.best_valid = false;
+      c.best_t = pick(2) ? T::from_double(uni(0, 1)) : special();
+      c.best_tri = static_cast<int32_t>(static_cast<uint32_t>(rng_()));
     } else if (bk < 85) {  // best = this hit's own t: the index tie break decides
       const IsectExp e = golden(c);
       c.best_t = e.vals_known ? e.vals.t : T::from_double(uni(0, 10));
@@ -410,6 +416,9 @@ std::vector<Case> directed_cases() {
               d.best_t = e.vals.t;
               d.best_tri = bt;
               out.push_back(d);
+              // The same words without a valid best: the hit counts whatever they hold.
+              d.best_valid = false;
+              out.push_back(d);
             }
         }
   // Hits at u = -0 exactly: o'x = -0 and d'x = -0 (every term of row 0 a signed zero), so the -0
@@ -460,12 +469,18 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
                uint64_t want_latency) {
   Stream<V, IsectDrv> s(seed, 8, 20, 64);
   uint64_t hits = 0, vals = 0, n = 0, ties = 0, tie_hits = 0, closer_only = 0, on_one = 0;
-  uint64_t t_nan = 0, t_inf = 0;
+  uint64_t t_nan = 0, t_inf = 0, unsure = 0;
   const auto push = [&](const Case& c) {
     const IsectExp e = golden(c);
     hits += e.hit;
     vals += e.hit || e.vals_known;
-    if (e.vals_known && eq(e.vals.t, c.best_t)) ++ties, tie_hits += e.hit;
+    if (c.best_valid && e.vals_known && eq(e.vals.t, c.best_t)) ++ties, tie_hits += e.hit;
+    // Hits whose best words, were they valid, would reject them.
+    if (!c.best_valid && e.hit) {
+      Case v = c;
+      v.best_valid = true;
+      unsure += !golden(v).hit;
+    }
     closer_only += e.vals_known && !e.hit;
     on_one += e.hit && eq(e.h.u + e.h.v, T::from_double(1.0));
     // t itself, for every case (the same expressions as intersect(), for the coverage count only)
@@ -497,16 +512,19 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
       static_cast<unsigned long long>(s.not_ready_cycles()));
   std::printf(
       "  coverage: %llu ties t == best.t (%llu accepted by the index), %llu rejected only "
-      "as not closer, %llu accepted with u + v == 1, %llu with t NaN, %llu with t inf\n",
+      "as not closer, %llu accepted with u + v == 1, %llu with t NaN, %llu with t inf, %llu "
+      "accepted only because best_valid_i = 0\n",
       static_cast<unsigned long long>(ties), static_cast<unsigned long long>(tie_hits),
       static_cast<unsigned long long>(closer_only), static_cast<unsigned long long>(on_one),
-      static_cast<unsigned long long>(t_nan), static_cast<unsigned long long>(t_inf));
+      static_cast<unsigned long long>(t_nan), static_cast<unsigned long long>(t_inf),
+      static_cast<unsigned long long>(unsure));
   EXPECT_EQ(s.mismatches(), 0u);
   EXPECT_EQ(s.checked_out(), n);
   EXPECT_GT(s.not_ready_cycles(), 0u) << "the stalls never filled the credit window";
   EXPECT_GT(ties, 0u);
   EXPECT_GT(tie_hits, 0u);
   EXPECT_GT(on_one, 0u);
+  EXPECT_GT(unsure, 0u) << "no case where best_valid_i = 0 had to override the best's words";
 
   // Latency: one input into an empty unit, ready_i high.
   Case c = g.next();
