@@ -26,9 +26,10 @@
 //   segment 1: align the smaller significand (guard, round and sticky bits)          | cut K2
 //   segment 2: significand add or subtract                                            | cut K3
 //   segment 3: leading-zero count                                                     | cut K4
-//   segment 4: normalise, round/sticky bits, round-to-nearest-even decision, exponent  | cut K5
-//   segment 5: the result's kinds (rc_fp_round_kinds), round increment, pack
-//              (rc_fp_round_pack)                                                     | output
+//   segment 4: normalise, round/sticky bits, round-to-nearest-even decision, exponent
+//              and exponent + 1                                                       | cut K5
+//   segment 5: the result's kinds (rc_fp_round_kinds), the fraction's round increment,
+//              pack (rc_fp_round_pack)                                                | output
 //   Stages - 1 cuts (at most five) are enabled in the order K3, K1, K5, K4, K2: Stages = 1 is one
 //   combinational segment with a register at the output, Stages = 2 cuts after the add,
 //   Stages = 3 also before the align shifter, Stages = 4 also before the rounding increment,
@@ -292,6 +293,11 @@ module rc_fp_add #(
   // The leading one of the sum sits at bit SumW-2 for an unshifted big operand, so the result
   // exponent is big_exp + 1 - lz (rc_fp_round_pack adds one when rounding carries out).
   assign exp_norm_s4 = ExW'(big_exp_s4) + ExW'(1) - ExW'(lz_s4);
+  // The exponent if the rounding carries out, made here beside exp_norm (the same operands), so
+  // the rounding cycle only selects it (run 63 seeds 1 and 3: a traversal subtracter's last
+  // segment, the increment and the kinds behind the carry, -0.80 ns).
+  logic [ExpW-1:0] exp_inc_s4;
+  assign exp_inc_s4  = ExpW'(ExW'(big_exp_s4) + ExW'(2) - ExW'(lz_s4));
   // An exact zero sum has exp_norm <= big_exp - 5 < all ones and no rounding carry, so gating
   // the overflow with zero_i inside rc_fp_round_pack changes nothing here.
   assign sum_zero_s4 = lz_s4 == LzW'(SumW);
@@ -315,17 +321,17 @@ module rc_fp_add #(
   // Cut K5     //
   ////////////////
 
-  localparam int unsigned K5W = FlW + 1 + ExpW + FracW + 1 + 5;
+  localparam int unsigned K5W = FlW + 1 + 2 * ExpW + FracW + 1 + 5;
   logic [K5W-1:0]   k5_d, k5_q;
   logic             spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5;
-  logic [ExpW-1:0]  exp_s5;
+  logic [ExpW-1:0]  exp_s5, exp_inc_s5;
   logic [FracW-1:0] frac_s5;
   logic             round_up_s5, man_ones_s5;
   logic [1:0]       uflow_s5, oflow_s5;
   logic [W-1:0]     res_d;
 
-  assign k5_d = {fl_s4, sum_zero_s4, exp_norm_s4[ExpW-1:0], man_s4[FracW-1:0], round_up_s4,
-                 man_ones_s4, uflow_s4, oflow_s4};
+  assign k5_d = {fl_s4, sum_zero_s4, exp_norm_s4[ExpW-1:0], exp_inc_s4, man_s4[FracW-1:0],
+                 round_up_s4, man_ones_s4, uflow_s4, oflow_s4};
   if (CutK5) begin : g_cut_k5
     always_ff @(posedge clk_i) begin
       k5_q <= k5_d;
@@ -333,8 +339,8 @@ module rc_fp_add #(
   end else begin : g_no_cut_k5
     assign k5_q = k5_d;
   end
-  assign {spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5, exp_s5, frac_s5,
-          round_up_s5, man_ones_s5, uflow_s5, oflow_s5} = k5_q;
+  assign {spec_nan_s5, spec_inf_s5, big_sign_s5, zero_sign_s5, sum_zero_s5, exp_s5, exp_inc_s5,
+          frac_s5, round_up_s5, man_ones_s5, uflow_s5, oflow_s5} = k5_q;
 
   //////////////////////////////////////////////////////
   // Segment 5: kinds, round increment, pack          //
@@ -365,6 +371,7 @@ module rc_fp_add #(
     .sign_i    (res_sign_s5),
     .man_ones_i(man_ones_s5),
     .exp_i     (exp_s5),
+    .exp_inc_i (exp_inc_s5),
     .frac_i    (frac_s5),
     .round_up_i(round_up_s5),
     .res_o     (res_d)

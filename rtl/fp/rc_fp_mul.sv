@@ -256,6 +256,7 @@ module rc_fp_mul #(
     .sign_i    (sign_s3),
     .man_ones_i(man_ones_s3),
     .exp_i     (exp_s3),
+    .exp_inc_i (exp_s3 + ExpW'(1)),
     .frac_i    (frac_s3),
     .round_up_i(round_up_s3),
     .res_o     (res_d)

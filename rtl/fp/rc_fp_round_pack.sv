@@ -9,14 +9,16 @@
 //     FpKindNan    -> {sign_i, all ones, 1 then zeros}   (the canonical NaN; sign_i is 0)
 //     FpKindInf    -> {sign_i, all ones, 0}              (+-infinity)
 //     FpKindZero   -> {sign_i, 0, 0}                     (signed zero)
-//     FpKindNormal -> {sign_i, exp_i + carry, frac_i + round_up_i}
+//     FpKindNormal -> {sign_i, carry ? exp_inc_i : exp_i, frac_i + round_up_i}
 //   The fraction's increment wraps to 0 exactly when the rounding carries out, the right
 //   fraction then. The carry is the AND of the increment and the all-ones flag, not the end of
 //   the increment's carry chain, and it only selects between two kinds decided without it.
 // - Parameters: ExpW exponent bits (>= 2), FracW fraction bits (>= 1).
 // - Inputs: kind_i and sign_i are rc_fp_round_kinds' outputs, man_ones_i rc_fp_round_flags'
 //   all-ones flag, for the same result; exp_i is the low ExpW bits of its exponent before the
-//   carry, frac_i the significand without the hidden bit, round_up_i the rounding increment.
+//   carry, exp_inc_i the low ExpW bits of that exponent plus one (the caller's: the adder makes
+//   it before its cut, beside the exponent), frac_i the significand without the hidden bit,
+//   round_up_i the rounding increment.
 //   The units register all of them in front of this module (the adder registers the flags and
 //   makes the kinds after its cut), so the word's select starts a LUT from flip-flops.
 // - Illegal input: none beyond rc_fp_round_flags'; with FpKindNormal, exp_i + carry is the
@@ -29,6 +31,7 @@ module rc_fp_round_pack #(
   input  logic                                  sign_i,
   input  logic                                  man_ones_i,
   input  logic [ExpW-1:0]                       exp_i,
+  input  logic [ExpW-1:0]                       exp_inc_i,
   input  logic [FracW-1:0]                      frac_i,
   input  logic                                  round_up_i,
   output logic [ExpW+FracW:0]                   res_o
@@ -49,7 +52,7 @@ module rc_fp_round_pack #(
   assign carry        = round_up_i & man_ones_i;
   assign kind         = carry ? kind_i[KW +: KW] : kind_i[0 +: KW];
   assign frac_rounded = frac_i + FracW'(round_up_i);
-  assign exp_field    = carry ? exp_i + ExpW'(1) : exp_i;
+  assign exp_field    = carry ? exp_inc_i : exp_i;
 
   always_comb begin
     case (kind)

@@ -320,6 +320,7 @@ module rc_fp_sqrt #(
     .sign_i    (sign_f),
     .man_ones_i(man_ones_f),
     .exp_i     (exp_f),
+    .exp_inc_i (exp_f + ExpW'(1)),
     .frac_i    (frac_f),
     .round_up_i(round_up_f),
     .res_o     (res_d)
