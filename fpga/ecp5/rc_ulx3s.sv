@@ -116,25 +116,31 @@ module rc_ulx3s #(
   // Reset //
   ///////////
 
-  logic [1:0] rst_sync_q;
-  logic       rst_n;
+  logic [1:0] rst_sync_q;  // active high: 1 while in reset
+  logic       rst, rst_n;
 
   always_ff @(posedge clk or negedge pll_lock) begin
     if (!pll_lock) begin
-      rst_sync_q <= 2'b00;
+      rst_sync_q <= 2'b11;
     end else begin
-      rst_sync_q <= {rst_sync_q[0], 1'b1};
+      rst_sync_q <= {rst_sync_q[0], 1'b0};
     end
   end
 
   // The synchronised reset reaches every flip-flop with an asynchronous reset (tens of thousands
   // of them): on fabric routing its release missed the clock period by over a nanosecond (run
   // 19), so it goes through a global buffer (DCCA) onto a global network, as the clock does.
+  // The global carries it active high, the polarity of the ECP5 flip-flops' LSR pins: Yosys
+  // makes an active-low reset active high with an inverter LUT, which, after the buffer, sent
+  // the whole fan-out over fabric routing again (run 63 seed 5: 7.23 ns from that LUT to a
+  // set-up FIFO's LSR). Here the design's rst_n is that inverter's input inverted, so the two
+  // cancel and every LSR pin is on the global network.
   DCCA u_rst_buf (
     .CLKI(rst_sync_q[1]),
     .CE  (1'b1),
-    .CLKO(rst_n)
+    .CLKO(rst)
   );
+  assign rst_n = ~rst;
 
   ////////////////////////////////
   // FIRE1: start a frame       //
