@@ -188,10 +188,10 @@ FPGA_SCENE ?= scenes/cornell.json
 FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
-# nextpnr's seed: 2, the seed that closed HEAD's netlist (run 63, 1ce67e5's RTL, docs/history.md:
-# 103.90 MHz; seeds 1, 3, 4 and 5 at 96.28, 92.55, 83.97 and 98.89 MHz; docs/fpga.md, "Status"). Seed 1 closed run 59's netlist (101.83 MHz), seed 3 run 53's (100.19 MHz), seed 4 the
-# core before the unit redesign (runs 36 to 36s5). Every netlist needs its own sweep.
-FPGA_SEED  ?= 2
+# nextpnr's seed: 4, the seed that closed HEAD's netlist (run 64, 3bbae45's RTL: 103.22 MHz; seeds
+# 1, 2, 3 and 5 at 93.36, 99.76, 94.10 and 76.35 MHz; docs/fpga.md, "Status"). Earlier netlists
+# closed on other seeds (docs/history.md). Every netlist needs its own sweep.
+FPGA_SEED  ?= 4
 ECPPACK    ?= yowasp-ecppack
 # The board build synthesises with YoWASP's Yosys (PyPI, a 2026 Yosys whose synth_ecp5 maps with
 # abc9, by delay): Debian's Yosys 0.23 maps the same RTL into 19% more LUT4s and slower paths
