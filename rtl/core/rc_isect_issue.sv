@@ -19,9 +19,10 @@
 //   (else +inf and triangle -1: rc_isect_unit's best_valid_i). The bit is read a cycle later,
 //   from the index registered with the test (rc_bit_read: the multiplexer split by a register),
 //   and a commit to the same ray in the read's cycle, which that later sample sees and the
-//   read's edge does not, clears it: so it is the bit the read's edge sampled. A bit and word
-//   sampled together are the same commit's, or the word is newer and the bit older, which only
-//   lets through a test the write-back rejects.
+//   read's edge does not, clears it. So the bit is never newer than the word: it is the bit the
+//   read's edge sampled, or 0 where that commit came (the test then goes without a best). A bit
+//   and word sampled together are the same commit's, or the word is newer and the bit older;
+//   either only lets through a test the write-back rejects (it compares again).
 // - Results (res_*): every test's result, one per cycle at most, never refused: {thread, ray, last
 //   (its list entry's last ray), triangle, hit, t, u, v, dz}.
 // - Counters: perf_test_o, a test issued.
@@ -254,9 +255,10 @@ module rc_isect_issue #(
     .idx_i (hit_idx_q),
     .bit_o (hit_bit)
   );
-  // The bit i1's edge sampled also holds the commits of the test's read cycle (is_take's); a
-  // commit to the test's own ray there (i1_hs_q) set it after the read's edge, so it reads 0.
-  // Nothing clears a bit while its thread has a test in flight (NoClearInFlight_A).
+  // The bit i1's edge sampled also holds the commits of the test's read cycle (is_take's); with
+  // a commit to the test's own ray there (i1_hs_q) the word may be older than the bit, so the
+  // bit reads 0 (no best: at worst a test the write-back rejects). Nothing clears a bit while
+  // its thread has a test in flight (NoClearInFlight_A).
   assign i2_hit = hit_bit & ~i2_hs_q;
 
   assign ray_re_o  = is_take;
