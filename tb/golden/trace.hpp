@@ -321,9 +321,6 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
   }
 }
 
-// Headlight shading of one hit (docs/architecture.md, "Shading"):
-//   c = min(|(d'z * nlen) * inv_len|, 1), f = ambient + (1 - ambient) * c, channel = Kd * f,
-//   byte = round_to_nearest_even(min(max(channel, 0), 1) * 255).
 // min(max(x, 0), 1) * scale (format operations) rounded to the nearest integer, ties to even
 // (exact: the format's value as a double); a NaN gives 0. to_u8 (scale 255) and the lighting's
 // fixed point (scale 2^fixed_bits) share it.
@@ -339,6 +336,9 @@ uint32_t clamp_scale_round(T x, T scale) {
   return static_cast<uint32_t>(ip);
 }
 
+// Headlight shading of one hit (docs/architecture.md, "Shading"):
+//   c = min(|(d'z * nlen) * inv_len|, 1), f = ambient + (1 - ambient) * c, channel = Kd * f,
+//   byte = round_to_nearest_even(min(max(channel, 0), 1) * 255)    (to_u8, below).
 template <class T>
 uint8_t to_u8(T x) {
   return static_cast<uint8_t>(clamp_scale_round(x, T::from_double(255.0)));

@@ -469,7 +469,7 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
                uint64_t want_latency) {
   Stream<V, IsectDrv> s(seed, 8, 20, 64);
   uint64_t hits = 0, vals = 0, n = 0, ties = 0, tie_hits = 0, closer_only = 0, on_one = 0;
-  uint64_t t_nan = 0, t_inf = 0, unsure = 0;
+  uint64_t t_nan = 0, t_inf = 0, no_best_hits = 0;
   const auto push = [&](const Case& c) {
     const IsectExp e = golden(c);
     hits += e.hit;
@@ -479,7 +479,7 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
     if (!c.best_valid && e.hit) {
       Case v = c;
       v.best_valid = true;
-      unsure += !golden(v).hit;
+      no_best_hits += !golden(v).hit;
     }
     closer_only += e.vals_known && !e.hit;
     on_one += e.hit && eq(e.h.u + e.h.v, T::from_double(1.0));
@@ -517,14 +517,14 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
       static_cast<unsigned long long>(ties), static_cast<unsigned long long>(tie_hits),
       static_cast<unsigned long long>(closer_only), static_cast<unsigned long long>(on_one),
       static_cast<unsigned long long>(t_nan), static_cast<unsigned long long>(t_inf),
-      static_cast<unsigned long long>(unsure));
+      static_cast<unsigned long long>(no_best_hits));
   EXPECT_EQ(s.mismatches(), 0u);
   EXPECT_EQ(s.checked_out(), n);
   EXPECT_GT(s.not_ready_cycles(), 0u) << "the stalls never filled the credit window";
   EXPECT_GT(ties, 0u);
   EXPECT_GT(tie_hits, 0u);
   EXPECT_GT(on_one, 0u);
-  EXPECT_GT(unsure, 0u) << "no case where best_valid_i = 0 had to override the best's words";
+  EXPECT_GT(no_best_hits, 0u) << "no case where best_valid_i = 0 had to override the best's words";
 
   // Latency: one input into an empty unit, ready_i high.
   Case c = g.next();
