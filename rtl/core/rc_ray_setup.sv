@@ -20,9 +20,11 @@
 // - Structure: one arithmetic slice, time-multiplexed over the three axes: a taken ray waits in
 //   an input register and its axes enter the slice (one divider, two subtracters, two
 //   multipliers, the min/max compare, the chain's max and min compares) x first, then y, then z,
-//   one axis every CmpStages cycles (1 at the defaults); the chain step of an axis takes the
-//   interval straight from the step registers' results for the axis before it, and the step of
-//   x selects max(+0, b) and min(+inf, b) behind the compares instead. A skipped axis is selected
+//   one axis every CmpStages cycles (1, which the chain needs); the chain step of an axis takes
+//   the interval straight from the step registers' results for the axis before it, and the step
+//   of x selects max(+0, b) and min(+inf, b) behind the compares instead. The chain's compares
+//   are made a cycle ahead, with the next axis' t0 and t1 against both intervals the next step
+//   may find, so its loop is a select. A skipped axis is selected
 //   behind the compares too: its step keeps the interval (or restarts it at [+0, +inf] for x),
 //   so the chain's bits are those above.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
@@ -85,6 +87,11 @@ module rc_ray_setup #(
   end
   localparam int unsigned MulStages = rc_pkg::FpStagesMul;
   localparam int unsigned CmpStages = rc_pkg::FpStagesCmp;
+  // The chain makes its compares a cycle ahead, from the next axis at u_mm's input: one axis a
+  // cycle, one step register.
+  if (CmpStages != 1) begin : g_cmp_check
+    $error("rc_ray_setup: the chain needs CmpStages = 1 (docs/spec.toml [fp_stages])");
+  end
   // One axis enters the slice every AxisGap cycles: an axis' chain step needs the result of the
   // previous axis' step, which the compares give CmpStages cycles after their inputs.
   localparam int unsigned AxisGap   = CmpStages;
@@ -361,10 +368,11 @@ module rc_ray_setup #(
 
   // The step of an axis: tmin = max(tmin, min(t0, t1)), tmax = min(tmax, max(t0, t1)), where the
   // interval entering it is the previous axis' result, which leaves the step's registers in this
-  // very cycle, or [+0, +inf] for x. The loop is a compare and a two-way select per bit: the
-  // compares are written here (no rc_fp_cmp: its min/max canonicalise, handle NaN and select
-  // behind the compare, which on this loop Yosys merged with the restart and the skip into two
-  // L6MUX levels per bit: run 57 seed 2, u_mm -> u_step_out, -3.24 ns), and everything else, the
+  // very cycle, or [+0, +inf] for x. The loop is a two-way select per bit behind a choice made
+  // from registered compares (below); the compares are written here (no rc_fp_cmp: its min/max
+  // canonicalise, handle NaN and select behind the compare, which on this loop Yosys merged with
+  // the restart and the skip into two L6MUX levels per bit: run 57 seed 2, u_mm -> u_step_out,
+  // -3.24 ns), and everything else, the
   // restart (x: max(+0, b), min(+inf, b)) and the skip flag (t0 or t1 NaN: the axis does not
   // restrict the ray; y and z keep the interval, x takes [+0, +inf]), is folded beside the loop
   // into the other operand and the select's condition. Neither flag sits in front of the
@@ -394,13 +402,36 @@ module rc_ray_setup #(
   endfunction
 
   // Each step register takes either its own value (a) or the other operand (b): b is formed from
-  // registers beside the loop, so behind the compare each bit is a two-way select.
+  // registers beside the loop, so behind the choice each bit is a two-way select.
   //   tmin: max(tmin, mn) takes mn when tmin is below it; x takes max(+0, mn), a skipped x +0,
   //         a skipped y or z keeps tmin.
   //   tmax: min(tmax, mx) takes mx unless tmax is below it; x takes mx, a skipped x +inf, a
   //         skipped y or z keeps tmax.
-  assign take_max = below(max_res, mn);
-  assign take_min = ~below(min_res, mx);
+  // The compares are made a cycle ahead, off the loop (run 64 seeds 1 and 2: the loop's compare
+  // and select, u_step_out -> u_step_out, -0.71 ns): in the step of axis k, the next axis' t0
+  // and t1 are at u_mm's input, and the interval the next step will find is one of two values
+  // known now, this step's b (if it picks) or the step registers' value (if it keeps). On the
+  // chain's operands (canonical, never NaN when they count: FirstOperand_A, MulOperand_A)
+  // min(t0, t1) is above a exactly when t0 and t1 both are, and max(t0, t1) is not above a
+  // exactly when neither is. So both candidates are compared with t0 and t1 here, registered,
+  // and the next step's choice selects by this step's pick: the loop is a select of registered
+  // flags and the data select. A step whose axis is x, or skipped, does not read them.
+  logic nx_max_b, nx_max_a, nx_min_b, nx_min_a;  // the next step's takes, this step picking b / a
+  logic nx_max_b_q, nx_max_a_q, nx_min_b_q, nx_min_a_q, pick_max_q, pick_min_q;
+  assign nx_max_b = below(b_max, t0) & below(b_max, t1);
+  assign nx_max_a = below(max_res, t0) & below(max_res, t1);
+  assign nx_min_b = ~below(b_min, t0) & ~below(b_min, t1);
+  assign nx_min_a = ~below(min_res, t0) & ~below(min_res, t1);
+  always_ff @(posedge clk_i) begin
+    nx_max_b_q <= nx_max_b;
+    nx_max_a_q <= nx_max_a;
+    nx_min_b_q <= nx_min_b;
+    nx_min_a_q <= nx_min_a;
+    pick_max_q <= pick_max;
+    pick_min_q <= pick_min;
+  end
+  assign take_max = pick_max_q ? nx_max_b_q : nx_max_a_q;
+  assign take_min = pick_min_q ? nx_min_b_q : nx_min_a_q;
   assign pick_max = ch_first | (~skip & take_max);
   assign pick_min = ch_first | (~skip & take_min);
   assign b_max    = {W{~(ch_first & (skip | mn[W-1]))}} & mn;  // +0 is all zeros
@@ -526,6 +557,17 @@ module rc_ray_setup #(
                                                          !is_nan(mx[W-2:0]) &&
                                                          (|mn[W-2 -: ExpW] || ~|mn[FracW-1:0]) &&
                                                          (|mx[W-2 -: ExpW] || ~|mx[FracW-1:0]));
+  // The multipliers' results are canonical when not NaN, so the compares made a cycle ahead on t0
+  // and t1 order them as u_mm does.
+  MulOperand_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 mul_valid && !skip_m |-> (|t0[W-2 -: ExpW] || ~|t0[FracW-1:0]) &&
+                                                          (|t1[W-2 -: ExpW] || ~|t1[FracW-1:0]));
+  // The takes made a cycle ahead are the compares of the step registers with min(t0, t1) and
+  // max(t0, t1) wherever a step reads them (an axis other than x, not skipped).
+  TakeAhead_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                mm_valid && !ch_first && !skip |->
+                                    take_max == below(max_res, mn) &&
+                                    take_min == !below(min_res, mx));
   // tmin starts at +0 and only grows through non-NaN values, so it is never NaN.
   TminNotNan_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  le_valid |-> !is_nan(tmin_f[W-2:0]) && !is_nan(tmax_f[W-2:0]));
