@@ -23,8 +23,9 @@
 // - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1).
 //   FracW >= 7 and ExpW >= 4 are required (255.0 in rc_fp_to_u8); anything else is illegal and
 //   stops elaboration.
-// - Quasi-static inputs: ambient_i and diffuse_i are sampled where they are used, not at the
-//   taking edge; they may change only while no operation is in flight (checked by an assertion).
+// - Quasi-static inputs: ambient_i and diffuse_i are registered beside their users and read
+//   there, not at the taking edge; they may change only while no operation is in flight (checked
+//   by an assertion).
 // - Illegal input: none for the data inputs; every bit pattern is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (valid chains, FIFO
 //   pointers and credit count); data registers have no reset.
@@ -167,6 +168,16 @@ module rc_shade_unit #(
   logic         dc_valid, f_valid;
   logic [W-1:0] dc, f;
 
+  // The constants registered beside their users: they come from the board's register file or the
+  // core's ports, across the chip (run 65 seed 1: regs_q -> u_add_ambient.k1_q, -0.49 ns). They
+  // change only with nothing in flight (ConstantsQuasiStatic_A), and a hit taken in the cycle of
+  // a change reaches them many cycles later, so a cycle's delay changes no result.
+  logic [W-1:0] ambient_q, diffuse_q;
+  always_ff @(posedge clk_i) begin
+    ambient_q <= ambient_i;
+    diffuse_q <= diffuse_i;
+  end
+
   rc_fp_mul #(
     .ExpW  (ExpW),
     .FracW (FracW),
@@ -175,7 +186,7 @@ module rc_shade_unit #(
     .clk_i,
     .rst_ni,
     .valid_i(c_valid),
-    .a_i    (diffuse_i),
+    .a_i    (diffuse_q),
     .b_i    (c),
     .valid_o(dc_valid),
     .res_o  (dc)
@@ -190,7 +201,7 @@ module rc_shade_unit #(
     .rst_ni,
     .valid_i(dc_valid),
     .sub_i  (1'b0),
-    .a_i    (ambient_i),
+    .a_i    (ambient_q),
     .b_i    (dc),
     .valid_o(f_valid),
     .res_o  (f)
