@@ -299,7 +299,8 @@ module rc_isect_issue #(
     .FracW      (rc_pkg::Fp24FracW),
     .TagW        (IuTagW),
     .SharedXform (IsectInterval == 2),
-    .Backpressure(1'b0)   // the write-back takes every result at once
+    .Backpressure(1'b0),  // the write-back takes every result at once
+    .Shadow      (1'b0)   // primary rays only, so far
   ) u_isect (
     .clk_i,
     .rst_ni,
@@ -313,6 +314,11 @@ module rc_isect_issue #(
     .best_t_i    (best_i[W-1:0]),
     .best_tri_i  (best_i[W +: 32]),
     .best_valid_i(i2_hit),
+    // Primary rays only, so far (docs/architecture.md, "Lighting": the core does not trace shadow
+    // rays yet).
+    .shadow_i    (1'b0),
+    .excl_i      (1'b0),
+    .t_eps_i     ('0),
     .valid_o   (ix_v),
     .ready_i   (1'b1),
     .tag_o     (ix_tag),

@@ -7,16 +7,20 @@
 //     o' = M (org, 1)  (rc_xform_unit, translate = 1)    d' = M dir  (rc_xform_unit, translate = 0)
 //     t  = (-o'z) / d'z          (negate = flip the sign bit)
 //     u  = o'x + t * d'x         v = o'y + t * d'y
-//     hit_o = lt(0, t) && le(0, u) && le(0, v) && le(u + v, 1.0)
+//     hit_o = lt(t_lo, t) && le(0, u) && le(0, v) && le(u + v, 1.0) && !excl_i
 //             && (lt(t, best_t) || (eq(t, best_t) && $signed(tri) < $signed(best_tri)))
 //   with (best_t, best_tri) = (best_t_i, best_tri_i) when best_valid_i is 1, and (+inf, -1), no
-//   hit yet, when it is 0 (best_t_i and best_tri_i are then not read).
+//   hit yet, when it is 0 (best_t_i and best_tri_i are then not read); t_lo = t_eps_i for a
+//   shadow ray's pair (shadow_i) and 0 otherwise; excl_i marks the triangle a shadow ray starts
+//   on (the caller's compare), which is never its hit.
 //   t_o, u_o, v_o, dz_o (= d'z) are the computed values whether or not the hit is accepted;
 //   intersect() records them only for an accepted hit. tri_o and tag_o are tri_i and tag_i.
 // - Packing: a word is {sign, exp[ExpW-1:0], frac[FracW-1:0]}, W = 1 + ExpW + FracW bits.
 //   m_i[k*W +: W] = m_k (k = 0..11, row-major 3x4), org_i/dir_i[c*W +: W] = component c (x, y, z).
-//   tri_i and best_tri_i are 32-bit two's complement. best_valid_i travels with the pair and
-//   selects the best only at the far end (beside the compares), so a caller may derive it late.
+//   tri_i and best_tri_i are 32-bit two's complement. best_valid_i, shadow_i and excl_i travel
+//   with the pair and are used only at the far end (beside the compares), so a caller may derive
+//   them late. t_eps_i is not carried: it is read when the pair's t reaches the compares, so it
+//   must hold its value while any shadow pair is in flight (a frame's constant).
 // - Handshake: valid_i/ready_o at the input, valid_o/ready_i at the output, AXI-style (a transfer
 //   happens on a clock edge where valid and ready are both 1). valid_o never depends on ready_i,
 //   ready_o depends only on registered state, and once valid_o is 1 it stays 1 with all outputs
@@ -41,7 +45,9 @@
 //   instances; SharedXform: 1 (default) = one transform unit for d' then o' (9 multipliers and
 //   9 adders fewer, about 7,000 ECP5 LUT4 sites: docs/history.md), 0 = two transform units;
 //   Backpressure: 1 (default) = the output FIFO and credits above, 0 = ready_i is always 1 (a
-//   consumer that takes every result at once): one output register, the same latency.
+//   consumer that takes every result at once): one output register, the same latency;
+//   Shadow: 1 (default) = shadow_i, excl_i and t_eps_i as above, 0 = primary rays only (those
+//   inputs ignored, as if 0: no logic for them).
 // - Illegal input: none; every bit pattern of every input is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (valid pipelines, FIFO
 //   pointers and counters); data registers have no reset.
@@ -52,8 +58,8 @@
 //   0   o' and d' transforms start (two rc_xform_unit, valid-only)
 //   22  t = -o'z / d'z starts; o'x, o'y, d'x, d'y, d'z and the side band wait DivStages
 //   33  t*d'x, t*d'y start
-//   34  lt(0,t), lt(t,best_t), eq(t,best_t) start (t from a register beside the compares)
-//   35  flag a = lt(0,t) && (lt(t,best_t) || (eq(t,best_t) && tri < best_tri))
+//   34  lt(t_lo,t), lt(t,best_t), eq(t,best_t) start (t from a register beside the compares)
+//   35  flag a = lt(t_lo,t) && !excl && (lt(t,best_t) || (eq(t,best_t) && tri < best_tri))
 //   37  u = o'x + t*d'x, v = o'y + t*d'y start
 //   43  u + v starts; le(0,u), le(0,v) start
 //   44  flag b = flag a && le(0,u) && le(0,v)
@@ -72,7 +78,10 @@ module rc_isect_unit #(
   // 1: the output FIFO and credits above; 0: ready_i must always be 1 (a consumer that takes every
   // result at once, as rc_core's write-back does): the FIFO is one output register, the same
   // latency, and ready_o follows only the shared transform's pass.
-  parameter bit          Backpressure = 1'b1
+  parameter bit          Backpressure = 1'b1,
+  // 1: a shadow ray's rules (shadow_i, excl_i, t_eps_i); 0: primary rays only, those inputs are
+  // ignored and no logic is made for them (the compare with 0 keeps its constant operand).
+  parameter bit          Shadow       = 1'b1
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -87,6 +96,9 @@ module rc_isect_unit #(
   input  logic [ExpW+FracW:0]          best_t_i,
   input  logic [31:0]                  best_tri_i,
   input  logic                         best_valid_i,
+  input  logic                         shadow_i,
+  input  logic                         excl_i,
+  input  logic [ExpW+FracW:0]          t_eps_i,
   // Output
   output logic                         valid_o,
   input  logic                         ready_i,
@@ -138,12 +150,18 @@ module rc_isect_unit #(
   // Transforms: o' and d'     //
   ///////////////////////////////
 
-  // Side band carried through the o' transform's tag: {tag, tri, best_t, best_tri, best_valid}.
-  // The best's select and the triangle order (tri < best_tri, a 32-bit compare) are taken at the
-  // far end, between two registers, so neither is on the path from the core's best-hit read into
-  // the unit.
-  localparam int unsigned SbW = TagW + 32 + W + 32 + 1;
-  logic [SbW-1:0] sb_x;
+  // Side band carried through the o' transform's tag: {tag, tri, best_t, best_tri, best_valid}
+  // and, with Shadow, {shadow, excl}. The best's select and the triangle order (tri < best_tri, a
+  // 32-bit compare) are taken at the far end, between two registers, so neither is on the path
+  // from the core's best-hit read into the unit.
+  localparam int unsigned SbBaseW = TagW + 32 + W + 32 + 1;
+  localparam int unsigned SbW     = SbBaseW + (Shadow ? 2 : 0);
+  logic [SbW-1:0] sb_in, sb_x;
+  if (Shadow) begin : g_sb_shadow
+    assign sb_in = {tag_i, tri_i, best_t_i, best_tri_i, best_valid_i, shadow_i, excl_i};
+  end else begin : g_sb_primary
+    assign sb_in = {tag_i, tri_i, best_t_i, best_tri_i, best_valid_i};
+  end
   logic           xo_valid;
   logic [3*W-1:0] xo, xd;
   logic           issue_busy;  // the input side cannot take a pair this cycle
@@ -205,7 +223,7 @@ module rc_isect_unit #(
         org_q <= org_i;
       end
       if (!hold_q[4]) begin
-        sb_q <= {tag_i, tri_i, best_t_i, best_tri_i, best_valid_i};
+        sb_q <= sb_in;
       end
     end
     assign issue_busy = pass1_q;
@@ -266,7 +284,7 @@ module rc_isect_unit #(
     ) u_xform_org (
       .clk_i, .rst_ni,
       .valid_i(in_fire), .ready_o(xo_ready), .m_i, .v_i({3{org_i}}), .translate_i(1'b1),
-      .tag_i({tag_i, tri_i, best_t_i, best_tri_i, best_valid_i}),
+      .tag_i(sb_in),
       .valid_o(xo_valid), .ready_i(1'b1), .r_o(xo), .tag_o(sb_x)
     );
 
@@ -318,8 +336,9 @@ module rc_isect_unit #(
   logic [31:0]     tri_s1;
   logic [31:0]     best_tri1, best_tri1_in;
   logic            best_v1, tri_lt1;
-  assign {tag1, tri_s1, best_t1_in, best_tri1_in, best_v1, dz1, dy1, dx1, oy1, ox1} =
-      d1_q[DivStages*D1W-1 -: D1W];
+  logic [SbW-1:0]  sb1;
+  assign {sb1, dz1, dy1, dx1, oy1, ox1} = d1_q[DivStages*D1W-1 -: D1W];
+  assign {tag1, tri_s1, best_t1_in, best_tri1_in, best_v1} = sb1[SbW-1 -: SbBaseW];
   // The best: the given one, or +inf and -1 (no hit yet).
   assign best_t1   = best_v1 ? best_t1_in : Inf;
   assign best_tri1 = best_v1 ? best_tri1_in : 32'hffff_ffff;
@@ -347,8 +366,8 @@ module rc_isect_unit #(
   // with best_t1 and the index test): flag a waits for u and v's compares anyway, so it waits a
   // cycle less below (run 52: the divider's output register, which also feeds the two
   // multipliers, through the compare with the best t, -0.89 and -1.12 ns).
-  logic [W-1:0] t_cq, best_t_cq;
-  logic         t_cvalid_q, tri_lt_cq;
+  logic [W-1:0] t_cq, best_t_cq, t_lo;
+  logic         t_cvalid_q, tri_lt_cq, keep;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       t_cvalid_q <= 1'b0;
@@ -361,9 +380,29 @@ module rc_isect_unit #(
     best_t_cq <= best_t1;
     tri_lt_cq <= tri_lt1;
   end
+  // A shadow pair's t_lo (registered beside t_cq) and its exclusion (which waits for the
+  // comparator outputs, as tri < best_tri does: 1 + CmpStages cycles).
+  if (Shadow) begin : g_shadow
+    logic               shadow1, excl1, keep1;
+    logic [W-1:0]       t_lo_cq;
+    logic [CmpStages:0] keep_q;
+    assign {shadow1, excl1} = sb1[1:0];
+    assign keep1 = ~excl1;
+    always_ff @(posedge clk_i) begin
+      t_lo_cq <= shadow1 ? t_eps_i : Zero;
+      keep_q  <= (keep_q << 1) | (CmpStages + 1)'(keep1);
+    end
+    assign t_lo = t_lo_cq;
+    assign keep = keep_q[CmpStages];
+  end else begin : g_no_shadow
+    assign t_lo = Zero;
+    assign keep = 1'b1;
+    logic unused_shadow;
+    assign unused_shadow = ^{shadow_i, excl_i, t_eps_i};
+  end
 
   rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_0_t (
-    .clk_i, .rst_ni, .valid_i(t_cvalid_q), .a_i(Zero), .b_i(t_cq), .valid_o(c0t_valid),
+    .clk_i, .rst_ni, .valid_i(t_cvalid_q), .a_i(t_lo), .b_i(t_cq), .valid_o(c0t_valid),
     .lt_o(c0t_lt), .le_o(c0t_le), .eq_o(c0t_eq), .min_o(c0t_min), .max_o(c0t_max)
   );
   rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_t_best (
@@ -377,9 +416,10 @@ module rc_isect_unit #(
     tri_lt_q <= (tri_lt_q << 1) | CmpStages'(tri_lt_cq);
   end
 
-  // Flag a: positive distance and closer than the best hit (with the index tie break).
+  // Flag a: beyond t_lo, not the excluded triangle, and closer than the best hit (with the index
+  // tie break).
   logic flag_a;
-  assign flag_a = c0t_lt & (ctb_lt | (ctb_eq & tri_lt_q[CmpStages-1]));
+  assign flag_a = c0t_lt & keep & (ctb_lt | (ctb_eq & tri_lt_q[CmpStages-1]));
 
   // Waiting for the products: {tag, tri, d'z, t, o'y, o'x}.
   localparam int unsigned D2W = TagW + 32 + 4 * W;

@@ -1,7 +1,9 @@
 // The verilated transform unit (rtl/core/rc_xform_unit.sv) and intersection unit
 // (rtl/core/rc_isect_unit.sv) against the golden model, bit for bit.
 //
-// - rc_isect_unit at fp24 against rc::intersect<fp24>() (tb/golden/trace.hpp): hit_o always;
+// - rc_isect_unit at fp24 against rc::intersect<fp24>() (tb/golden/trace.hpp), for primary and
+//   shadow rays' pairs (t_lo = t_eps, the start triangle excluded) and with and without a valid
+//   best: hit_o always;
 //   t/u/v/dz for accepted hits; and t/u/v/dz whenever the same triangle would be accepted against
 //   an empty best (intersect() with best = {+inf, INT32_MAX}), which checks the values of hits
 //   that are rejected only by the closest-hit rule.
@@ -190,6 +192,10 @@ struct Case {
   T best_t = T::inf();
   int32_t best_tri = -1;
   bool best_valid = true;  // false: no hit yet, whatever best_t and best_tri hold
+  bool shadow = false;     // a shadow ray's pair: the hit needs t_eps < t
+  bool excl = false;       // the shadow ray's start triangle: never a hit
+  // The unit's t_eps_i, a frame's constant, so one value for every case of a stream.
+  T t_eps = T::from_double(0.75);
 };
 
 struct IsectExp {
@@ -208,7 +214,8 @@ IsectExp golden(const Case& c) {
   Hit<T> best;  // {+inf, -1} without a valid best
   best.t = c.best_valid ? c.best_t : T::inf();
   best.tri = c.best_valid ? c.best_tri : -1;
-  e.hit = intersect(c.m, r, c.tri, best, e.h);
+  e.hit = intersect(c.m, r, c.tri, best, e.h, c.shadow ? c.t_eps : T::zero(),
+                    c.excl ? &c.tri : nullptr);
   Hit<T> open;
   open.t = T::inf();
   open.tri = std::numeric_limits<int32_t>::max();
@@ -222,7 +229,8 @@ std::string case_text(const Case& c) {
   s += " org=(" + c.org[0].hex() + "," + c.org[1].hex() + "," + c.org[2].hex() + ")";
   s += " dir=(" + c.dir[0].hex() + "," + c.dir[1].hex() + "," + c.dir[2].hex() + ")";
   s += " tri=" + std::to_string(c.tri) + " best=(" + c.best_t.hex() + "," +
-       std::to_string(c.best_tri) + (c.best_valid ? ")" : ", not valid)");
+       std::to_string(c.best_tri) + (c.best_valid ? ")" : ", not valid)") +
+       (c.shadow ? " shadow, t_eps=" + c.t_eps.hex() : "") + (c.excl ? " excluded" : "");
   return s;
 }
 
@@ -241,6 +249,9 @@ struct IsectDrv {
     d.best_t_i = c.best_t.bits();
     d.best_tri_i = static_cast<uint32_t>(c.best_tri);
     d.best_valid_i = c.best_valid;
+    d.shadow_i = c.shadow;
+    d.excl_i = c.excl;
+    d.t_eps_i = c.t_eps.bits();
   }
   template <class V>
   static uint32_t tag(const V& d) {
@@ -327,6 +338,8 @@ class CaseGen {
       for (auto& x : c.dir)
         if (pick(4) == 0) x = special();
     }
+    c.shadow = pick(3) == 0;
+    c.excl = pick(10) == 0;
     c.tri = static_cast<int32_t>(rng_() % 1000000);
     if (pick(50) == 0) c.tri = static_cast<int32_t>(static_cast<uint32_t>(rng_()));
     const uint32_t bk = pick(100);
@@ -433,6 +446,22 @@ std::vector<Case> directed_cases() {
     c.tri = 3;
     out.push_back(c);
   }
+  // A shadow ray's hits at t = t_eps and one ulp either side (lt(t_eps, t) decides), with and
+  // without the shadow flag and the exclusion.
+  {
+    const T te = Case{}.t_eps;
+    for (T oz : {te, T::from_bits(te.bits() - 1), T::from_bits(te.bits() + 1)})
+      for (int k = 0; k < 4; ++k) {
+        Case c;
+        c.m = unit;
+        c.org = {f(0.25), f(0.25), oz};
+        c.dir = {T::zero(), T::zero(), f(-1.0)};
+        c.tri = 11;
+        c.shadow = (k & 1) != 0;
+        c.excl = (k & 2) != 0;
+        out.push_back(c);
+      }
+  }
   // Negative triangle indices against the tie break.
   for (int32_t tri : {-5, -1, 0, std::numeric_limits<int32_t>::min()})
     for (int32_t bt : {-6, -5, -1, 0}) {
@@ -469,7 +498,7 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
                uint64_t want_latency) {
   Stream<V, IsectDrv> s(seed, 8, 20, 64);
   uint64_t hits = 0, vals = 0, n = 0, ties = 0, tie_hits = 0, closer_only = 0, on_one = 0;
-  uint64_t t_nan = 0, t_inf = 0, no_best_hits = 0;
+  uint64_t t_nan = 0, t_inf = 0, no_best_hits = 0, below_eps = 0, excluded = 0, shadow_hits = 0;
   const auto push = [&](const Case& c) {
     const IsectExp e = golden(c);
     hits += e.hit;
@@ -481,6 +510,18 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
       v.best_valid = true;
       no_best_hits += !golden(v).hit;
     }
+    // Hits that only t_eps or only the exclusion rejects, and accepted shadow hits.
+    if ((c.shadow || c.excl) && !e.hit) {
+      Case v = c;
+      v.shadow = false;
+      v.excl = false;
+      if (golden(v).hit) {
+        v.shadow = c.shadow;
+        below_eps += c.shadow && !golden(v).hit;
+        excluded += c.excl;
+      }
+    }
+    shadow_hits += c.shadow && e.hit;
     closer_only += e.vals_known && !e.hit;
     on_one += e.hit && eq(e.h.u + e.h.v, T::from_double(1.0));
     // t itself, for every case (the same expressions as intersect(), for the coverage count only)
@@ -513,11 +554,13 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
   std::printf(
       "  coverage: %llu ties t == best.t (%llu accepted by the index), %llu rejected only "
       "as not closer, %llu accepted with u + v == 1, %llu with t NaN, %llu with t inf, %llu "
-      "accepted only because best_valid_i = 0\n",
+      "accepted only because best_valid_i = 0, %llu shadow hits accepted, %llu rejected by "
+      "t_eps, %llu by the exclusion\n",
       static_cast<unsigned long long>(ties), static_cast<unsigned long long>(tie_hits),
       static_cast<unsigned long long>(closer_only), static_cast<unsigned long long>(on_one),
       static_cast<unsigned long long>(t_nan), static_cast<unsigned long long>(t_inf),
-      static_cast<unsigned long long>(no_best_hits));
+      static_cast<unsigned long long>(no_best_hits), static_cast<unsigned long long>(shadow_hits),
+      static_cast<unsigned long long>(below_eps), static_cast<unsigned long long>(excluded));
   EXPECT_EQ(s.mismatches(), 0u);
   EXPECT_EQ(s.checked_out(), n);
   EXPECT_GT(s.not_ready_cycles(), 0u) << "the stalls never filled the credit window";
@@ -525,6 +568,9 @@ void run_isect(const std::string& label, uint64_t random_cases, uint64_t seed,
   EXPECT_GT(tie_hits, 0u);
   EXPECT_GT(on_one, 0u);
   EXPECT_GT(no_best_hits, 0u) << "no case where best_valid_i = 0 had to override the best's words";
+  EXPECT_GT(shadow_hits, 0u);
+  EXPECT_GT(below_eps, 0u);
+  EXPECT_GT(excluded, 0u);
 
   // Latency: one input into an empty unit, ready_i high.
   Case c = g.next();
