@@ -112,6 +112,13 @@ struct Counters {
   }
 };
 
+// d'z = (m8*d.x + m9*d.y) + m10*d.z: the ray's direction along the triangle's normal in its unit
+// frame (intersect() below, and the lighting's facing normal from a hit record).
+template <class T>
+T transformed_dz(const std::array<T, 12>& m, const std::array<T, 3>& d) {
+  return (m[8] * d[0] + m[9] * d[1]) + m[10] * d[2];
+}
+
 // One ray against one triangle (the intersection unit's fixed operation order):
 //   o' = M (o, 1), d' = M d, each row as ((m0*x + m1*y) + m2*z) [+ m3]
 //   t = (-o'z) / d'z, u = o'x + t*d'x, v = o'y + t*d'y
@@ -129,7 +136,7 @@ bool intersect(const std::array<T, 12>& m, const Ray<T>& r, int32_t tri, const H
   const T oz = ((m[8] * o[0] + m[9] * o[1]) + m[10] * o[2]) + m[11];
   const T dx = (m[0] * d[0] + m[1] * d[1]) + m[2] * d[2];
   const T dy = (m[4] * d[0] + m[5] * d[1]) + m[6] * d[2];
-  const T dz = (m[8] * d[0] + m[9] * d[1]) + m[10] * d[2];
+  const T dz = transformed_dz(m, d);
   const T t = (-oz) / dz;
   const T u = ox + t * dx;
   const T v = oy + t * dy;
@@ -493,60 +500,109 @@ LightSample<T> light_sample(const Geometry<T>& g, const SurfacePoint<T>& sp,
   return s;
 }
 
-// A primary packet shaded with the scene's lights (docs/architecture.md, "Lighting"): per hit
-// the ambient term; then per light, in the image's order, one shadow packet of the hits that face
-// it (traced with any-hit termination, counted in shadow), whose unoccluded rays add the light's
-// term. A shadow packet that ends with an error lets no light through. Misses get {0, 0, 0} here
-// (the caller gives them the background).
+// A primary packet's work under the scene's lights (docs/architecture.md, "Lighting"): per hit the
+// ambient term, and per light, in the image's order, one shadow packet of the hits that face it
+// (lights no hit faces have none), with each ray's term.
+template <class T>
+struct ShadowPacket {
+  uint32_t light = 0;  // the light's index in the image's order
+  uint32_t mask = 0;   // bit r: ray r's hit faces the light, so its shadow ray exists
+  std::array<Ray<T>, kPacketRays> rays;
+  ShadowLimits<T> lim;
+  std::array<std::array<uint32_t, 3>, kPacketRays> term{};  // fixed point, per channel
+};
+
+template <class T>
+struct LitWork {
+  uint32_t hit_mask = 0;                                       // rays with a primary hit
+  std::array<std::array<uint32_t, 3>, kPacketRays> ambient{};  // fixed point, per channel
+  std::vector<ShadowPacket<T>> shadows;
+};
+
+template <class T>
+LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
+                    uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits) {
+  LitWork<T> w;
+  std::array<SurfacePoint<T>, kPacketRays> sp;
+  for (int r = 0; r < kPacketRays; ++r) {
+    if (!(mask >> r & 1) || hits[r].tri < 0) continue;
+    w.hit_mask |= 1u << r;
+    sp[r] = surface_point(g, rays[r], hits[r]);
+    w.ambient[r] = ambient_terms(g, sp[r].material);
+  }
+  for (size_t li = 0; li < g.lights.size(); ++li) {
+    ShadowPacket<T> p;
+    p.light = static_cast<uint32_t>(li);
+    p.lim.t_lo = g.t_eps;
+    for (int r = 0; r < kPacketRays; ++r) {
+      p.lim.t_hi[r] = T::inf();
+      if (!(w.hit_mask >> r & 1)) continue;
+      const LightSample<T> ls = light_sample(g, sp[r], g.lights[li]);
+      if (!ls.present) continue;
+      p.rays[r] = ls.ray;
+      p.lim.exclude[r] = hits[r].tri;
+      p.lim.t_hi[r] = ls.t_hi;
+      p.term[r] = ls.term;
+      p.mask |= 1u << r;
+    }
+    if (p.mask != 0) w.shadows.push_back(p);
+  }
+  return w;
+}
+
+// The packet's colours from its work and, per shadow packet (in the work's order), the rays that
+// reached the light (traced with any-hit termination: no hit; 0 for a packet that ended with an
+// error, which lets no light through). The sums are integers, so the colour does not depend on
+// the order in which shadow packets finish. Misses get {0, 0, 0} here (the caller gives them the
+// background).
 struct LitPacket {
   std::array<std::array<uint8_t, 3>, kPacketRays> rgb{};
   std::array<uint32_t, kPacketRays> lights{};  // bit l: light l reaches the ray's hit
 };
 
 template <class T>
-LitPacket shade_lit(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
-                    uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits, Counters& shadow) {
+LitPacket lit_resolve(const LitWork<T>& w, const std::vector<uint32_t>& reached) {
   LitPacket out;
-  std::array<SurfacePoint<T>, kPacketRays> sp;
   std::array<std::array<uint64_t, 3>, kPacketRays> sum{};
-  uint32_t hit_mask = 0;
-  for (int r = 0; r < kPacketRays; ++r) {
-    if (!(mask >> r & 1) || hits[r].tri < 0) continue;
-    hit_mask |= 1u << r;
-    sp[r] = surface_point(g, rays[r], hits[r]);
-    const auto amb = ambient_terms(g, sp[r].material);
-    for (int c = 0; c < 3; ++c) sum[r][c] = amb[c];
-  }
-  for (size_t li = 0; li < g.lights.size(); ++li) {
-    const auto& l = g.lights[li];
-    ShadowLimits<T> lim;
-    lim.t_lo = g.t_eps;
-    std::array<Ray<T>, kPacketRays> srays;
-    std::array<LightSample<T>, kPacketRays> ls;
-    uint32_t smask = 0;
+  for (int r = 0; r < kPacketRays; ++r)
+    for (int c = 0; c < 3; ++c) sum[r][c] = w.ambient[r][c];
+  for (size_t k = 0; k < w.shadows.size(); ++k) {
+    const ShadowPacket<T>& p = w.shadows[k];
     for (int r = 0; r < kPacketRays; ++r) {
-      lim.t_hi[r] = T::inf();
-      if (!(hit_mask >> r & 1)) continue;
-      ls[r] = light_sample(g, sp[r], l);
-      if (!ls[r].present) continue;
-      srays[r] = ls[r].ray;
-      lim.exclude[r] = hits[r].tri;
-      lim.t_hi[r] = ls[r].t_hi;
-      smask |= 1u << r;
-    }
-    if (smask == 0) continue;
-    std::array<Hit<T>, kPacketRays> shits;
-    const uint32_t err = trace_packet(g, srays, smask, shits, shadow, &lim);
-    for (int r = 0; r < kPacketRays; ++r) {
-      if (!(smask >> r & 1) || err != 0 || shits[r].tri >= 0) continue;
-      for (int c = 0; c < 3; ++c) sum[r][c] += ls[r].term[c];
-      if (li < 32) out.lights[r] |= 1u << li;
+      if (!(p.mask >> r & reached[k] >> r & 1u)) continue;
+      for (int c = 0; c < 3; ++c) sum[r][c] += p.term[r][c];
+      if (p.light < 32) out.lights[r] |= 1u << p.light;
     }
   }
   for (int r = 0; r < kPacketRays; ++r)
-    if (hit_mask >> r & 1)
+    if (w.hit_mask >> r & 1)
       for (int c = 0; c < 3; ++c) out.rgb[r][c] = light_byte(sum[r][c]);
   return out;
+}
+
+// The rays of a traced shadow packet that reached the light: no hit, and no error.
+template <class T>
+uint32_t shadow_reached(uint32_t mask, uint32_t err, const std::array<Hit<T>, kPacketRays>& hits) {
+  if (err != 0) return 0;
+  uint32_t m = 0;
+  for (int r = 0; r < kPacketRays; ++r)
+    if ((mask >> r & 1) && hits[r].tri < 0) m |= 1u << r;
+  return m;
+}
+
+// A primary packet shaded with the scene's lights: its work, each shadow packet traced (counted
+// in shadow), and the colours.
+template <class T>
+LitPacket shade_lit(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
+                    uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits, Counters& shadow) {
+  const LitWork<T> w = lit_work(g, rays, mask, hits);
+  std::vector<uint32_t> reached;
+  for (const ShadowPacket<T>& p : w.shadows) {
+    std::array<Hit<T>, kPacketRays> shits;
+    const uint32_t err = trace_packet(g, p.rays, p.mask, shits, shadow, &p.lim);
+    reached.push_back(shadow_reached(p.mask, err, shits));
+  }
+  return lit_resolve(w, reached);
 }
 
 }  // namespace rc
