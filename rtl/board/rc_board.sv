@@ -353,6 +353,8 @@ module rc_board #(
     .ambient_i       (regs_q[rc_pkg::BoardRegAmbient][W-1:0]),
     .diffuse_i       (regs_q[rc_pkg::BoardRegDiffuse][W-1:0]),
     .background_i    (regs_q[rc_pkg::BoardRegBackground][23:0]),
+    // Primary rays only on the board, so far (docs/architecture.md, "Lighting").
+    .t_eps_i         ('0),
     .pkt_valid_i     (pkt_valid),
     .pkt_ready_o     (pkt_ready),
     .pkt_mask_i      (pkt_mask),
@@ -360,6 +362,9 @@ module rc_board #(
     .pkt_dir_i       (pkt_dir),
     .pkt_inv_len_i   (pkt_inv_len),
     .pkt_pixel_i     (pkt_pixel),
+    .pkt_shadow_i    (1'b0),
+    .pkt_t_hi_i      ('0),
+    .pkt_start_tri_i ('0),
     .fb_valid_o      (fb_valid),
     .fb_ready_i      (1'b1),
     .fb_pixel_o      (fb_pixel),

@@ -4,22 +4,28 @@
 // wiring: the units are the files named below, each with its contract at its top.
 //
 // Contract
-// - Configuration inputs (bounds_i, *_count_i, root_node_i, ambient_i, diffuse_i, background_i)
-//   are quasi-static: change them only while idle_o is 1 and no packet is offered.
+// - Configuration inputs (bounds_i, *_count_i, root_node_i, ambient_i, diffuse_i, background_i,
+//   t_eps_i) are quasi-static: change them only while idle_o is 1 and no packet is offered.
 //   bounds_i: the header's root box (lo x, y, z, hi x, y, z); node/list/tri_count_i: the record
 //   counts of those sections (the checks of docs/architecture.md, "Errors", use them);
 //   root_node_i: node 0's record (every packet's walk starts there; unused when the node section
 //   is empty); ambient_i/diffuse_i: the format values of ambient and 1 - ambient; background_i:
-//   the miss colour, R [7:0], G [15:8], B [23:16].
+//   the miss colour, R [7:0], G [15:8], B [23:16]; t_eps_i: a shadow ray's hits need t_eps < t
+//   (docs/architecture.md, "Lighting").
 // - Packet input: valid/ready. pkt_mask_i bit r: ray r exists. Per ray r: origin and direction
 //   component a at [(3r + a)*W +: W], inv_len at [r*W +: W], pixel id at [r*32 +: 32]. A packet
 //   is taken into the set-up unit's input register whenever it is empty (pkt_ready_o is that
 //   register's empty flag), and from there when a thread is free and the feeder is idle
-//   (rc_setup_unit).
+//   (rc_setup_unit). pkt_shadow_i makes it a shadow packet (docs/architecture.md, "Lighting"):
+//   ray r's interval ends at its limit pkt_t_hi_i[r*W +: W], which is also its initial best, a
+//   hit needs t_eps_i < t and never its start triangle pkt_start_tri_i[r*32 +: 32], and any hit
+//   ends the ray. A primary packet's t_hi and start triangles are not read.
 // - Framebuffer write port: valid/ready, one write per existing ray of every packet, in no
 //   particular order: fb_pixel_o (the ray's pixel id), fb_rgb_o, and the ray's hit record
 //   (fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o; zero on a miss). A packet that met an error
-//   writes the background with no hit for every ray.
+//   writes the background with no hit for every ray. A shadow packet's rays write their hit
+//   records (a hit: the ray is occluded; none: it reached its limit, the light) and colour 0, or
+//   1 when the packet met an error (no hits then; no light passes).
 // - Memory ports node_, list_, tri_, shd_, mat_: the protocol of docs/architecture.md ("Memory
 //   ports"): request (index, tag) and response (tag, data, error) handshakes, responses in any
 //   order after any delay. Records: node pair 128 bits (a request for node i answers records i
@@ -75,6 +81,7 @@ module rc_core #(
   input  logic [W-1:0]        ambient_i,
   input  logic [W-1:0]        diffuse_i,
   input  logic [23:0]         background_i,
+  input  logic [W-1:0]        t_eps_i,
 
   // Packet input.
   input  logic                pkt_valid_i,
@@ -84,6 +91,9 @@ module rc_core #(
   input  logic [12*W-1:0]     pkt_dir_i,
   input  logic [4*W-1:0]      pkt_inv_len_i,
   input  logic [127:0]        pkt_pixel_i,
+  input  logic                pkt_shadow_i,
+  input  logic [4*W-1:0]      pkt_t_hi_i,
+  input  logic [127:0]        pkt_start_tri_i,
 
   // Framebuffer write port.
   output logic                fb_valid_o,
@@ -184,10 +194,12 @@ module rc_core #(
   logic               acc_valid, raywr_valid, axwr_valid, invwr_valid, start_valid, start_ready;
   logic [ThrW-1:0]    acc_thr, raywr_thr, axwr_thr, invwr_thr;
   logic [3:0]         acc_vmask;
+  logic               acc_shadow;
   logic [Threads-1:0] acc_hot;
   logic [1:0]         raywr_ray, axwr_axis, invwr_axis;
   logic [6*W-1:0]     raywr_orgdir;
   logic [W+31:0]      raywr_lenpix;
+  logic [W+32:0]      raywr_lim;
   logic [4*W+3:0]     axwr_data;
   logic [4*W-1:0]     invwr_data;
   rc_pkg::walk_item_t start_item;
@@ -213,6 +225,9 @@ module rc_core #(
     .pkt_dir_i,
     .pkt_inv_len_i,
     .pkt_pixel_i,
+    .pkt_shadow_i,
+    .pkt_t_hi_i,
+    .pkt_start_tri_i,
     .free_valid_i  (shd_free_valid),
     .free_thr_i    (shd_free_thr),
     .free0_valid_i (shd_free0_valid),
@@ -221,11 +236,13 @@ module rc_core #(
     .acc_thr_o     (acc_thr),
     .acc_hot_o     (acc_hot),
     .acc_vmask_o   (acc_vmask),
+    .acc_shadow_o  (acc_shadow),
     .raywr_valid_o (raywr_valid),
     .raywr_thr_o   (raywr_thr),
     .raywr_ray_o   (raywr_ray),
     .raywr_orgdir_o(raywr_orgdir),
     .raywr_lenpix_o(raywr_lenpix),
+    .raywr_lim_o   (raywr_lim),
     .axwr_valid_o  (axwr_valid),
     .axwr_thr_o    (axwr_thr),
     .axwr_axis_o   (axwr_axis),
@@ -253,6 +270,7 @@ module rc_core #(
   logic [4*W-1:0]  rays_ax_org, rays_ax_inv;
   logic [3:0]      rays_ax_sign;
   logic [6*W-1:0]  rays_od;
+  logic [W+32:0]   rays_lim;
   logic [W-1:0]    rays_ilen;
   logic [31:0]     rays_pix;
 
@@ -265,6 +283,7 @@ module rc_core #(
     .ray_wray_i   (raywr_ray),
     .ray_worgdir_i(raywr_orgdir),
     .ray_wlenpix_i(raywr_lenpix),
+    .ray_wlim_i   (raywr_lim),
     .ax_we_i      (axwr_valid),
     .ax_wthr_i    (axwr_thr),
     .ax_waxis_i   (axwr_axis),
@@ -283,6 +302,7 @@ module rc_core #(
     .od_rthr_i    (isect_ray_thr),
     .od_rray_i    (isect_ray_ray),
     .od_o         (rays_od),
+    .lim_o        (rays_lim),
     .ilen_re_i    (shd_ilen_re),
     .ilen_rthr_i  (shd_ilen_thr),
     .ilen_rray_i  (shd_ilen_ray),
@@ -301,9 +321,10 @@ module rc_core #(
   logic [2:0]             trav_err_bits, stk_err_bits, list_err_bits, isect_err_bits;
   logic [SpW-1:0]         trav_sp_sp, stk_sp_sp, thr_sp_rd;
   logic [1:0]             hits_hit_ray;
-  logic [Threads-1:0]     thr_err;
+  logic [Threads-1:0]     thr_err, thr_shadow;
   logic [Threads*4-1:0]   thr_hit;
   logic [3:0]             thr_vm_rd;
+  logic                   thr_vm_rd_shadow;
 
   rc_thread_ctrl #(
     .Threads(Threads)
@@ -314,6 +335,7 @@ module rc_core #(
     .acc_thr_i     (acc_thr),
     .acc_hot_i     (acc_hot),
     .acc_vmask_i   (acc_vmask),
+    .acc_shadow_i  (acc_shadow),
     .err0_valid_i  (trav_err_valid),
     .err0_thr_i    (trav_err_thr),
     .err1_valid_i  (trav_reqnr_valid),
@@ -334,11 +356,13 @@ module rc_core #(
     .hit_thr_i     (hits_hit_thr),
     .hit_ray_i     (hits_hit_ray),
     .err_o         (thr_err),
+    .shadow_o      (thr_shadow),
     .hit_o         (thr_hit),
     .sp_rd_thr_i   (stk_sp_rd_thr),
     .sp_rd_o       (thr_sp_rd),
     .vm_rd_thr_i   (shd_vm_rd_thr),
-    .vm_rd_o       (thr_vm_rd)
+    .vm_rd_o       (thr_vm_rd),
+    .vm_rd_shadow_o(thr_vm_rd_shadow)
   );
 
   //////////////////////
@@ -447,6 +471,7 @@ module rc_core #(
     .req_lf_i      (list_leaf_end),
     .err_i         (thr_err),
     .hit_i         (thr_hit),
+    .shadow_i      (thr_shadow),
     .sp_rd_thr_o   (stk_sp_rd_thr),
     .sp_rd_i       (thr_sp_rd),
     .sp_pop_valid_o(stk_sp_valid),
@@ -573,6 +598,8 @@ module rc_core #(
     .ray_thr_o     (isect_ray_thr),
     .ray_ray_o     (isect_ray_ray),
     .ray_orgdir_i  (rays_od),
+    .ray_lim_i     (rays_lim),
+    .t_eps_i,
     .best_i        (hits_isect_best),
     .acc_hot_i     (acc_hot),
     .hitset_valid_i(hits_hit_valid),
@@ -651,6 +678,7 @@ module rc_core #(
     .done_thr_i     (stk_done_thr),
     .vm_rd_thr_o    (shd_vm_rd_thr),
     .vm_rd_i        (thr_vm_rd),
+    .vm_rd_shadow_i (thr_vm_rd_shadow),
     .hit_i          (thr_hit),
     .err_i          (thr_err),
     .tri_re_o       (shd_tri_re),

@@ -23,6 +23,12 @@
 //   read's edge sampled, or 0 where that commit came (the test then goes without a best). A bit
 //   and word sampled together are the same commit's, or the word is newer and the bit older;
 //   either only lets through a test the write-back rejects (it compares again).
+// - Shadow rays (the ray store's limit word {shadow, start_tri, tlim}, read with the ray): the
+//   test takes the shadow rules (rc_isect_unit shadow_i: a hit needs t_eps_i < t; excl_i: the
+//   triangle the ray starts on is never its hit) and the best {tlim, -1} whatever the hit bit
+//   says. Any hit before the light then occludes, and the write-back keeps the smallest (t, tri)
+//   of those found, so the ray's record is the one rc::trace_packet() gives (its best starts at
+//   {t_hi, -1} and the pop culls it once it has a hit).
 // - Results (res_*): every test's result, one per cycle at most, never refused: {thread, ray, last
 //   (its list entry's last ray), triangle, hit, t, u, v, dz}.
 // - Counters: perf_test_o, a test issued.
@@ -62,6 +68,9 @@ module rc_isect_issue #(
   output logic [ThrW-1:0]     ray_thr_o,
   output logic [1:0]          ray_ray_o,
   input  logic [6*W-1:0]      ray_orgdir_i,   // org x, y, z, dir x, y, z
+  input  logic [W+32:0]       ray_lim_i,      // {shadow, start triangle, tlim}
+  // A shadow ray's lower bound of t (a frame's constant).
+  input  logic [W-1:0]        t_eps_i,
   // The best hits (the hit store's copy, per {thread, ray}; 2 cycles).
   input  logic [W+31:0]       best_i,         // {tri, t}
   // The events that change the hit bits (rc_thread_ctrl's): this unit keeps its own copy.
@@ -289,6 +298,14 @@ module rc_isect_issue #(
     i2_hs_q   <= i1_hs_q;
   end
 
+  // A shadow ray's test: its limit as the best, its start triangle excluded.
+  logic              sh_ray;
+  logic [31:0]       sh_start_tri, iu_best_tri;
+  logic [W-1:0]      sh_tlim, iu_best_t;
+  assign {sh_ray, sh_start_tri, sh_tlim} = ray_lim_i;
+  assign iu_best_t   = sh_ray ? sh_tlim : best_i[W-1:0];
+  assign iu_best_tri = sh_ray ? 32'hffff_ffff : best_i[W +: 32];
+
   logic              iu_ready, ix_v, ix_hit;
   logic [IuTagW-1:0] ix_tag;
   logic [31:0]       ix_tri;
@@ -300,7 +317,7 @@ module rc_isect_issue #(
     .TagW        (IuTagW),
     .SharedXform (IsectInterval == 2),
     .Backpressure(1'b0),  // the write-back takes every result at once
-    .Shadow      (1'b0)   // primary rays only, so far
+    .Shadow      (1'b1)
   ) u_isect (
     .clk_i,
     .rst_ni,
@@ -311,14 +328,12 @@ module rc_isect_issue #(
     .m_i       (i2_m_q),
     .org_i     (ray_orgdir_i[0 +: 3*W]),
     .dir_i     (ray_orgdir_i[3*W +: 3*W]),
-    .best_t_i    (best_i[W-1:0]),
-    .best_tri_i  (best_i[W +: 32]),
-    .best_valid_i(i2_hit),
-    // Primary rays only, so far (docs/architecture.md, "Lighting": the core does not trace shadow
-    // rays yet).
-    .shadow_i    (1'b0),
-    .excl_i      (1'b0),
-    .t_eps_i     ('0),
+    .best_t_i    (iu_best_t),
+    .best_tri_i  (iu_best_tri),
+    .best_valid_i(i2_hit | sh_ray),
+    .shadow_i    (sh_ray),
+    .excl_i      (sh_ray & (i2_tri_q == sh_start_tri)),
+    .t_eps_i     (t_eps_i),
     .valid_o   (ix_v),
     .ready_i   (1'b1),
     .tag_o     (ix_tag),

@@ -12,6 +12,7 @@
 //       t0 = (lo[a] - org_i[a]) * inv[a],  t1 = (hi[a] - org_i[a]) * inv[a]
 //       if t0 or t1 is NaN: the axis is skipped
 //       else: tmin = max(tmin, min(t0, t1)),  tmax = min(tmax, max(t0, t1))   (format min/max)
+//     tmax = min(tmax, tlim_i)                (Limit = 1: a shadow ray's limit; +inf otherwise)
 //     tmin_o = tmin, tmax_o = tmax, active_o = le(tmin, tmax)
 //   The max/min chain is evaluated in exactly this order and with these operands. (The start
 //   value +0 matters for the bits: max(-0, x) would give -0 for x <= -0. The axis order does
@@ -42,14 +43,21 @@
 //   enters the slice), so the next ray is taken then and its x follows at once. The FIFO holds
 //   Latency / (3 x CmpStages) + 1 entries (8 at the defaults), enough credits for every
 //   operation in flight at that rate.
-// - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1).
+// - Limit: the chain gives tmax without tlim_i; beside the final le(tmin, tmax) two compares give
+//   min(tmax, tlim_i) and le(tmin, tlim_i), and active_o = le(tmin, tmax) && le(tmin, tlim_i),
+//   which is le(tmin, min(tmax, tlim_i)) for every tlim_i (tmin and the chain's tmax are never
+//   NaN; a NaN tlim_i makes tmax NaN and the ray inactive either way). So the limit costs no
+//   cycle. tlim_i travels with the tag.
+// - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1); Limit: 1 =
+//   tlim_i as above, 0 = no limit (tlim_i ignored, as if +inf: no logic for it).
 // - Illegal input: none; every bit pattern of the data inputs is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, valid
 //   chains and axis flags, FIFO pointers and credit count); data registers have no reset.
 module rc_ray_setup #(
   parameter int unsigned ExpW  = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW = rc_pkg::Fp24FracW,
-  parameter int unsigned TagW  = 8
+  parameter int unsigned TagW  = 8,
+  parameter bit          Limit = 1'b1
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -60,6 +68,7 @@ module rc_ray_setup #(
   input  logic [3*(ExpW+FracW+1)-1:0] org_i,     // x, y, z
   input  logic [3*(ExpW+FracW+1)-1:0] dir_i,     // x, y, z
   input  logic [6*(ExpW+FracW+1)-1:0] bounds_i,  // lo x, y, z, hi x, y, z
+  input  logic [ExpW+FracW:0]      tlim_i,        // tmax's limit (Limit = 1)
   // Output handshake.
   output logic                     valid_o,
   input  logic                     ready_i,
@@ -112,6 +121,8 @@ module rc_ray_setup #(
   localparam int unsigned InvDly    = 2 * AxisGap + MulStages + 3 * CmpStages;
   localparam int unsigned AxW       = 4 * W;  // {org, dir, lo, hi} of one axis
   localparam int unsigned OutW      = TagW + 3 * W + 2 * W + 1;
+  // The tag as it travels inside: {tlim, tag} with Limit.
+  localparam int unsigned XTagW     = TagW + (Limit ? W : 0);
 
   localparam logic [ExpW-1:0] Bias   = ExpW'((1 << (ExpW - 1)) - 1);
   localparam logic [W-1:0]    One    = {1'b0, Bias, {FracW{1'b0}}};
@@ -160,7 +171,14 @@ module rc_ray_setup #(
   // only slot_q and the credits (the feeder's valid comes from across the chip). A load without a
   // take is never used: the ray's axes and tag are read only in its three cycles.
   logic [3*AxW-1:0] ax_in, ax_q;
-  logic [TagW-1:0]  tag_q;
+  logic [XTagW-1:0] tag_q, xtag_in;
+  if (Limit) begin : g_xtag_lim
+    assign xtag_in = {tlim_i, tag_i};
+  end else begin : g_xtag
+    assign xtag_in = tag_i;
+    logic unused_tlim;
+    assign unused_tlim = ^tlim_i;
+  end
   for (genvar a = 0; a < 3; a++) begin : g_ax_in
     assign ax_in[a*AxW +: AxW] = {org_i[a*W +: W], dir_i[a*W +: W], bounds_i[a*W +: W],
                                   bounds_i[(a+3)*W +: W]};
@@ -169,7 +187,7 @@ module rc_ray_setup #(
   always_ff @(posedge clk_i) begin
     if (in_free_q) begin
       ax_q  <= ax_in;
-      tag_q <= tag_i;
+      tag_q <= xtag_in;
     end else if (issue) begin
       ax_q[0 +: 2*AxW] <= ax_q[AxW +: 2*AxW];
     end
@@ -266,9 +284,9 @@ module rc_ray_setup #(
 
   // Beside the slice to the chain: the axis flags (control: reset) and the ray's tag.
   logic [ChainDly*3-1:0]    flag_q;  // {valid, first, last} per cycle
-  logic [ChainDly*TagW-1:0] side_tag_q;
-  logic                     ch_valid_side, ch_first, ch_last;
-  logic [TagW-1:0]          ch_tag;
+  logic [ChainDly*XTagW-1:0] side_tag_q;
+  logic                      ch_valid_side, ch_first, ch_last;
+  logic [XTagW-1:0]          ch_tag;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -278,10 +296,10 @@ module rc_ray_setup #(
     end
   end
   always_ff @(posedge clk_i) begin
-    side_tag_q <= (side_tag_q << TagW) | (ChainDly*TagW)'(tag_q);
+    side_tag_q <= (side_tag_q << XTagW) | (ChainDly*XTagW)'(tag_q);
   end
   assign {ch_valid_side, ch_first, ch_last} = flag_q[ChainDly*3-1 -: 3];
-  assign ch_tag = side_tag_q[ChainDly*TagW-1 -: TagW];
+  assign ch_tag = side_tag_q[ChainDly*XTagW-1 -: XTagW];
 
   // The divider's results, one per cycle, for the FIFO: inv_q[k*W +: W] is the result of k + 1
   // cycles ago.
@@ -382,11 +400,11 @@ module rc_ray_setup #(
   // canonical, and NaN only when t0 or t1 is, i.e. when the axis is skipped (FirstOperand_A). So
   // rc_fp_cmp's min/max are the compare below and its select, max(+0, b) is +0 for a b with the
   // sign set (-0, a negative value, -inf) and b otherwise, and min(+inf, b) is b.
-  localparam int unsigned KeepW = 1 + TagW;  // {last, tag}
+  localparam int unsigned KeepW = 1 + XTagW;  // {last, tag}
   logic [W-1:0]  b_max, b_min, max_d, min_d, max_res, min_res;
   logic          take_max, take_min, pick_max, pick_min;
   logic          chain_valid, last_keep;
-  logic [TagW-1:0] tag_keep;
+  logic [XTagW-1:0] tag_keep;
 
   // The chain's order: rc_fp_cmp's order for min/max, on words that are canonical and not NaN
   // (the step registers' interval, and min(t0, t1), max(t0, t1) of an axis that is not skipped):
@@ -488,12 +506,61 @@ module rc_ray_setup #(
 
   localparam int unsigned FinW = 2 * W + TagW;  // {tmin, tmax, tag}
   logic [CmpStages*FinW-1:0] fin_q;
-  logic [W-1:0]              tmin_f, tmax_f;
+  logic [W-1:0]              tmin_f, tmax_f, tmax_out;
   logic [TagW-1:0]           tag_f;
+  logic                      active_out;
   always_ff @(posedge clk_i) begin
-    fin_q <= (fin_q << FinW) | (CmpStages*FinW)'({max_res, min_res, tag_keep});
+    fin_q <= (fin_q << FinW) | (CmpStages*FinW)'({max_res, min_res, tag_keep[TagW-1:0]});
   end
   assign {tmin_f, tmax_f, tag_f} = fin_q[CmpStages*FinW-1 -: FinW];
+
+  // The limit: min(tmax, tlim) and le(tmin, tlim), beside le(tmin, tmax).
+  if (Limit) begin : g_limit
+    logic [W-1:0] tlim_keep, unused_lim_min, unused_lim_max, unused_clip_max;
+    logic         lim_le, unused_lim_lt, unused_lim_eq, unused_clip_lt, unused_clip_le;
+    logic         unused_clip_eq, unused_lim_valid, unused_clip_valid;
+    assign tlim_keep = tag_keep[TagW +: W];
+    rc_fp_cmp #(
+      .ExpW  (ExpW),
+      .FracW (FracW),
+      .Stages(CmpStages)
+    ) u_lim_le (
+      .clk_i,
+      .rst_ni,
+      .valid_i(chain_valid & last_keep),
+      .a_i    (max_res),
+      .b_i    (tlim_keep),
+      .valid_o(unused_lim_valid),
+      .lt_o   (unused_lim_lt),
+      .le_o   (lim_le),
+      .eq_o   (unused_lim_eq),
+      .min_o  (unused_lim_min),
+      .max_o  (unused_lim_max)
+    );
+    rc_fp_cmp #(
+      .ExpW  (ExpW),
+      .FracW (FracW),
+      .Stages(CmpStages)
+    ) u_clip (
+      .clk_i,
+      .rst_ni,
+      .valid_i(chain_valid & last_keep),
+      .a_i    (min_res),
+      .b_i    (tlim_keep),
+      .valid_o(unused_clip_valid),
+      .lt_o   (unused_clip_lt),
+      .le_o   (unused_clip_le),
+      .eq_o   (unused_clip_eq),
+      .min_o  (tmax_out),
+      .max_o  (unused_clip_max)
+    );
+    assign active_out = active & lim_le;
+    logic unused_tmax_f;  // the chain's tmax before the limit: only its assertion reads it
+    assign unused_tmax_f = ^tmax_f;
+  end else begin : g_no_limit
+    assign tmax_out   = tmax_f;
+    assign active_out = active;
+  end
 
   // inv of x, y, z: the divider's results of InvDly, InvDly - AxisGap and InvDly - 2 AxisGap
   // cycles before the FIFO write.
@@ -516,7 +583,7 @@ module rc_ray_setup #(
     .take_i    (take),
     .credit_o  (credit),
     .wr_valid_i(le_valid),
-    .wr_data_i ({tag_f, inv_f, tmin_f, tmax_f, active}),
+    .wr_data_i ({tag_f, inv_f, tmin_f, tmax_out, active_out}),
     .valid_o,
     .ready_i,
     .data_o    ({tag_o, inv_o, tmin_o, tmax_o, active_o})

@@ -6,8 +6,9 @@
 //   needs the four rays on one split axis at once): the rays' origins and direction sign bits
 //   (ax_*: written per axis as the packet's rays are taken) and their 1/d (inv_*: written per
 //   axis after the packet's set-up).
-// - Per ray, addressed {thread, ray} (written as each ray is taken): origin and direction (read by
-//   the intersection issue), inv_len (read by shading), the pixel id (read by the framebuffer
+// - Per ray, addressed {thread, ray} (written as each ray is taken): origin and direction, and
+//   the ray's kind, start triangle and limit {shadow, start_tri, tlim} (read together by the
+//   intersection issue), inv_len (read by shading), the pixel id (read by the framebuffer
 //   write).
 // - A thread's words are written before any unit reads them (a packet's reads follow its start,
 //   which follows the writes) and not written while any unit may still read them (a thread is
@@ -28,6 +29,7 @@ module rc_ray_store #(
   input  logic [1:0]      ray_wray_i,
   input  logic [6*W-1:0]  ray_worgdir_i,
   input  logic [W+31:0]   ray_wlenpix_i,   // {pixel id, inv_len}
+  input  logic [W+32:0]   ray_wlim_i,      // {shadow, start triangle, tlim}
   input  logic            ax_we_i,
   input  logic [ThrW-1:0] ax_wthr_i,
   input  logic [1:0]      ax_waxis_i,
@@ -45,11 +47,12 @@ module rc_ray_store #(
   output logic [3:0]      ax_sign_o,
   output logic [4*W-1:0]  ax_inv_o,
 
-  // The intersection issue: one ray's origin and direction.
+  // The intersection issue: one ray's origin and direction, and its limit word.
   input  logic            od_re_i,
   input  logic [ThrW-1:0] od_rthr_i,
   input  logic [1:0]      od_rray_i,
   output logic [6*W-1:0]  od_o,
+  output logic [W+32:0]   lim_o,
 
   // Shading: one ray's inv_len; the framebuffer write: its pixel id.
   input  logic            ilen_re_i,
@@ -82,14 +85,14 @@ module rc_ray_store #(
     .raddr_i({ax_rthr_i, ax_raxis_i}),
     .rdata_o(ax_inv_o)
   );
-  rc_ram #(.Width(6 * W), .Depth(Depth4), .OutReg(1'b1)) u_od (
+  rc_ram #(.Width(7 * W + 33), .Depth(Depth4), .OutReg(1'b1)) u_od (
     .clk_i,
     .we_i   (ray_we_i),
     .waddr_i({ray_wthr_i, ray_wray_i}),
-    .wdata_i(ray_worgdir_i),
+    .wdata_i({ray_wlim_i, ray_worgdir_i}),
     .re_i   (od_re_i),
     .raddr_i({od_rthr_i, od_rray_i}),
-    .rdata_o(od_o)
+    .rdata_o({lim_o, od_o})
   );
   rc_ram #(.Width(W), .Depth(Depth4), .OutReg(1'b1)) u_ilen (
     .clk_i,

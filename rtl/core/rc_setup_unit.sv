@@ -10,15 +10,20 @@
 // - Packet input (rc_core's pkt_* ports, valid/ready): a packet enters an input register when it
 //   is empty (pkt_ready_o: its empty flag, a flip-flop), and is taken from there into a thread
 //   when a thread is free (the free-thread choice, rc_rr_pick) and the feeder is idle.
-//   acc_valid_o/acc_thr_o/acc_vmask_o announce the take in the cycle after it, and acc_hot_o
-//   the same as a one-hot vector (the free pick's grant registered: each bit drives one thread's
-//   state in rc_thread_ctrl and rc_isect_issue, so no unit decodes the thread number).
+//   acc_valid_o/acc_thr_o/acc_vmask_o/acc_shadow_o announce the take in the cycle after it, and
+//   acc_hot_o the same as a one-hot vector (the free pick's grant registered: each bit drives
+//   one thread's state in rc_thread_ctrl and rc_isect_issue, so no unit decodes the thread
+//   number).
 // - Ray stores: the feeder offers the packet's rays 0..3, one per cycle while the set-up units
 //   take them, and writes per ray r, from registers in the cycle after it is taken, the ray
-//   store's per-ray words (raywr_*: origin and direction; ilen and pixel id) and, for r = axis
+//   store's per-ray words (raywr_*: origin and direction; ilen and pixel id; the ray's kind,
+//   start triangle and limit: {shadow, start_tri, tlim}) and, for r = axis
 //   a < 3, the per-axis word of the four rays' origins and direction signs on axis a (axwr_*).
 //   After the packet's last set-up result it writes the four rays' 1/d on each axis (invwr_*,
 //   axes x, y, z in three cycles), then offers the start entry.
+// - Shadow packets (pkt_shadow_i): each ray's interval ends at its pkt_t_hi_i (rc_ray_setup's
+//   limit, tlim = t_hi; a primary packet's rays get tlim = +inf and their t_hi is not read), and
+//   pkt_start_tri_i names the triangle each ray starts on (read by the intersection issue).
 // - Set-up: SetupUnits instances of rc_ray_setup (each one ray per 3 cycles) take the rays in
 //   rotation, so the unit sets up SetupUnits rays per 3 cycles (3: one ray per cycle, a packet
 //   per 4 cycles); results are gathered in the same rotation, so in order.
@@ -54,6 +59,9 @@ module rc_setup_unit #(
   input  logic [12*W-1:0]       pkt_dir_i,
   input  logic [4*W-1:0]        pkt_inv_len_i,
   input  logic [127:0]          pkt_pixel_i,
+  input  logic                  pkt_shadow_i,
+  input  logic [4*W-1:0]        pkt_t_hi_i,
+  input  logic [127:0]          pkt_start_tri_i,
 
   // Threads freed (from shading: by a last write, and a packet without rays).
   input  logic                  free_valid_i,
@@ -66,6 +74,7 @@ module rc_setup_unit #(
   output logic [ThrW-1:0]       acc_thr_o,
   output logic [Threads-1:0]    acc_hot_o,      // acc_valid_o && acc_thr_o == t, a register
   output logic [3:0]            acc_vmask_o,
+  output logic                  acc_shadow_o,
 
   // Ray store writes.
   output logic                  raywr_valid_o,   // per ray: {thread, ray}
@@ -73,6 +82,7 @@ module rc_setup_unit #(
   output logic [1:0]            raywr_ray_o,
   output logic [6*W-1:0]        raywr_orgdir_o,  // org x, y, z, dir x, y, z
   output logic [W+31:0]         raywr_lenpix_o,  // {pixel id, inv_len}
+  output logic [W+32:0]         raywr_lim_o,     // {shadow, start triangle, tlim}
   output logic                  axwr_valid_o,    // per axis: {thread, axis}
   output logic [ThrW-1:0]       axwr_thr_o,
   output logic [1:0]            axwr_axis_o,
@@ -101,6 +111,7 @@ module rc_setup_unit #(
   localparam int unsigned NU = SetupUnits;
   localparam int unsigned UW = (NU > 1) ? $clog2(NU) : 1;
   localparam int unsigned TagW = 1 + ThrW + 2;  // {ray exists, thread, ray}
+  localparam logic [W-1:0] PosInf = {1'b0, {rc_pkg::Fp24ExpW{1'b1}}, {rc_pkg::Fp24FracW{1'b0}}};
 
   if (Threads < 1 || SetupUnits < 1 || SetupUnits > 3 ||
       ThrW > rc_pkg::CoreThrBits) begin : g_param_check
@@ -195,7 +206,9 @@ module rc_setup_unit #(
   logic [3:0]      pin_mask_q;
   logic [12*W-1:0] pin_org_q, pin_dir_q;
   logic [4*W-1:0]  pin_ilen_q;
-  logic [127:0]    pin_pix_q;
+  logic [127:0]    pin_pix_q, pin_stri_q;
+  logic [4*W-1:0]  pin_tlim_q;
+  logic            pin_sh_q;
   logic            pin_v_d;
   assign pin_v_d = pin_v_q ? ~acc_take_f : pkt_valid_i;
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -212,6 +225,9 @@ module rc_setup_unit #(
       pin_dir_q  <= pkt_dir_i;
       pin_ilen_q <= pkt_inv_len_i;
       pin_pix_q  <= pkt_pixel_i;
+      pin_sh_q   <= pkt_shadow_i;
+      pin_tlim_q <= pkt_shadow_i ? pkt_t_hi_i : {4{PosInf}};
+      pin_stri_q <= pkt_start_tri_i;
     end
   end
   assign pkt_ready_o = ~pin_v_q;
@@ -240,7 +256,9 @@ module rc_setup_unit #(
   logic [1:0]      feed_r_q;
   logic [12*W-1:0] feed_org_q, feed_dir_q;
   logic [4*W-1:0]  feed_ilen_q;
-  logic [127:0]    feed_pix_q;
+  logic [127:0]    feed_pix_q, feed_stri_q;
+  logic [4*W-1:0]  feed_tlim_q;
+  logic            feed_sh_q;
   logic [3:0]      feed_vmask_q;
   logic [NU-1:0]   su_ready_all, su_valid_all;
   logic [UW-1:0]   out_u_q;
@@ -338,13 +356,17 @@ module rc_setup_unit #(
       feed_ilen_q  <= pin_ilen_q;
       feed_pix_q   <= pin_pix_q;
       feed_vmask_q <= pin_mask_q;
+      feed_sh_q    <= pin_sh_q;
+      feed_tlim_q  <= pin_tlim_q;
+      feed_stri_q  <= pin_stri_q;
     end
   end
 
-  assign acc_valid_o = acc_v_q;
-  assign acc_thr_o   = feed_thr_q;
-  assign acc_hot_o   = gacc_q;
-  assign acc_vmask_o = feed_vmask_q;
+  assign acc_valid_o  = acc_v_q;
+  assign acc_thr_o    = feed_thr_q;
+  assign acc_hot_o    = gacc_q;
+  assign acc_vmask_o  = feed_vmask_q;
+  assign acc_shadow_o = feed_sh_q;
 
   // The ray store's words of the ray being taken.
   logic [3*W-1:0] feed_org_r, feed_dir_r;
@@ -357,6 +379,7 @@ module rc_setup_unit #(
   logic [1:0]      rw_r_q;
   logic [6*W-1:0]  rw_orgdir_q;
   logic [W+31:0]   rw_lenpix_q;
+  logic [W+32:0]   rw_lim_q;
   logic [4*W+3:0]  aw_data_q, aw_data;
   always_comb begin
     for (int unsigned r = 0; r < 4; r++) begin
@@ -384,6 +407,8 @@ module rc_setup_unit #(
     rw_r_q      <= feed_r_q;
     rw_orgdir_q <= {feed_dir_r, feed_org_r};
     rw_lenpix_q <= {rc_pkg::lane32(feed_pix_q, feed_r_q), lane_w(feed_ilen_q, feed_r_q)};
+    rw_lim_q    <= {feed_sh_q, rc_pkg::lane32(feed_stri_q, feed_r_q),
+                    lane_w(feed_tlim_q, feed_r_q)};
     aw_data_q   <= aw_data;
   end
   assign raywr_valid_o  = rw_v_q;
@@ -391,6 +416,7 @@ module rc_setup_unit #(
   assign raywr_ray_o    = rw_r_q;
   assign raywr_orgdir_o = rw_orgdir_q;
   assign raywr_lenpix_o = rw_lenpix_q;
+  assign raywr_lim_o    = rw_lim_q;
   assign axwr_valid_o   = aw_v_q;
   assign axwr_thr_o     = rw_thr_q;
   assign axwr_axis_o    = rw_r_q;
@@ -420,6 +446,7 @@ module rc_setup_unit #(
   for (genvar u = 0; u < NU; u++) begin : g_setup
     logic u_ready_i, st_en;
     logic [3*W-1:0]  st_org_q, st_dir_q, nx_org, nx_dir;
+    logic [W-1:0]    st_tlim_q, nx_tlim;
     logic [2:0]      st_tag_q, nx_tag;  // {ray exists, ray}
     logic [1:0]      nx_r;
     assign u_ready_i = out_ready && out_u_q == UW'(u);
@@ -428,11 +455,13 @@ module rc_setup_unit #(
     assign nx_org    = st_idle_q[u] ? pin_org_q[0 +: 3*W] : lane_3w(feed_org_q, nx_r);
     assign nx_dir    = st_idle_q[u] ? pin_dir_q[0 +: 3*W] : lane_3w(feed_dir_q, nx_r);
     assign nx_tag    = st_idle_q[u] ? {pin_mask_q[0], 2'd0} : {feed_vmask_q[nx_r], nx_r};
+    assign nx_tlim   = st_idle_q[u] ? pin_tlim_q[0 +: W] : lane_w(feed_tlim_q, nx_r);
     always_ff @(posedge clk_i) begin
       if (st_en) begin
-        st_org_q <= nx_org;
-        st_dir_q <= nx_dir;
-        st_tag_q <= nx_tag;
+        st_org_q  <= nx_org;
+        st_dir_q  <= nx_dir;
+        st_tag_q  <= nx_tag;
+        st_tlim_q <= nx_tlim;
       end
     end
 `ifndef SYNTHESIS
@@ -440,7 +469,8 @@ module rc_setup_unit #(
     StagedRay_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   su_v_q[u] |-> st_org_q == feed_org_r &&
                                                 st_dir_q == feed_dir_r &&
-                                                st_tag_q == {feed_vmask_q[feed_r_q], feed_r_q});
+                                                st_tag_q == {feed_vmask_q[feed_r_q], feed_r_q} &&
+                                                st_tlim_q == lane_w(feed_tlim_q, feed_r_q));
 `endif
     rc_ray_setup #(
       .ExpW (rc_pkg::Fp24ExpW),
@@ -455,6 +485,7 @@ module rc_setup_unit #(
       .org_i   (st_org_q),
       .dir_i   (st_dir_q),
       .bounds_i(bounds_i),
+      .tlim_i  (st_tlim_q),
       .valid_o (su_valid_all[u]),
       .ready_i (u_ready_i),
       .tag_o   (su_tag_all[u*TagW +: TagW]),

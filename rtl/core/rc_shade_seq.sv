@@ -23,6 +23,10 @@
 //   then the misses. A write's pixel id (rc_ray_store) and hit record (the hit store's fb copy;
 //   zeros for a miss) are read on its way to the queue (two cycles). One write per existing ray;
 //   a thread's last write frees it (free_valid_o, two cycles after the write).
+// - Shadow packets (rc_thread_ctrl's kind bit, read with the rays): no ray is shaded; every ray
+//   goes the misses' way and is written with its hit record (an occluder's, or zeros when it
+//   has none: it reached the light) and colour 0, or 1 when the packet met an error (it has no
+//   hits then, and lets no light through).
 // - Errors: a failed shading or material read raises the core's bad-address bit (err_shd_o,
 //   err_mat_o: the packet's own error bits are final by then).
 // - Parameters: Threads.
@@ -47,6 +51,7 @@ module rc_shade_seq #(
   input  logic [ThrW-1:0]      done_thr_i,
   output logic [ThrW-1:0]      vm_rd_thr_o,     // the picked thread's rays, read (rc_thread_ctrl)
   input  logic [3:0]           vm_rd_i,
+  input  logic                 vm_rd_shadow_i,  // the picked thread holds a shadow packet
   input  logic [Threads*4-1:0] hit_i,
   input  logic [Threads-1:0]   err_i,
 
@@ -144,6 +149,8 @@ module rc_shade_seq #(
   logic               shp_any, shp_room, shp_v_q, st1_v_q, st2_v_q, sh_busy_q;
   logic [ThrW-1:0]    shp_idx, shp_thr_q, st1_thr_q, st2_thr_q, sh_thr_q;
   logic [3:0]         st1_vm_q, st1_hm_q, st2_vm_q, st2_hm_q, sh_vm_q, sh_hm_q;
+  logic               st1_sh_q, st2_sh_q, nb_sh_q, sh_sh_q;
+  logic               st1_se_q, st2_se_q, nb_se_q, sh_se_q;  // a shadow packet with an error
   logic [Threads-1:0] st1_hot_q;
   logic [1:0]         sh_r_q;
   logic               sh_last_q;
@@ -192,7 +199,7 @@ module rc_shade_seq #(
   logic adv, to_shd, to_miss, sreq_free, miss_free, miss_v;
   logic sh_valid_r, sh_hit_r;
   logic [RidW-1:0] shd_req_rid, miss_rid;
-  logic            miss_take;
+  logic            miss_take, miss_sh, miss_sh_hit, miss_sh_err;
 
   // The sequencer's two outputs, shading requests and misses, are two-entry queues whose room is
   // a flip-flop (rc_credit_fifo's credit): a ray's step depends on this unit's registers only,
@@ -203,8 +210,9 @@ module rc_shade_seq #(
   // only numbers the ray in the queues' data.
   assign sh_valid_r = sh_vm_q[0];
   assign sh_hit_r   = sh_hm_q[0];
-  assign to_shd     = sh_busy_q & sh_valid_r & sh_hit_r & sreq_free;
-  assign to_miss    = sh_busy_q & sh_valid_r & ~sh_hit_r & miss_free;
+  // A shadow packet's rays all go the misses' way (with their hit bit, for the record).
+  assign to_shd     = sh_busy_q & sh_valid_r & sh_hit_r & ~sh_sh_q & sreq_free;
+  assign to_miss    = sh_busy_q & sh_valid_r & (~sh_hit_r | sh_sh_q) & miss_free;
   assign adv        = sh_busy_q & (~sh_valid_r | to_shd | to_miss);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -251,6 +259,10 @@ module rc_shade_seq #(
     st1_hot_q <= gshp_q;
     st1_vm_q  <= shp_vm;
     st1_hm_q  <= shp_hm & {4{~shp_err}};
+    st1_sh_q  <= vm_rd_shadow_i;
+    st1_se_q  <= vm_rd_shadow_i & shp_err;
+    st2_sh_q  <= st1_sh_q;
+    st2_se_q  <= st1_se_q;
     st2_thr_q <= st1_thr_q;
     st2_vm_q  <= st1_vm_q;
     st2_hm_q  <= st1_hm_q;
@@ -258,11 +270,15 @@ module rc_shade_seq #(
       nb_thr_q  <= st2_thr_q;
       nb_vm_q   <= st2_vm_q;
       nb_hm_q   <= st2_hm_q;
+      nb_sh_q   <= st2_sh_q;
+      nb_se_q   <= st2_se_q;
       nb_btri_q <= tri_i;
     end
     if (sh_load) begin
       sh_vm_q   <= nb_vm_q;
       sh_hm_q   <= nb_hm_q;
+      sh_sh_q   <= nb_sh_q;
+      sh_se_q   <= nb_se_q;
       sh_btri_q <= nb_btri_q;
     end else if (adv) begin
       sh_vm_q   <= sh_vm_q >> 1;
@@ -289,7 +305,7 @@ module rc_shade_seq #(
   assign shd_req_tag_o = TagW'(shd_req_rid);
 
   rc_credit_fifo #(
-    .Width(RidW),
+    .Width(3 + RidW),
     .Depth(2)
   ) u_miss_q (
     .clk_i,
@@ -297,10 +313,10 @@ module rc_shade_seq #(
     .take_i    (to_miss),
     .credit_o  (miss_free),
     .wr_valid_i(to_miss),
-    .wr_data_i ({sh_thr_q, sh_r_q}),
+    .wr_data_i ({sh_sh_q, sh_sh_q & sh_hit_r, sh_se_q, sh_thr_q, sh_r_q}),
     .valid_o   (miss_v),
     .ready_i   (miss_take),
-    .data_o    (miss_rid)
+    .data_o    ({miss_sh, miss_sh_hit, miss_sh_err, miss_rid})
   );
 
   ////////////////////////////////////
@@ -460,9 +476,9 @@ module rc_shade_seq #(
   logic [31:0]     rec_tri;
 
   assign f_take    = (sho_v | miss_v) & f_room_q;
-  assign f_hit     = sho_v;
+  assign f_hit     = sho_v | miss_sh_hit;
   assign f_rid     = sho_v ? sho_rid : miss_rid;
-  assign f_rgb     = sho_v ? sho_rgb : background_i;
+  assign f_rgb     = sho_v ? sho_rgb : (miss_sh ? {23'd0, miss_sh_err} : background_i);
   assign sho_ready = f_room_q;
   assign miss_take = miss_v & f_room_q & ~sho_v;
 

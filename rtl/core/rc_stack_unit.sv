@@ -17,8 +17,12 @@
 //   decide: an error or an empty stack ends its walk (done_valid_o, to shading); otherwise the
 //   depth goes down by one (sp_pop_*), the top entry and the thread's best t (bt_*, the hit
 //   store's per-thread copy, gated with the hit bits sampled at the same edge) are read, and
-//   each ray r of the entry stays active only if le(tmin_r, best_t_r) (the format's compare). An
-//   entry left with no ray is a culled pop: the thread asks to pop again.
+//   each ray r of the entry stays active only if le(tmin_r, best_t_r) (the format's compare) and,
+//   in a shadow packet (shadow_i, rc_thread_ctrl's kind bits, through the one-hot pick), the ray
+//   has no hit: any hit ends a shadow ray. (A shadow ray without a hit has best t = its limit,
+//   rc::trace_packet(); set-up ended its interval there, so every entry's tmin is below it and
+//   the compare with +inf gives the same.) An entry left with no ray is a culled pop: the thread
+//   asks to pop again.
 // - Start (valid/ready, from ray set-up): a packet's first entry. It takes the routing stage when
 //   no pop result does and the output queues have room (start_ready_o, from registers: the cull
 //   compare's valid and the room flag); while one waits, no pop is picked, so it waits at most
@@ -63,6 +67,7 @@ module rc_stack_unit #(
   // The threads' control state (rc_thread_ctrl).
   input  logic [Threads-1:0]         err_i,
   input  logic [Threads*4-1:0]       hit_i,
+  input  logic [Threads-1:0]         shadow_i,
   output logic [ThrW-1:0]            sp_rd_thr_o,    // the picked thread's depth, read
   input  logic [SpW-1:0]             sp_rd_i,
   output logic                       sp_pop_valid_o, // a pop: the thread's new depth
@@ -171,7 +176,7 @@ module rc_stack_unit #(
 
   logic               pp_end, pop0_v_q, pop1_v_q, pop2_v;
   logic [SpW-1:0]     pp_sp;
-  logic               pp_err;
+  logic               pp_err, pp_sh, pop0_sh_q, pop1_sh_q, pop2_sh_q;
   logic [3:0]         pp_hit;
   logic [ThrW-1:0]    pop0_thr_q, pop1_thr_q, pop2_thr_q;
   logic [SpW-1:0]     pop0_sp_q, pop1_sp_q, pop2_sp_q;
@@ -216,6 +221,7 @@ module rc_stack_unit #(
   logic [SpW-1:0] pp_sp_q;
   always_ff @(posedge clk_i) pp_sp_q <= sp_rd_i;
   assign pp_err      = |(gpp_q & err_i);
+  assign pp_sh       = |(gpp_q & shadow_i);
   assign sp_rd_thr_o = pk_thr_q;
   assign pp_sp       = pp_sp_q;
   assign pp_end      = pp_err | (pp_sp == '0);
@@ -268,6 +274,9 @@ module rc_stack_unit #(
     pop0_thr_q <= pp_thr_q;
     pop0_sp_q  <= pp_sp - SpW'(1);
     pop0_hit_q <= pp_hit;
+    pop0_sh_q  <= pp_sh;
+    pop1_sh_q  <= pop0_sh_q;
+    pop2_sh_q  <= pop1_sh_q;
     pop1_thr_q <= pop0_thr_q;
     pop1_sp_q  <= pop0_sp_q;
     pop1_hit_q <= pop0_hit_q;
@@ -305,7 +314,7 @@ module rc_stack_unit #(
       .min_o  (unused_min),
       .max_o  (unused_max)
     );
-    assign pop_le[r] = pop2_hit_q[r] ? cmp_le : pop2_nn_q[r];
+    assign pop_le[r] = pop2_hit_q[r] ? (cmp_le & ~pop2_sh_q) : pop2_nn_q[r];
   end
   assign pop2_v = pop_cmp_v[0];
   // A start takes the routing register when no pop result does this cycle and the queues have

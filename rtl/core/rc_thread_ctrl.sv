@@ -13,8 +13,9 @@
 //   RAM). The depths live in two distributed RAMs, one per writer, and a flip-flop pair per
 //   thread says which holds its depth or that it is 0 (a live-value table): two writers without a
 //   second write port.
-// - Rays that exist: written at acc_*; read port vm_rd_thr_i -> vm_rd_o (asynchronous, from
-//   distributed RAM).
+// - Rays that exist and the packet's kind: written at acc_*; read port vm_rd_thr_i -> vm_rd_o,
+//   vm_rd_shadow_o (asynchronous, from distributed RAM). shadow_o[t]: thread t holds a shadow
+//   packet (acc_shadow_i at its take); a flip-flop per thread.
 // - Every event is for a thread in its unit's hands: the two depth writers never meet on one
 //   thread, and a new packet's thread has no other event (assertions).
 // - Timing: an event changes the state at the clock edge that ends its cycle; reads see it from the
@@ -36,6 +37,7 @@ module rc_thread_ctrl #(
   input  logic [ThrW-1:0]      acc_thr_i,
   input  logic [Threads-1:0]   acc_hot_i,     // acc_valid_i && acc_thr_i == t (a register)
   input  logic [3:0]           acc_vmask_i,
+  input  logic                 acc_shadow_i,
 
   // Errors met, from five units.
   input  logic                 err0_valid_i,    // the traversal decision
@@ -64,11 +66,13 @@ module rc_thread_ctrl #(
 
   // The state.
   output logic [Threads-1:0]   err_o,
+  output logic [Threads-1:0]   shadow_o,
   output logic [Threads*4-1:0] hit_o,
   input  logic [ThrW-1:0]      sp_rd_thr_i,
   output logic [SpW-1:0]       sp_rd_o,
   input  logic [ThrW-1:0]      vm_rd_thr_i,
-  output logic [3:0]           vm_rd_o
+  output logic [3:0]           vm_rd_o,
+  output logic                 vm_rd_shadow_o
 );
 
   if (Threads < 1 || (1 << ThrW) < Threads) begin : g_param_check
@@ -104,16 +108,19 @@ module rc_thread_ctrl #(
   // Error flags and hit bits   //
   ////////////////////////////////
 
-  logic [Threads-1:0]   err_q;
+  logic [Threads-1:0]   err_q, shadow_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      err_q <= '0;
+      err_q    <= '0;
+      shadow_q <= '0;
     end else begin
-      err_q <= (err_q & ~h_acc) | h_e0 | h_e1 | h_e2 | h_e3 | h_e4;
+      err_q    <= (err_q & ~h_acc) | h_e0 | h_e1 | h_e2 | h_e3 | h_e4;
+      shadow_q <= (shadow_q & ~h_acc) | (h_acc & {Threads{acc_shadow_i}});
     end
   end
-  assign err_o = err_q;
+  assign err_o    = err_q;
+  assign shadow_o = shadow_q;
 
   rc_hit_bits #(
     .Threads(Threads)
@@ -174,11 +181,11 @@ module rc_thread_ctrl #(
   // Rays that exist  //
   //////////////////////
 
-  logic [3:0] vm_m [0:Depth-1];
+  logic [4:0] vm_m [0:Depth-1];
   always_ff @(posedge clk_i) begin
-    if (acc_valid_i) vm_m[acc_thr_i] <= acc_vmask_i;
+    if (acc_valid_i) vm_m[acc_thr_i] <= {acc_shadow_i, acc_vmask_i};
   end
-  assign vm_rd_o = vm_m[vm_rd_thr_i];
+  assign {vm_rd_shadow_o, vm_rd_o} = vm_m[vm_rd_thr_i];
 
 `ifndef SYNTHESIS
   logic checks_on;

@@ -215,6 +215,32 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
   }
   nlohmann::json perf_all = nlohmann::json::array();
   for (uint64_t v : r.perf) perf_all.push_back(v);
+  nlohmann::json shadow = nullptr;
+  if (r.lit) {
+    const Counters& sc = r.frame.shadow_counters;
+    const harness::UnitUtilisation su = harness::unit_utilisation(
+        r.shadow_perf, r.shadow_cycles, harness::isect_interval(rtl_model(a)),
+        harness::model_setup_units(rtl_model(a)));
+    nlohmann::json shadow_perf = nlohmann::json::array();
+    for (uint64_t v : r.shadow_perf) shadow_perf.push_back(v);
+    shadow = {{"packets", r.shadow_packets},
+              {"cycles", r.shadow_cycles},
+              {"rays", sc.rays},
+              {"rays_per_cycle", share(sc.rays, r.shadow_cycles)},
+              {"traversal_steps", sc.traversal_steps},
+              {"triangle_tests", sc.triangle_tests},
+              {"efficiency", share(harness::ideal_cycles(sc, harness::isect_interval(rtl_model(a))),
+                                   r.shadow_cycles)},
+              {"utilisation",
+               {{"setup", su.setup},
+                {"trav", su.trav},
+                {"list", su.list},
+                {"isect", su.isect},
+                {"shade", su.shade}}},
+              {"busiest_unit", {{"unit", su.busiest_name}, {"utilisation", su.busiest}}},
+              {"error_bits", r.shadow_error_bits},
+              {"perf", shadow_perf}};
+  }
   return {{"cycles", r.cycles},
           {"core_cycles_counter", perf(spec::kCorePerfCycles)},
           {"rays", c.rays},
@@ -234,7 +260,8 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
           {"setup_units", harness::model_setup_units(rtl_model(a))},
           {"latency", a.latency},
           {"stall_seed", a.stall_seed},
-          {"perf", perf_all}};
+          {"perf", perf_all},
+          {"shadow_pass", shadow}};
 }
 
 void print_rtl_summary(const nlohmann::json& j) {
@@ -264,6 +291,15 @@ void print_rtl_summary(const nlohmann::json& j) {
   }
   std::printf("\n  simulation: %.0f cycles/s, %.2f s wall\n",
               j["simulated_cycles_per_second"].get<double>(), j["wall_seconds"].get<double>());
+  const auto& s = j["shadow_pass"];
+  if (!s.is_null())
+    std::printf(
+        "  rtl shadow pass (shadow packets from the core's hits, light terms on the host): %llu "
+        "packets, %llu rays, %llu cycles, %.4f rays/cycle, efficiency %.3f, busiest: %s %.3f\n",
+        s["packets"].get<unsigned long long>(), s["rays"].get<unsigned long long>(),
+        s["cycles"].get<unsigned long long>(), s["rays_per_cycle"].get<double>(),
+        s["efficiency"].get<double>(), s["busiest_unit"]["unit"].get<std::string>().c_str(),
+        s["busiest_unit"]["utilisation"].get<double>());
 }
 
 harness::CoreSimResult run_rtl(const RenderArgs& a, const RenderInput& in,
@@ -298,16 +334,29 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   std::vector<std::string> counters, allowed;  // differences that fail the check, and not
   for (const CounterDifference& d : counter_differences(gold.counters, rtl.counters))
     (d.required ? counters : allowed).push_back(d.text());
+  // Scene lighting: which lights reach each pixel, and the shadow rays' counters.
+  uint64_t light_differ = 0;
+  if (gold.light_mask.size() != rtl.light_mask.size()) {
+    light_differ = std::max(gold.light_mask.size(), rtl.light_mask.size());
+  } else {
+    for (size_t i = 0; i < gold.light_mask.size(); ++i)
+      light_differ += gold.light_mask[i] != rtl.light_mask[i] ? 1 : 0;
+  }
+  if (!gold.light_mask.empty() || !rtl.light_mask.empty())
+    for (const CounterDifference& d :
+         counter_differences(gold.shadow_counters, rtl.shadow_counters))
+      (d.required ? counters : allowed).push_back("shadow " + d.text());
   // The run itself: idle at the end, misses without a hit record, one write per pixel, no
   // watchdog (the regression tests judge a run by the same function).
   const std::vector<std::string> run =
       sim ? harness::run_problems(*sim) : std::vector<std::string>{};
-  const bool ok = cmp.equal() && counters.empty() && run.empty();
+  const bool ok = cmp.equal() && light_differ == 0 && counters.empty() && run.empty();
   js["check"] = {{"engine", "golden"},
                  {"pixels", cmp.pixels},
                  {"differing_pixels", cmp.differing},
                  {"rgb_differ", cmp.rgb_differ},
                  {"hits_differ", cmp.hits_differ},
+                 {"light_masks_differ", light_differ},
                  {"counter_differences", counters},
                  {"counter_differences_after_error", allowed},
                  {"run_problems", run},
@@ -352,6 +401,9 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
     write_image(diff, rtl.width, rtl.height, exact_difference_image(gold, rtl));
     std::printf("    difference image (red: hit record, yellow: rgb only): %s\n", diff.c_str());
   }
+  if (light_differ)
+    std::printf("  %llu pixels differ in the lights that reach them\n",
+                static_cast<unsigned long long>(light_differ));
   for (const std::string& d : run) std::printf("  run: %s\n", d.c_str());
   for (const std::string& d : counters) std::printf("  counter %s\n", d.c_str());
   for (const std::string& d : allowed)
@@ -400,11 +452,11 @@ int run_render(const RenderArgs& a) {
         "with the board), not '" +
         a.ray_source + "'");
   const Lighting lighting = parse_lighting(a.lighting);
-  if (lighting == Lighting::kScene && (a.engine == "rtl" || a.engine == "board"))
+  if (lighting == Lighting::kScene && a.engine == "board")
     throw Error(
-        "--lighting scene: the core shades with the headlight only so far (the scene's "
-        "lights and shadow rays are in the golden model and the Embree reference); use "
-        "--engine golden or embree");
+        "--lighting scene: the board traces primary rays only so far (the scene's lights and "
+        "shadow rays are in the golden model, the Embree reference and --engine rtl); use "
+        "--engine golden, embree or rtl");
   if (!a.reference.empty() && a.reference != "embree" && a.reference != "golden")
     throw Error("--reference: expected embree or golden, got '" + a.reference + "'");
   if (!a.diff.empty() && a.reference.empty() && !a.check)

@@ -156,7 +156,8 @@ bool intersect(const std::array<T, 12>& m, const Ray<T>& r, int32_t tri, const H
 // Per axis the slab [lo, hi] gives t0 = (lo - o) * inv and t1 = (hi - o) * inv; if either is NaN
 // (the origin lies in a face plane and the direction component is zero) the axis does not restrict
 // the ray. The interval is [max(0, min(t0, t1) per axis), min(+inf, max(t0, t1) per axis)], axes
-// in order x, y, z; the ray is active when tmin <= tmax.
+// in order x, y, z; then tmax = min(tmax, tlim) (a shadow ray's limit, the light's distance;
+// +inf for every other ray, which changes nothing); the ray is active when tmin <= tmax.
 template <class T>
 struct RaySetup {
   std::array<T, 3> inv;
@@ -165,7 +166,7 @@ struct RaySetup {
 };
 
 template <class T>
-RaySetup<T> setup_ray(const Ray<T>& r, const std::array<T, 6>& bounds) {
+RaySetup<T> setup_ray(const Ray<T>& r, const std::array<T, 6>& bounds, T tlim = T::inf()) {
   RaySetup<T> s;
   const T one = T::one();
   for (int a = 0; a < 3; ++a) s.inv[a] = one / r.dir[a];
@@ -178,6 +179,7 @@ RaySetup<T> setup_ray(const Ray<T>& r, const std::array<T, 6>& bounds) {
     s.tmin = max(s.tmin, min(t0, t1));
     s.tmax = min(s.tmax, max(t0, t1));
   }
+  s.tmax = min(s.tmax, tlim);
   s.active = le(s.tmin, s.tmax);
   return s;
 }
@@ -207,9 +209,9 @@ StepResult<T> trav_step(T split, T org, T inv, T tmin, T tmax) {
 }
 
 // What a shadow packet's rays carry beside the primary rule (docs/architecture.md, "Lighting"):
-// per ray the lower bound of its hits' t, the triangle it starts on (never hit) and its initial
-// best t (the light's distance: only hits before the light occlude); and any-hit termination
-// (a ray with a hit is culled at the next pop).
+// per ray the lower bound of its hits' t, the triangle it starts on (never hit) and the light's
+// distance t_hi, which ends its interval at set-up and is its initial best t (only hits before
+// the light occlude); and any-hit termination (a ray with a hit is culled at the next pop).
 template <class T>
 struct ShadowLimits {
   T t_lo;
@@ -240,7 +242,7 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
     hits[r].t = shadow ? shadow->t_hi[r] : T::inf();
     if (!(valid_mask >> r & 1)) continue;
     ++c.rays;
-    const RaySetup<T> su = setup_ray(rays[r], g.bounds);
+    const RaySetup<T> su = setup_ray(rays[r], g.bounds, shadow ? shadow->t_hi[r] : T::inf());
     inv[r] = su.inv;
     cur.tmin[r] = su.tmin;
     cur.tmax[r] = su.tmax;

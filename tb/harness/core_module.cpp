@@ -34,3 +34,16 @@ extern "C" __attribute__((visibility("default"))) int rc_core_module_render(
   return run_in_module<CoreSimError>(
       error, [&] { *out = CoreSim<RC_CORE_MODEL>(*image, *options).render(*render); });
 }
+
+// Traces *packets through the model into a width x height frame (t_eps_bits: t_eps_i).
+extern "C" __attribute__((visibility("default"))) int rc_core_module_trace(
+    const rc::scene::SceneImage* image, const std::vector<rc::harness::CorePacket>* packets,
+    uint32_t width, uint32_t height, uint32_t t_eps_bits,
+    const rc::harness::CoreSimOptions* options, rc::harness::CoreSimResult* out,
+    std::string* error) {
+  using namespace rc::harness;
+  return run_in_module<CoreSimError>(error, [&] {
+    *out = CoreSim<RC_CORE_MODEL>(*image, *options)
+               .trace(*packets, width, height, rc::fp24::from_bits(t_eps_bits));
+  });
+}

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -86,12 +87,25 @@ struct CoreSimResult {
   std::array<MemoryStats, kCorePorts> memory{};
   uint64_t packets_fed = 0;
   uint64_t fb_writes = 0;
+  uint64_t writes_due = 0;  // one per existing ray (a camera frame: its pixels)
   // Per packet (row by row) the cycle the core took it; per pixel the cycle of its framebuffer
   // write: where to look in a waveform (docs/debugging.md).
   std::vector<uint64_t> packet_cycle, pixel_cycle;
   uint64_t misses_with_payload = 0;  // misses reported with a non-zero tri/t/u/v (must be 0)
   double seconds = 0.0;              // wall time of the simulation
   double cycles_per_second = 0.0;    // simulated cycles per wall second
+
+  // Scene lighting (RenderOptions::lighting kScene, an image with lights; docs/architecture.md,
+  // "Lighting"): the frame above is the lit one (rgb, light_mask, shadow_counters) and the fields
+  // above are the primary pass's. The shadow packets are made from the core's primary hits and
+  // traced by the core in a second pass (its figures here); the light terms and the pixel sums
+  // are the golden model's functions, on the host (the core has no light unit yet).
+  bool lit = false;
+  uint64_t shadow_packets = 0;
+  uint64_t shadow_cycles = 0;
+  std::array<uint64_t, kCorePerfCount> shadow_perf{};
+  uint32_t shadow_error_bits = 0;
+  std::vector<std::string> shadow_problems;  // run_problems() of the shadow pass
 };
 
 // What a run must show besides a frame and counters equal to the golden model's: the core idle at
@@ -109,7 +123,19 @@ class CoreSimError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The simulation of one verilated core model. Not copyable; one render per object.
+// A packet as the core's packet port takes it (rc_core's pkt_*): up to four rays (mask bit r: ray
+// r exists), each writing framebuffer pixel `slot[r]`; a shadow packet (docs/architecture.md,
+// "Lighting") also gives each ray its limit t_hi and the triangle it starts on.
+struct CorePacket {
+  uint32_t mask = 0;
+  std::array<Ray<fp24>, kPacketRays> rays{};
+  std::array<uint32_t, kPacketRays> slot{};
+  bool shadow = false;
+  std::array<fp24, kPacketRays> t_hi{};
+  std::array<int32_t, kPacketRays> start_tri{-1, -1, -1, -1};
+};
+
+// The simulation of one verilated core model. Not copyable; one run per object.
 template <class Model>
 class CoreSim {
  public:
@@ -122,7 +148,24 @@ class CoreSim {
   // Throws CoreSimError for a failed run.
   CoreSimResult render(const RenderOptions& render);
 
+  // Traces the given packets in their order into a frame of width x height pixels (each existing
+  // ray writes its slot once; no two rays share one), with t_eps_i = t_eps. The frame's rgb is
+  // what the core wrote (0 for a shadow ray), its hits the rays' records. Throws
+  // std::invalid_argument for a slot outside the frame or shared, CoreSimError for a failed run.
+  CoreSimResult trace(const std::vector<CorePacket>& packets, uint32_t width, uint32_t height,
+                      fp24 t_eps);
+
  private:
+  static constexpr uint64_t kNoOwner = std::numeric_limits<uint64_t>::max();
+  // A run's packets: packet(k, p) fills packet k of `packets`.
+  struct Feed {
+    uint32_t width = 0, height = 0;
+    uint64_t packets = 0;
+    std::function<void(uint64_t, CorePacket&)> packet;
+    std::array<uint8_t, 3> background{};
+    fp24 t_eps = fp24::zero();
+  };
+  CoreSimResult run(const Feed& feed);
   struct State;
   std::unique_ptr<State> s_;
 };
@@ -174,5 +217,21 @@ UnitUtilisation unit_utilisation(const std::array<uint64_t, kCorePerfCount>& per
 // format and CoreSimError for a failed run.
 CoreSimResult render_rtl(const scene::SceneImage& image, const RenderOptions& render,
                          const CoreSimOptions& options, CoreModel model = CoreModel::kDefault);
+
+// The hit of a primary ray from the core's hit record (tri, t, u, v) and d'z, computed again with
+// the intersection unit's expression (rc::transformed_dz()): what the lighting needs.
+Hit<fp24> hit_from_record(const Geometry<fp24>& g, const Ray<fp24>& ray, const HitRecord& rec);
+
+// The shadow packets of a lit frame for the core (rc::lit_work() per primary packet, in the
+// camera's packet order, from the primary frame's hits): packet j's ray r writes slot 4j + r of
+// a 4-wide frame. works[k] is primary packet k's work; its shadow packets are numbered in order.
+std::vector<CorePacket> shadow_core_packets(const Geometry<fp24>& g, const RenderOptions& render,
+                                            const Frame& primary,
+                                            std::vector<LitWork<fp24>>& works);
+
+// Traces explicit packets through the verilated core (CoreSim::trace()).
+CoreSimResult trace_rtl(const scene::SceneImage& image, const std::vector<CorePacket>& packets,
+                        uint32_t width, uint32_t height, fp24 t_eps, const CoreSimOptions& options,
+                        CoreModel model = CoreModel::kDefault);
 
 }  // namespace rc::harness

@@ -78,8 +78,9 @@ struct CoreSim<Model>::State {
   bool used = false;
 
   // Packet stream.
-  uint32_t width = 0, height = 0, pw = 0, ph = 0;
+  uint32_t width = 0, height = 0;
   uint64_t packets_total = 0, packets_fed = 0;
+  std::vector<uint64_t> owner;  // per pixel (slot): the packet whose ray writes it, or kNoOwner
   bool pkt_loaded = false;
   uint32_t gap = 0;
   // Framebuffer.
@@ -144,9 +145,40 @@ CoreSim<Model>::~CoreSim() = default;  // the wrapper closes the waveform, then 
 template <class Model>
 CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   using T = fp24;
+  const PacketSource<T> gen(render.camera, render.width, render.height, render.ray_source);
+  const uint32_t pw = (render.width + 1) / 2, ph = (render.height + 1) / 2;
+  Feed feed;
+  feed.width = render.width;
+  feed.height = render.height;
+  feed.packets = static_cast<uint64_t>(pw) * ph;
+  feed.background = render.background;
+  feed.packet = [&](uint64_t k, CorePacket& p) {
+    const auto px = static_cast<uint32_t>(k % pw), py = static_cast<uint32_t>(k / pw);
+    p.mask = gen.packet(px, py, p.rays);
+    for (unsigned r = 0; r < kPacketRays; ++r)
+      p.slot[r] = (2 * py + (r >> 1)) * render.width + 2 * px + (r & 1u);
+  };
+  return run(feed);
+}
+
+template <class Model>
+CoreSimResult CoreSim<Model>::trace(const std::vector<CorePacket>& packets, uint32_t width,
+                                    uint32_t height, fp24 t_eps) {
+  Feed feed;
+  feed.width = width;
+  feed.height = height;
+  feed.packets = packets.size();
+  feed.t_eps = t_eps;
+  feed.packet = [&](uint64_t k, CorePacket& p) { p = packets[k]; };
+  return run(feed);
+}
+
+template <class Model>
+CoreSimResult CoreSim<Model>::run(const Feed& feed) {
+  using T = fp24;
   constexpr unsigned W = T::kWidth;
   State& s = *s_;
-  if (s.used) throw std::logic_error("CoreSim::render: one render per simulation object");
+  if (s.used) throw std::logic_error("CoreSim: one run per simulation object");
   s.used = true;
   Model& m = *s.m;
   VerilatedTb<Model>& tb = *s.tb;
@@ -166,9 +198,11 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   // The values shade() in tb/golden/trace.hpp uses.
   m.ambient_i = shade_ambient<T>().bits();
   m.diffuse_i = shade_diffuse<T>().bits();
-  m.background_i = static_cast<uint32_t>(render.background[0]) |
-                   static_cast<uint32_t>(render.background[1]) << 8 |
-                   static_cast<uint32_t>(render.background[2]) << 16;
+  m.background_i = static_cast<uint32_t>(feed.background[0]) |
+                   static_cast<uint32_t>(feed.background[1]) << 8 |
+                   static_cast<uint32_t>(feed.background[2]) << 16;
+  m.t_eps_i = feed.t_eps.bits();
+  m.pkt_shadow_i = 0;
   m.pkt_valid_i = 0;
   m.fb_ready_i = 0;
   m.perf_sel_i = 0;
@@ -184,39 +218,53 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   };
   checked([&] { tb.reset(4); });
 
-  // ---- The frame ----
-  const PacketSource<T> gen(render.camera, render.width, render.height, render.ray_source);
-  s.width = render.width;
-  s.height = render.height;
-  s.pw = (s.width + 1) / 2;
-  s.ph = (s.height + 1) / 2;
-  s.packets_total = static_cast<uint64_t>(s.pw) * s.ph;
-  s.pixels_total = static_cast<uint64_t>(s.width) * s.height;
-  s.seen.assign(s.pixels_total, 0);
+  // ---- The frame: every packet's rays and the pixels (slots) they write ----
+  s.width = feed.width;
+  s.height = feed.height;
+  s.packets_total = feed.packets;
+  const uint64_t slots = static_cast<uint64_t>(s.width) * s.height;
+  s.seen.assign(slots, 0);
+  s.owner.assign(slots, kNoOwner);
+  std::vector<CorePacket> packets(feed.packets);
+  s.pixels_total = 0;  // the writes due: one per existing ray
+  for (uint64_t k = 0; k < feed.packets; ++k) {
+    CorePacket& p = packets[k];
+    feed.packet(k, p);
+    for (unsigned r = 0; r < kPacketRays; ++r) {
+      if (!(p.mask >> r & 1u)) continue;
+      if (p.slot[r] >= slots || s.owner[p.slot[r]] != kNoOwner)
+        throw std::invalid_argument(
+            "CoreSim: packet " + std::to_string(k) + " ray " + std::to_string(r) +
+            " writes pixel " + std::to_string(p.slot[r]) + ", outside the frame or another ray's");
+      s.owner[p.slot[r]] = k;
+      ++s.pixels_total;
+    }
+  }
   CoreSimResult res;
   Frame& f = res.frame;
   f.width = s.width;
   f.height = s.height;
-  f.rgb.assign(s.pixels_total * 3, 0);
-  f.hit_tri.assign(s.pixels_total, -1);
-  f.hit_t.assign(s.pixels_total, 0.0f);
-  f.hits.assign(s.pixels_total, HitRecord{});
-  res.pixel_cycle.assign(s.pixels_total, 0);
+  f.rgb.assign(slots * 3, 0);
+  f.hit_tri.assign(slots, -1);
+  f.hit_t.assign(slots, 0.0f);
+  f.hits.assign(slots, HitRecord{});
+  res.pixel_cycle.assign(slots, 0);
 
   const auto load_packet = [&](uint64_t k) {
-    const auto px = static_cast<uint32_t>(k % s.pw), py = static_cast<uint32_t>(k / s.pw);
-    std::array<Ray<T>, kPacketRays> rays;
-    const uint32_t mask = gen.packet(px, py, rays);
-    m.pkt_mask_i = static_cast<uint8_t>(mask);
+    const CorePacket& p = packets[k];
+    m.pkt_mask_i = static_cast<uint8_t>(p.mask);
+    m.pkt_shadow_i = p.shadow;
     for (unsigned r = 0; r < kPacketRays; ++r) {
-      const bool on = (mask >> r & 1u) != 0;
+      const bool on = (p.mask >> r & 1u) != 0;
       for (unsigned a = 0; a < 3; ++a) {
-        set_field(m.pkt_org_i, (3 * r + a) * W, W, on ? rays[r].org[a].bits() : 0u);
-        set_field(m.pkt_dir_i, (3 * r + a) * W, W, on ? rays[r].dir[a].bits() : 0u);
+        set_field(m.pkt_org_i, (3 * r + a) * W, W, on ? p.rays[r].org[a].bits() : 0u);
+        set_field(m.pkt_dir_i, (3 * r + a) * W, W, on ? p.rays[r].dir[a].bits() : 0u);
       }
-      set_field(m.pkt_inv_len_i, r * W, W, on ? rays[r].inv_len.bits() : 0u);
-      const uint32_t x = 2 * px + (r & 1u), y = 2 * py + (r >> 1);
-      set_field(m.pkt_pixel_i, r * 32, 32, on ? y * s.width + x : 0u);
+      set_field(m.pkt_inv_len_i, r * W, W, on ? p.rays[r].inv_len.bits() : 0u);
+      set_field(m.pkt_pixel_i, r * 32, 32, on ? p.slot[r] : 0u);
+      set_field(m.pkt_t_hi_i, r * W, W, on && p.shadow ? p.t_hi[r].bits() : 0u);
+      set_field(m.pkt_start_tri_i, r * 32, 32,
+                on && p.shadow ? static_cast<uint32_t>(p.start_tri[r]) : 0u);
     }
   };
 
@@ -313,13 +361,12 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
     if (m.fb_valid_o && m.fb_ready_i) {
       handshake = true;
       const uint64_t pix = m.fb_pixel_o;
-      if (pix >= s.pixels_total)
-        fail("framebuffer write to pixel " + std::to_string(pix) + ", the frame has " +
-             std::to_string(s.pixels_total));
+      if (pix >= s.owner.size() || s.owner[pix] == kNoOwner)
+        fail("framebuffer write to pixel " + std::to_string(pix) +
+             ", which no ray of the frame writes (" + std::to_string(s.owner.size()) + " pixels)");
       const uint32_t x = static_cast<uint32_t>(pix % s.width),
                      y = static_cast<uint32_t>(pix / s.width);
-      const uint64_t packet = static_cast<uint64_t>(y / 2) * s.pw + x / 2;
-      if (packet >= s.packets_fed)
+      if (s.owner[pix] >= s.packets_fed)
         fail("framebuffer write to pixel (" + std::to_string(x) + ", " + std::to_string(y) +
              ") before its packet was taken");
       if (s.seen[pix])
@@ -408,6 +455,7 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   res.cycles = s.cycle;
   res.packets_fed = s.packets_fed;
   res.fb_writes = s.written;
+  res.writes_due = s.pixels_total;
   res.misses_with_payload = s.miss_payload;
   for (int i = 0; i < kCorePorts; ++i)
     res.memory[static_cast<size_t>(i)] = s.ports[static_cast<size_t>(i)]->stats();

@@ -210,6 +210,36 @@ TEST(GoldenLight, ShadowRayEndsAtTheFirstOccluder) {
   EXPECT_EQ(hits[0].t.to_double(), 5.0);
 }
 
+// Rules version 4: set-up ends a shadow ray's interval at the light. The same two leaves, the
+// light at t = 3.5: the ray is in the left leaf up to t = 4, so its interval [0, 3.5] never
+// reaches the right one (no push, no pop); the left square at t = 5 lies beyond the light, so the
+// light gets through. (Version 3 pushed the right leaf and culled it at the pop.)
+TEST(GoldenLight, ShadowRayIntervalEndsAtTheLight) {
+  Geometry<T> g;
+  const auto left = add_quad(g, -1, 1, -1, 1, -5);
+  const auto right = add_quad(g, -1, 1, -1, 1, -3);
+  g.nodes = {KdNode::inner(0, 1, f(0.0).bits()).raw, KdNode::leaf(0, 2).raw,
+             KdNode::leaf(2, 2).raw};
+  g.lists = {left[0], left[1], right[0], right[1]};
+  set_box(g, -8, 8);
+  const Ray<T> r = ray({-0.5, 0.25, 0}, {0.125, 0, -1});
+  const RaySetup<T> su = setup_ray(r, g.bounds, f(3.5));
+  EXPECT_EQ(su.tmax.to_double(), 3.5);
+  EXPECT_TRUE(su.active);
+  ShadowLimits<T> lim;
+  lim.t_lo = f(1e-3);
+  lim.t_hi = {f(3.5), T::inf(), T::inf(), T::inf()};
+  std::array<Hit<T>, kPacketRays> hits;
+  Counters any;
+  ASSERT_EQ(trace_packet(g, {r, r, r, r}, 0x1u, hits, any, &lim), 0u);
+  EXPECT_EQ(any.leaf_visits, 1u);
+  EXPECT_EQ(any.stack_pushes, 0u);
+  EXPECT_EQ(any.stack_pops, 0u);
+  EXPECT_EQ(hits[0].tri, -1);
+  // A limit below the interval's start leaves the ray inactive.
+  EXPECT_FALSE(setup_ray(r, g.bounds, f(-1.0)).active);
+}
+
 TEST(GoldenLight, FixedPointSumsAndBytes) {
   EXPECT_EQ(light_fixed(T::zero()), 0u);
   EXPECT_EQ(light_fixed(T::one()), kLightOne);

@@ -2,10 +2,13 @@
 // (tb/harness/core_sim.hpp), against the golden model (tb/golden/render.hpp), bit for bit: every
 // pixel's rgb and exact hit record (triangle, t, u, v) and the counters, for every scene of
 // scenes/, the builtin scenes and the shared models, at the default memory latency without stalls,
-// with seeded random stalls (two seeds), and at Threads = 1. Corrupted images (the error paths)
-// must give the golden model's error bits, counters and (all-miss) pixels, and must not hang.
+// with seeded random stalls (two seeds), and at Threads = 1. Scenes lit by their own lights
+// (shadow packets traced by the core) must give the golden model's colours, lights per pixel and
+// shadow counters too. Corrupted images (the error paths) must give the golden model's error
+// bits, counters and (all-miss) pixels, and must not hang.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -56,11 +59,19 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
       std::printf("%s: counter after an error (allowed to differ) %s\n", what.c_str(),
                   d.text().c_str());
   }
+  // Scene lighting: the lights that reach each pixel and the shadow rays' counters.
+  uint64_t light_differ = 0;
+  EXPECT_EQ(gold.light_mask.size(), f.light_mask.size()) << what << ": lit in one engine only";
+  for (size_t i = 0; i < std::min(gold.light_mask.size(), f.light_mask.size()); ++i)
+    light_differ += gold.light_mask[i] != f.light_mask[i] ? 1 : 0;
+  if (!gold.light_mask.empty())
+    for (const CounterDifference& d : counter_differences(gold.shadow_counters, f.shadow_counters))
+      if (d.required) counters.push_back("shadow " + d.text());
   std::printf(
       "[cases] core rtl %s %ux%u: %llu cases, %llu mismatches (%llu cycles, %.3f rays/cycle, "
       "efficiency %.3f, %.0f cycles/s)\n",
       what.c_str(), f.width, f.height, static_cast<unsigned long long>(cmp.pixels),
-      static_cast<unsigned long long>(cmp.differing + counters.size()),
+      static_cast<unsigned long long>(cmp.differing + light_differ + counters.size()),
       static_cast<unsigned long long>(r.cycles),
       r.cycles ? static_cast<double>(f.counters.rays) / static_cast<double>(r.cycles) : 0.0,
       r.cycles
@@ -82,6 +93,9 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
                   << "," << int(f.rgb[3 * pix + 1]) << "," << int(f.rgb[3 * pix + 2])
                   << (repro.empty() ? "" : "\n  rerun: " + repro);
   }
+  if (light_differ)
+    ADD_FAILURE() << what << ": " << light_differ << " pixels differ in the lights that reach them"
+                  << (repro.empty() ? "" : "\n  rerun: " + repro);
   for (const std::string& d : counters)
     ADD_FAILURE() << what << ": counter " << d << (repro.empty() ? "" : "\n  rerun: " + repro);
   // The checks `raycore render --check` makes too: idle at the end, no miss with a hit record,
@@ -199,6 +213,80 @@ std::string case_name(const testing::TestParamInfo<std::tuple<SceneCase, int>>& 
 INSTANTIATE_TEST_SUITE_P(Scenes, CoreRtl,
                          testing::Combine(testing::ValuesIn(kScenes), testing::Range(0, 6)),
                          case_name);
+
+//////////////////////////////////////////////////
+// Scene lighting: shadow packets in the core   //
+//////////////////////////////////////////////////
+
+// The scenes' own lights (docs/architecture.md, "Lighting"): the core traces the primary frame,
+// then the shadow packets made from its hits (harness::render_rtl); the colours, the lights per
+// pixel and both passes' counters must be the golden model's.
+class CoreRtlLit : public testing::TestWithParam<std::tuple<SceneCase, int>> {};
+
+// The lit case whose view has no occluder (the terrain under its directional light at 64x48:
+// every shadow ray reaches the light); it covers the directional light's limit, +inf.
+const char* const kUnshadowed = "scenes/terrain.json";
+
+TEST_P(CoreRtlLit, MatchesGoldenBitForBit) {
+  const SceneCase c = std::get<0>(GetParam());
+  const Mode& mode = kModes[std::get<1>(GetParam())];
+  if (c.needs_models && kModels.empty())
+    GTEST_SKIP() << "the shared test models are not there (../shared/models beside the "
+                    "repository, or RAYCORE_MODELS_PATH)";
+  const RenderInput in =
+      load_render_input(input_path(c), scene::LoadOptions{}, scene::NumberFormat::fp24());
+  ASSERT_GT(in.image.light_count(), 0u) << c.input << ": a lit case needs a scene with lights";
+  RenderOptions opt = input_options(in);
+  if (c.auto_camera) opt.camera = auto_camera_for(in.image);
+  opt.width = c.width;
+  opt.height = c.height;
+  opt.progress = false;
+  opt.lighting = Lighting::kScene;
+  const Frame gold = render_golden(load_geometry<fp24>(in.image), opt);
+  CoreSimOptions so;
+  so.stall_seed = mode.stall_seed;
+  const CoreSimResult r = harness::render_rtl(in.image, opt, so, mode.model);
+  ASSERT_TRUE(r.lit);
+  const std::string repro =
+      "./build/tb/app/raycore render " + cli_input(c) +
+      " --engine rtl --lighting scene --check -o /tmp/rc_case.png --size " +
+      std::to_string(c.width) + "x" + std::to_string(c.height) +
+      (c.auto_camera ? " --auto-camera" : "") +
+      (mode.stall_seed ? " --stall-seed " + std::to_string(mode.stall_seed) : "") +
+      (mode.model == CoreModel::kThreads1 ? " --threads-rtl 1" : "");
+  expect_bit_exact(std::string(c.input) + " lit " + mode.name, gold, r, repro, mode.model);
+  const Counters& sc = gold.shadow_counters;
+  std::printf(
+      "  shadow pass: %llu packets, %llu rays, %llu cycles (primary %llu); golden: %llu shadow "
+      "rays, %llu culled pops\n",
+      static_cast<unsigned long long>(r.shadow_packets),
+      static_cast<unsigned long long>(r.frame.shadow_counters.rays),
+      static_cast<unsigned long long>(r.shadow_cycles), static_cast<unsigned long long>(r.cycles),
+      static_cast<unsigned long long>(sc.rays), static_cast<unsigned long long>(sc.culled_pops));
+  EXPECT_GT(sc.rays, 0u) << "shadow rays were traced";
+  // Light reaches some hits, and (where the view has occluders) is blocked at others.
+  uint64_t lit_pairs = 0;
+  for (uint32_t m : gold.light_mask) lit_pairs += static_cast<uint64_t>(__builtin_popcount(m));
+  EXPECT_GT(lit_pairs, 0u);
+  if (std::string(c.input) != kUnshadowed) EXPECT_LT(lit_pairs, sc.rays) << "no ray occluded";
+}
+
+const SceneCase kLitScenes[] = {
+    {"scenes/default.json", false, false, 64, 48},
+    {"scenes/cornell.json", false, false, 65, 49},
+    {"scenes/spheres.json", false, false, 64, 48},
+    {"scenes/terrain.json", false, false, 64, 48},  // a directional light: t_hi = +inf
+    {"scenes/conference.json", false, true, 48, 36},
+};
+
+std::string lit_case_name(const testing::TestParamInfo<std::tuple<SceneCase, int>>& info) {
+  return case_name(info);
+}
+
+// lat16, stall1, t1 (kModes 0, 1, 3).
+INSTANTIATE_TEST_SUITE_P(Scenes, CoreRtlLit,
+                         testing::Combine(testing::ValuesIn(kLitScenes), testing::Values(0, 1, 3)),
+                         lit_case_name);
 
 //////////////////////////////////
 // Corrupted images (errors)    //

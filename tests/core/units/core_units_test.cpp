@@ -302,6 +302,7 @@ struct SetupUnit {
   struct In {
     std::array<T, 3> org, dir;
     std::array<T, 6> bounds;
+    T tlim = T::inf();  // tmax's limit (a shadow ray's light distance)
   };
   struct Out {
     std::array<uint32_t, 3> inv;
@@ -318,6 +319,7 @@ struct SetupUnit {
       put_field(d.dir_i, a * kW, kW, in.dir[a].bits());
     }
     for (int i = 0; i < 6; ++i) put_field(d.bounds_i, i * kW, kW, in.bounds[i].bits());
+    d.tlim_i = in.tlim.bits();
   }
   static Out read(const Vrc_ray_setup& d) {
     Out o;
@@ -329,7 +331,7 @@ struct SetupUnit {
   }
   static Out golden(const In& in) {
     Ray<T> r{in.org, in.dir, T::from_double(1.0)};
-    const RaySetup<T> s = setup_ray<T>(r, in.bounds);
+    const RaySetup<T> s = setup_ray<T>(r, in.bounds, in.tlim);
     return {{s.inv[0].bits(), s.inv[1].bits(), s.inv[2].bits()},
             s.tmin.bits(),
             s.tmax.bits(),
@@ -343,6 +345,7 @@ struct SetupUnit {
     for (T v : in.dir) s << ' ' << v.hex();
     s << ", bounds";
     for (T v : in.bounds) s << ' ' << v.hex();
+    s << ", tlim " << in.tlim.hex();
     const auto out = [&](const char* who, const Out& o) {
       s << "; " << who << " inv";
       for (uint32_t v : o.inv) s << ' ' << fb(v).hex();
@@ -388,6 +391,20 @@ SetupUnit::In setup_case(Gen& g) {
     if (dir_kind == 3 && g.chance(3)) d = g.special();
     if (dir_kind == 4 && g.chance(3)) d = g.any();
     in.dir[a] = d;
+  }
+  // The limit: +inf (every primary ray) in half the cases; otherwise near the interval's ends,
+  // anywhere, or a special value (NaN, zeros, infinities).
+  if (g.chance(2)) {
+    Ray<T> r{in.org, in.dir, T::from_double(1.0)};
+    const RaySetup<T> s = setup_ray<T>(r, in.bounds);
+    switch (g.u(6)) {
+      case 0: in.tlim = s.tmax; break;
+      case 1: in.tlim = g.near(s.tmax); break;
+      case 2: in.tlim = g.near(s.tmin); break;
+      case 3: in.tlim = s.tmin + (s.tmax - s.tmin) * T::from_double(g.unit()); break;
+      case 4: in.tlim = g.special(); break;
+      default: in.tlim = g.moderate(6); break;
+    }
   }
   return in;
 }
@@ -592,10 +609,16 @@ TEST(CoreUnits, TravStepTiming) {
 }
 
 TEST(CoreUnits, RaySetupRandom) {
-  uint64_t active = 0, skipped_axes = 0, neg_zero_tmax = 0, zero_dir = 0;
+  uint64_t active = 0, skipped_axes = 0, neg_zero_tmax = 0, zero_dir = 0, clipped = 0,
+           limit_off = 0;
   run_random<Vrc_ray_setup, SetupUnit>(
       "rc_ray_setup", "setup_ray<fp24>", 1'000'000, 202, setup_case, [&](const SetupUnit::In& in) {
         const SetupUnit::Out o = SetupUnit::golden(in);
+        SetupUnit::In free_in = in;
+        free_in.tlim = T::inf();
+        const SetupUnit::Out f = SetupUnit::golden(free_in);
+        clipped += o.active && o.tmax != f.tmax ? 1 : 0;  // the limit ended an active interval
+        limit_off += f.active && !o.active ? 1 : 0;       // the limit made the ray inactive
         active += o.active ? 1 : 0;
         neg_zero_tmax += o.tmax == T::kSignBit ? 1 : 0;
         for (int a = 0; a < 3; ++a) {
@@ -607,12 +630,16 @@ TEST(CoreUnits, RaySetupRandom) {
       });
   std::printf(
       "[info] rc_ray_setup coverage: active %llu of 1000000; skipped (NaN) axes %llu; "
-      "zero direction components %llu; tmax = -0 %llu\n",
+      "zero direction components %llu; tmax = -0 %llu; tmax ended by the limit %llu, rays made "
+      "inactive by it %llu\n",
       static_cast<unsigned long long>(active), static_cast<unsigned long long>(skipped_axes),
-      static_cast<unsigned long long>(zero_dir), static_cast<unsigned long long>(neg_zero_tmax));
+      static_cast<unsigned long long>(zero_dir), static_cast<unsigned long long>(neg_zero_tmax),
+      static_cast<unsigned long long>(clipped), static_cast<unsigned long long>(limit_off));
   EXPECT_GT(active, 100'000u);
   EXPECT_LT(active, 900'000u);
   EXPECT_GT(skipped_axes, 10'000u);
+  EXPECT_GT(clipped, 10'000u);
+  EXPECT_GT(limit_off, 10'000u);
 }
 
 // rc_ray_setup runs the three axes of a ray through one arithmetic slice: one ray per 3 cycles.
