@@ -268,7 +268,9 @@ TEST_P(CoreRtlLit, MatchesGoldenBitForBit) {
   uint64_t lit_pairs = 0;
   for (uint32_t m : gold.light_mask) lit_pairs += static_cast<uint64_t>(__builtin_popcount(m));
   EXPECT_GT(lit_pairs, 0u);
-  if (std::string(c.input) != kUnshadowed) EXPECT_LT(lit_pairs, sc.rays) << "no ray occluded";
+  if (std::string(c.input) != kUnshadowed) {
+    EXPECT_LT(lit_pairs, sc.rays) << "no ray occluded";
+  }
 }
 
 const SceneCase kLitScenes[] = {
@@ -287,6 +289,57 @@ std::string lit_case_name(const testing::TestParamInfo<std::tuple<SceneCase, int
 INSTANTIATE_TEST_SUITE_P(Scenes, CoreRtlLit,
                          testing::Combine(testing::ValuesIn(kLitScenes), testing::Values(0, 1, 3)),
                          lit_case_name);
+
+// A point light between a floor (y = 0) and a ceiling (y = 2), all in one leaf (a tree of depth
+// 0): every shadow ray meets the other quad beyond the light, which must not occlude (only hits
+// before the light do: a shadow ray's best starts at {dist, -1}). The camera, between the two,
+// sees both, so shadow rays go up and down. Set-up's limit alone cannot keep the far quad out
+// here: its leaf is the ray's.
+TEST(CoreRtlLitDirected, QuadBeyondTheLightInTheSameLeafDoesNotShadow) {
+  scene::Scene s;
+  s.name = "light between two quads";
+  s.source = "test";
+  scene::Mesh m;
+  m.source = "test";
+  m.vertices = {{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1},
+                {-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}};
+  m.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
+  m.material = {0, 0, 0, 0};
+  m.line = {0, 0, 0, 0};
+  m.materials = {scene::Material{}};
+  s.meshes = {m};
+  scene::Camera cam;
+  cam.eye = {0.0, 1.0, 2.5};
+  cam.look = {0.0, 1.0, 0.0};
+  cam.fov_deg = 90.0;
+  s.camera = cam;
+  s.width = 40;
+  s.height = 30;
+  scene::Light light;
+  light.position = {0.0, 1.0, 0.0};
+  s.lights = {light};
+  scene::CompileOptions co;
+  co.kd.max_depth = 0;
+  const scene::Compiled c = scene::compile_scene(s, co);
+  RenderInput in{s.name, s, scene::SceneImage::from_bytes(c.image, s.name), std::nullopt};
+  ASSERT_EQ(in.image.node_count(), 1u) << "the quads share one leaf";
+  RenderOptions opt = input_options(in);
+  opt.progress = false;
+  opt.lighting = Lighting::kScene;
+  const Frame gold = render_golden(load_geometry<fp24>(in.image), opt);
+  const CoreSimResult r = harness::render_rtl(in.image, opt, CoreSimOptions{});
+  expect_bit_exact("quads beyond the light", gold, r);
+  uint64_t lit_pairs = 0, floor = 0, ceiling = 0;
+  for (size_t i = 0; i < gold.light_mask.size(); ++i) {
+    lit_pairs += static_cast<uint64_t>(__builtin_popcount(gold.light_mask[i]));
+    floor += gold.hits[i].tri == 0 || gold.hits[i].tri == 1 ? 1 : 0;
+    ceiling += gold.hits[i].tri == 2 || gold.hits[i].tri == 3 ? 1 : 0;
+  }
+  EXPECT_GT(floor, 0u);
+  EXPECT_GT(ceiling, 0u);
+  EXPECT_EQ(lit_pairs, floor + ceiling) << "every hit sees the light";
+  EXPECT_EQ(r.frame.shadow_counters.rays, floor + ceiling);
+}
 
 //////////////////////////////////
 // Corrupted images (errors)    //
