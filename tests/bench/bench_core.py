@@ -3,8 +3,11 @@
 several memory latencies and thread counts, and at latency 16 with one and two ray set-up units,
 bit for bit against the golden model, and prints one table: cycles, rays per cycle, efficiency
 (ideal cycles / cycles), the utilisation of each unit and of the busiest one
-(docs/architecture.md, "Counters"), and the simulation's speed. It measures; it judges nothing
-but the bit-exact check (a run that differs from the golden model fails it).
+(docs/architecture.md, "Counters"), and the simulation's speed. A second table lights the scenes
+with their own lights (--lighting scene) and gives each ray kind's figures: the primary frame and
+the shadow pass (the shadow packets the core traces after it, docs/architecture.md "Lighting"),
+and what the shadow rays add to the frame's cycles. It measures; it judges nothing but the
+bit-exact check (a run that differs from the golden model fails it).
 
 Usage: bench_core.py RAYCORE [--models DIR] [--jobs N] [--markdown FILE] [--quick]
 """
@@ -26,6 +29,8 @@ SCENES = [
     ("spheres", "scenes/spheres.json", "256x192", []),
     ("bunny", "{models}/bunny/bunny.obj", "512x384", ["--auto-camera"]),
 ]
+# The lit scenes (their own lights, shadow rays traced by the core), at latency 16.
+LIT_SCENES = ["default", "spheres", "sponza", "conference"]
 LATENCIES = [1, 16, 64]
 THREADS = ["16", "64", "default"]
 # The cores with fewer ray set-up units than the default (docs/spec.toml [core] setup_units), at
@@ -37,7 +42,7 @@ SETUP_UNITS = ["1", "2"]
 SAARCOR = "SaarCOR (simulated, 64-ray packets): 16 threads 70-80% of the ideal rate, 32 threads 80-90%"
 
 
-def run(raycore, root, models, scene, latency, threads, setup_units="default"):
+def run(raycore, root, models, scene, latency, threads, setup_units="default", lit=False):
     label, inp, size, extra = scene
     inp = inp.format(models=models)
     with tempfile.TemporaryDirectory() as tmp:
@@ -46,6 +51,8 @@ def run(raycore, root, models, scene, latency, threads, setup_units="default"):
                "--latency", str(latency), "--threads-rtl", threads,
                "--setup-units-rtl", setup_units, "-q",
                "-o", os.path.join(tmp, "i.png"), "--stats", stats] + extra
+        if lit:
+            cmd += ["--lighting", "scene"]
         if models:
             cmd += ["--models-path", models]
         start = time.monotonic()
@@ -63,7 +70,32 @@ def run(raycore, root, models, scene, latency, threads, setup_units="default"):
             "cycles": r["cycles"], "rays_per_cycle": r["rays_per_cycle"],
             "efficiency": r["efficiency"], "util": r["utilisation"],
             "busiest": r["busiest_unit"], "pass": d["check"]["pass"],
-            "speed": r["simulated_cycles_per_second"], "wall": wall}
+            "speed": r["simulated_cycles_per_second"], "wall": wall,
+            "shadow": r.get("shadow_pass")}
+
+
+def lit_table(rows):
+    head = ("| scene | size | kind | packets | rays | cycles | rays/cycle | efficiency "
+            "| busiest unit | frame cycles / primary | bit-exact |")
+    lines = [head, "|" + "---|" * 11]
+    for x in rows:
+        if "error" in x:
+            lines.append(f"| {x['label']} | | failed: {' '.join(x['error'])} |" + " |" * 8)
+            continue
+        s = x["shadow"] or {"packets": 0, "rays": 0, "cycles": 0, "rays_per_cycle": 0.0,
+                            "efficiency": 0.0, "busiest_unit": {"unit": "-", "utilisation": 0.0}}
+        ok = "yes" if x["pass"] else "NO"
+        lines.append(
+            f"| {x['label']} | {x['size']} | primary | | | {x['cycles']:,} | "
+            f"{x['rays_per_cycle']:.3f} | {x['efficiency']:.3f} | {x['busiest']['unit']} "
+            f"{x['busiest']['utilisation']:.3f} | 1.00 | {ok} |")
+        ratio = (x["cycles"] + s["cycles"]) / x["cycles"] if x["cycles"] else 0.0
+        lines.append(
+            f"| {x['label']} | {x['size']} | shadow | {s['packets']:,} | {s['rays']:,} | "
+            f"{s['cycles']:,} | {s['rays_per_cycle']:.3f} | {s['efficiency']:.3f} | "
+            f"{s['busiest_unit']['unit']} {s['busiest_unit']['utilisation']:.3f} | "
+            f"{ratio:.2f} | {ok} |")
+    return "\n".join(lines)
 
 
 def table(rows):
@@ -105,18 +137,24 @@ def main():
     jobs = [(s, l, t) for s in scenes for t in thrs for l in lats]
     if not a.quick:
         jobs += [(s, 16, "default", n) for s in scenes for n in SETUP_UNITS]
+    lit_jobs = [s for s in scenes if s[0] in LIT_SCENES]
     start = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
         rows = list(ex.map(lambda j: run(a.raycore, root, models, *j), jobs))
+        lit_rows = list(ex.map(lambda s: run(a.raycore, root, models, s, 16, "default",
+                                             lit=True), lit_jobs))
     text = table(rows)
+    text += ("\n\nLit by the scenes' own lights (--lighting scene), latency 16, the default "
+             "threads: per ray kind; the shadow pass follows the primary frame\n\n" +
+             lit_table(lit_rows))
     print(text)
     print()
     print(SAARCOR)
-    print(f"{len(rows)} runs in {time.monotonic() - start:.0f} s")
+    print(f"{len(rows) + len(lit_rows)} runs in {time.monotonic() - start:.0f} s")
     if a.markdown:
         with open(a.markdown, "w") as f:
             f.write(text + "\n\n" + SAARCOR + "\n")
-    bad = [x for x in rows if "error" in x or not x["pass"]]
+    bad = [x for x in rows + lit_rows if "error" in x or not x["pass"]]
     for x in bad:
         print(f"bench-core: {x['label']} latency {x['latency']} threads {x['threads']} "
               f"set-up units {x['setup_units']}: "
