@@ -182,11 +182,11 @@ TEST(GoldenLight, OccluderBeyondThePointLightDoesNotShadow) {
   EXPECT_EQ(p.lights[0], 1u);
 }
 
-// Any-hit: root splits x at 0; the left leaf lists a square at z = -5 and the right one a square
-// at z = -3, both spanning x in [-1, 1]. A ray from (-0.5, 0.25, 0) along (0.125, 0, -1) meets the
-// left square at t = 5 inside the left leaf and crosses into the right leaf at t = 4 <= 5: the
-// closest-hit rule visits both leaves (and finds t = 3), a shadow ray stops after the first.
-TEST(GoldenLight, ShadowRayEndsAtTheFirstOccluder) {
+// Two leaves: the root splits x at 0; the left leaf lists a square at z = -5 and the right one a
+// square at z = -3, both spanning x in [-1, 1]. The ray from (-0.5, 0.25, 0) along
+// (0.125, 0, -1) meets the left square at t = 5 inside the left leaf and crosses into the right
+// leaf at t = 4.
+Geometry<T> two_leaves() {
   Geometry<T> g;
   const auto left = add_quad(g, -1, 1, -1, 1, -5);
   const auto right = add_quad(g, -1, 1, -1, 1, -3);
@@ -194,7 +194,15 @@ TEST(GoldenLight, ShadowRayEndsAtTheFirstOccluder) {
              KdNode::leaf(2, 2).raw};
   g.lists = {left[0], left[1], right[0], right[1]};
   set_box(g, -8, 8);
-  const Ray<T> r = ray({-0.5, 0.25, 0}, {0.125, 0, -1});
+  return g;
+}
+const Ray<T> kTwoLeavesRay = ray({-0.5, 0.25, 0}, {0.125, 0, -1});
+
+// Any-hit: the ray crosses into the right leaf at t = 4 <= 5, so the closest-hit rule visits
+// both leaves (and finds t = 3); a shadow ray stops after the first.
+TEST(GoldenLight, ShadowRayEndsAtTheFirstOccluder) {
+  const Geometry<T> g = two_leaves();
+  const Ray<T> r = kTwoLeavesRay;
   std::array<Hit<T>, kPacketRays> hits;
   Counters closest;
   ASSERT_EQ(trace_packet(g, {r, r, r, r}, 0x1u, hits, closest), 0u);
@@ -215,14 +223,8 @@ TEST(GoldenLight, ShadowRayEndsAtTheFirstOccluder) {
 // reaches the right one (no push, no pop); the left square at t = 5 lies beyond the light, so the
 // light gets through. (Version 3 pushed the right leaf and culled it at the pop.)
 TEST(GoldenLight, ShadowRayIntervalEndsAtTheLight) {
-  Geometry<T> g;
-  const auto left = add_quad(g, -1, 1, -1, 1, -5);
-  const auto right = add_quad(g, -1, 1, -1, 1, -3);
-  g.nodes = {KdNode::inner(0, 1, f(0.0).bits()).raw, KdNode::leaf(0, 2).raw,
-             KdNode::leaf(2, 2).raw};
-  g.lists = {left[0], left[1], right[0], right[1]};
-  set_box(g, -8, 8);
-  const Ray<T> r = ray({-0.5, 0.25, 0}, {0.125, 0, -1});
+  const Geometry<T> g = two_leaves();
+  const Ray<T> r = kTwoLeavesRay;
   const RaySetup<T> su = setup_ray(r, g.bounds, f(3.5));
   EXPECT_EQ(su.tmax.to_double(), 3.5);
   EXPECT_TRUE(su.active);

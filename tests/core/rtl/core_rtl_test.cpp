@@ -141,21 +141,35 @@ std::string cli_input(const SceneCase& c) {
   return "../shared/models/" + in;
 }
 
-class CoreRtl : public testing::TestWithParam<std::tuple<SceneCase, int>> {};
-
-TEST_P(CoreRtl, MatchesGoldenBitForBit) {
-  const SceneCase c = std::get<0>(GetParam());
-  const Mode& mode = kModes[std::get<1>(GetParam())];
-  if (c.needs_models && kModels.empty())
-    GTEST_SKIP() << "the shared test models are not there (../shared/models beside the "
-                    "repository, or RAYCORE_MODELS_PATH)";
-  const RenderInput in =
-      load_render_input(input_path(c), scene::LoadOptions{}, scene::NumberFormat::fp24());
+// A case's render options: its camera (or the automatic one), its size, no progress.
+RenderOptions case_options(const SceneCase& c, const RenderInput& in) {
   RenderOptions opt = input_options(in);
   if (c.auto_camera) opt.camera = auto_camera_for(in.image);
   opt.width = c.width;
   opt.height = c.height;
   opt.progress = false;
+  return opt;
+}
+
+RenderInput case_input(const SceneCase& c) {
+  return load_render_input(input_path(c), scene::LoadOptions{}, scene::NumberFormat::fp24());
+}
+
+// Skips the test when the case needs the shared models and they are not there (make test then
+// fails: a skipped check is not a pass).
+#define RC_SKIP_WITHOUT_MODELS(c)                                                      \
+  if ((c).needs_models && kModels.empty())                                             \
+  GTEST_SKIP() << "the shared test models are not there (../shared/models beside the " \
+                  "repository, or RAYCORE_MODELS_PATH)"
+
+class CoreRtl : public testing::TestWithParam<std::tuple<SceneCase, int>> {};
+
+TEST_P(CoreRtl, MatchesGoldenBitForBit) {
+  const SceneCase c = std::get<0>(GetParam());
+  const Mode& mode = kModes[std::get<1>(GetParam())];
+  RC_SKIP_WITHOUT_MODELS(c);
+  const RenderInput in = case_input(c);
+  const RenderOptions opt = case_options(c, in);
   const Frame gold = render_golden(load_geometry<fp24>(in.image), opt);
   CoreSimOptions so;
   so.stall_seed = mode.stall_seed;
@@ -230,17 +244,10 @@ const char* const kUnshadowed = "scenes/terrain.json";
 TEST_P(CoreRtlLit, MatchesGoldenBitForBit) {
   const SceneCase c = std::get<0>(GetParam());
   const Mode& mode = kModes[std::get<1>(GetParam())];
-  if (c.needs_models && kModels.empty())
-    GTEST_SKIP() << "the shared test models are not there (../shared/models beside the "
-                    "repository, or RAYCORE_MODELS_PATH)";
-  const RenderInput in =
-      load_render_input(input_path(c), scene::LoadOptions{}, scene::NumberFormat::fp24());
+  RC_SKIP_WITHOUT_MODELS(c);
+  const RenderInput in = case_input(c);
   ASSERT_GT(in.image.light_count(), 0u) << c.input << ": a lit case needs a scene with lights";
-  RenderOptions opt = input_options(in);
-  if (c.auto_camera) opt.camera = auto_camera_for(in.image);
-  opt.width = c.width;
-  opt.height = c.height;
-  opt.progress = false;
+  RenderOptions opt = case_options(c, in);
   opt.lighting = Lighting::kScene;
   const Frame gold = render_golden(load_geometry<fp24>(in.image), opt);
   CoreSimOptions so;
