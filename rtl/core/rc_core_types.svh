@@ -10,6 +10,7 @@
 // localparams), no struct literals, no `$bits` of a type, no casts to a type.
 
 localparam int unsigned CoreFpW     = 1 + Fp24ExpW + Fp24FracW;
+localparam logic [CoreFpW-1:0] CoreFpPosInf = {1'b0, {Fp24ExpW{1'b1}}, {Fp24FracW{1'b0}}};  // +inf
 localparam int unsigned CoreThrBits = $clog2(CoreMaxThreads);
 localparam int unsigned CoreSpBits  = $clog2(KdtreeStackDepth + 1);
 

@@ -71,7 +71,6 @@ module rc_hit_store #(
   output logic                  perf_commit_o
 );
 
-  localparam logic [W-1:0] FpInf = {1'b0, {rc_pkg::Fp24ExpW{1'b1}}, {rc_pkg::Fp24FracW{1'b0}}};
   localparam int unsigned  RidW  = ThrW + 2;
 
   ////////////////////
@@ -142,7 +141,7 @@ module rc_hit_store #(
   logic wb_fwd;
   logic [W-1:0]  io2_bt;
   logic [31:0]   io2_btri;
-  assign io2_bt   = io2_hit_q ? bw_rd[W-1:0] : FpInf;
+  assign io2_bt   = io2_hit_q ? bw_rd[W-1:0] : rc_pkg::CoreFpPosInf;
   assign io2_btri = io2_hit_q ? bw_rd[W +: 32] : '1;
   assign wb_fwd   = wb_v_q & (wb_rid_q == io2_rid);
   // The three forwarding decisions are registered a cycle ahead, from io1 and the stages that
@@ -306,12 +305,12 @@ module rc_hit_store #(
   logic [W-1:0]  wc_old_t, wb_now_t, wb_eff_t;
   logic [31:0]   wc_old_tri, wb_now_tri, wb_eff_tri;
   logic          wb_same_c;
-  assign wc_old_t   = hit_all[wc_rid_q] ? sh_t[wc_rid_q] : FpInf;
+  assign wc_old_t   = hit_all[wc_rid_q] ? sh_t[wc_rid_q] : rc_pkg::CoreFpPosInf;
   assign wc_old_tri = hit_all[wc_rid_q] ? sh_tri[wc_rid_q] : '1;
   WbForward_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 wc_we_q |-> (wc_q.t < wc_old_t) ||
                                             (wc_q.t == wc_old_t && wc_q.tri_idx < wc_old_tri));
-  assign wb_now_t   = hit_all[wb_rid_q] ? sh_t[wb_rid_q] : FpInf;
+  assign wb_now_t   = hit_all[wb_rid_q] ? sh_t[wb_rid_q] : rc_pkg::CoreFpPosInf;
   assign wb_now_tri = hit_all[wb_rid_q] ? sh_tri[wb_rid_q] : '1;
   assign wb_same_c  = wc_we_q && wc_rid_q == wb_rid_q;
   assign wb_eff_t   = (wb_pf_q && wc_we_q) ? wc_t_q : wb_bt_q;

@@ -111,7 +111,6 @@ module rc_setup_unit #(
   localparam int unsigned NU = SetupUnits;
   localparam int unsigned UW = (NU > 1) ? $clog2(NU) : 1;
   localparam int unsigned TagW = 1 + ThrW + 2;  // {ray exists, thread, ray}
-  localparam logic [W-1:0] PosInf = {1'b0, {rc_pkg::Fp24ExpW{1'b1}}, {rc_pkg::Fp24FracW{1'b0}}};
 
   if (Threads < 1 || SetupUnits < 1 || SetupUnits > 3 ||
       ThrW > rc_pkg::CoreThrBits) begin : g_param_check
@@ -226,7 +225,7 @@ module rc_setup_unit #(
       pin_ilen_q <= pkt_inv_len_i;
       pin_pix_q  <= pkt_pixel_i;
       pin_sh_q   <= pkt_shadow_i;
-      pin_tlim_q <= pkt_shadow_i ? pkt_t_hi_i : {4{PosInf}};
+      pin_tlim_q <= pkt_shadow_i ? pkt_t_hi_i : {4{rc_pkg::CoreFpPosInf}};
       pin_stri_q <= pkt_start_tri_i;
     end
   end
