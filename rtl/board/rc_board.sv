@@ -341,7 +341,8 @@ module rc_board #(
   rc_core #(
     .ExpW   (ExpW),
     .FracW  (FracW),
-    .Threads(Threads)
+    .Threads(Threads),
+    .Shadows(1'b0)   // primary rays only on the board, so far (docs/architecture.md, "Lighting")
   ) u_core (
     .clk_i,
     .rst_ni,
@@ -353,7 +354,6 @@ module rc_board #(
     .ambient_i       (regs_q[rc_pkg::BoardRegAmbient][W-1:0]),
     .diffuse_i       (regs_q[rc_pkg::BoardRegDiffuse][W-1:0]),
     .background_i    (regs_q[rc_pkg::BoardRegBackground][23:0]),
-    // Primary rays only on the board, so far (docs/architecture.md, "Lighting").
     .t_eps_i         ('0),
     .pkt_valid_i     (pkt_valid),
     .pkt_ready_o     (pkt_ready),

@@ -51,7 +51,9 @@
 //   outstanding, or two responses for one request (assertions catch both).
 // - Parameters: ExpW/FracW must be the package's format (docs/spec.toml [fp24]: the records of
 //   rc_pkg are typed with it); Threads 1 .. CoreMaxThreads; StackDepth a power of two up to
-//   KdtreeStackDepth; ListTags >= 2; IsectInterval 1 or 2; SetupUnits 1 to 3.
+//   KdtreeStackDepth; ListTags >= 2; IsectInterval 1 or 2; SetupUnits 1 to 3; Shadows: 1 =
+//   shadow packets as above, 0 = primary packets only (pkt_shadow_i, pkt_t_hi_i,
+//   pkt_start_tri_i and t_eps_i are not read, and no logic is made for them).
 // - Reset: rst_ni, active low, asynchronous; clears all control state.
 module rc_core #(
   parameter int unsigned ExpW           = rc_pkg::Fp24ExpW,
@@ -62,6 +64,7 @@ module rc_core #(
   parameter int unsigned WatchdogCycles = rc_pkg::CoreWatchdogCycles,
   parameter int unsigned IsectInterval  = rc_pkg::CoreIsectInterval,
   parameter int unsigned SetupUnits     = rc_pkg::CoreSetupUnits,
+  parameter bit          Shadows        = 1'b1,
   // Derived (do not override).
   parameter int unsigned W              = 1 + ExpW + FracW,
   parameter int unsigned TagW           = rc_pkg::CoreTagBits,
@@ -210,7 +213,8 @@ module rc_core #(
 
   rc_setup_unit #(
     .Threads   (Threads),
-    .SetupUnits(SetupUnits)
+    .SetupUnits(SetupUnits),
+    .Shadows   (Shadows)
   ) u_setup (
     .clk_i,
     .rst_ni,
@@ -275,7 +279,8 @@ module rc_core #(
   logic [31:0]     rays_pix;
 
   rc_ray_store #(
-    .Threads(Threads)
+    .Threads(Threads),
+    .Shadows(Shadows)
   ) u_rays (
     .clk_i,
     .ray_we_i     (raywr_valid),
@@ -456,7 +461,8 @@ module rc_core #(
 
   rc_stack_unit #(
     .Threads   (Threads),
-    .StackDepth(StackDepth)
+    .StackDepth(StackDepth),
+    .Shadows   (Shadows)
   ) u_stack (
     .clk_i,
     .rst_ni,
@@ -578,7 +584,8 @@ module rc_core #(
   rc_isect_issue #(
     .Threads      (Threads),
     .ListTags     (ListTags),
-    .IsectInterval(IsectInterval)
+    .IsectInterval(IsectInterval),
+    .Shadows      (Shadows)
   ) u_isect (
     .clk_i,
     .rst_ni,
@@ -667,7 +674,8 @@ module rc_core #(
   logic [ThrW-1:0] shd_pick_thr;
 
   rc_shade_seq #(
-    .Threads(Threads)
+    .Threads(Threads),
+    .Shadows(Shadows)
   ) u_shade (
     .clk_i,
     .rst_ni,

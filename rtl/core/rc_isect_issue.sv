@@ -32,12 +32,15 @@
 // - Results (res_*): every test's result, one per cycle at most, never refused: {thread, ray, last
 //   (its list entry's last ray), triangle, hit, t, u, v, dz}.
 // - Counters: perf_test_o, a test issued.
-// - Parameters: Threads, IsectInterval (1: two transform units, 2: one used twice).
+// - Parameters: Threads, IsectInterval (1: two transform units, 2: one used twice); Shadows: 1 =
+//   shadow rays as above, 0 = primary rays only (ray_lim_i and t_eps_i not read, no logic for
+//   them).
 // - Reset: rst_ni (active low, asynchronous) clears the valid bits.
 module rc_isect_issue #(
   parameter int unsigned Threads       = rc_pkg::CoreThreads,
   parameter int unsigned ListTags      = rc_pkg::CoreListTags,
   parameter int unsigned IsectInterval = rc_pkg::CoreIsectInterval,
+  parameter bit          Shadows       = 1'b1,
   // Derived (do not override).
   parameter int unsigned W             = rc_pkg::CoreFpW,
   parameter int unsigned ThrW          = (Threads > 1) ? $clog2(Threads) : 1,
@@ -299,10 +302,11 @@ module rc_isect_issue #(
   end
 
   // A shadow ray's test: its limit as the best, its start triangle excluded.
-  logic              sh_ray;
+  logic              sh_kind, sh_ray;
   logic [31:0]       sh_start_tri, iu_best_tri;
   logic [W-1:0]      sh_tlim, iu_best_t;
-  assign {sh_ray, sh_start_tri, sh_tlim} = ray_lim_i;
+  assign {sh_kind, sh_start_tri, sh_tlim} = ray_lim_i;
+  assign sh_ray      = Shadows & sh_kind;
   assign iu_best_t   = sh_ray ? sh_tlim : best_i[W-1:0];
   assign iu_best_tri = sh_ray ? 32'hffff_ffff : best_i[W +: 32];
 
@@ -317,7 +321,7 @@ module rc_isect_issue #(
     .TagW        (IuTagW),
     .SharedXform (IsectInterval == 2),
     .Backpressure(1'b0),  // the write-back takes every result at once
-    .Shadow      (1'b1)
+    .Shadow      (Shadows)
   ) u_isect (
     .clk_i,
     .rst_ni,

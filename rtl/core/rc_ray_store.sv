@@ -13,10 +13,12 @@
 // - A thread's words are written before any unit reads them (a packet's reads follow its start,
 //   which follows the writes) and not written while any unit may still read them (a thread is
 //   taken again only after its last framebuffer write).
-// - Parameters: Threads.
+// - Parameters: Threads; Shadows: 1 = the limit words as above, 0 = none (ray_wlim_i not read,
+//   lim_o = 0: every ray a primary one).
 // - Reset: none.
 module rc_ray_store #(
   parameter int unsigned Threads = rc_pkg::CoreThreads,
+  parameter bit          Shadows = 1'b1,
   // Derived (do not override).
   parameter int unsigned W       = rc_pkg::CoreFpW,
   parameter int unsigned ThrW    = (Threads > 1) ? $clog2(Threads) : 1
@@ -85,14 +87,27 @@ module rc_ray_store #(
     .raddr_i({ax_rthr_i, ax_raxis_i}),
     .rdata_o(ax_inv_o)
   );
-  rc_ram #(.Width(7 * W + 33), .Depth(Depth4), .OutReg(1'b1)) u_od (
+  // The per-ray word: {limit word, origin and direction}, or the latter alone without Shadows.
+  localparam int unsigned OdW = 6 * W + (Shadows ? W + 33 : 0);
+  logic [OdW-1:0] od_wdata, od_rdata;
+  if (Shadows) begin : g_od_lim
+    assign od_wdata       = {ray_wlim_i, ray_worgdir_i};
+    assign {lim_o, od_o}  = od_rdata;
+  end else begin : g_od
+    assign od_wdata = ray_worgdir_i;
+    assign od_o     = od_rdata;
+    assign lim_o    = '0;
+    logic unused_lim;
+    assign unused_lim = ^ray_wlim_i;
+  end
+  rc_ram #(.Width(OdW), .Depth(Depth4), .OutReg(1'b1)) u_od (
     .clk_i,
     .we_i   (ray_we_i),
     .waddr_i({ray_wthr_i, ray_wray_i}),
-    .wdata_i({ray_wlim_i, ray_worgdir_i}),
+    .wdata_i(od_wdata),
     .re_i   (od_re_i),
     .raddr_i({od_rthr_i, od_rray_i}),
-    .rdata_o({lim_o, od_o})
+    .rdata_o(od_rdata)
   );
   rc_ram #(.Width(W), .Depth(Depth4), .OutReg(1'b1)) u_ilen (
     .clk_i,

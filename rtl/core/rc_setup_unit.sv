@@ -33,11 +33,14 @@
 //   1/d word is written and held until taken.
 // - Status: all_free_o = every thread free and nothing in the input register or the feeder (the
 //   core is idle).
-// - Parameters: Threads, SetupUnits (1 to 3).
+// - Parameters: Threads, SetupUnits (1 to 3); Shadows: 1 = shadow packets as above, 0 = primary
+//   packets only (pkt_shadow_i, pkt_t_hi_i and pkt_start_tri_i not read: every packet is a
+//   primary one, and rc_ray_setup has no limit).
 // - Reset: rst_ni (active low, asynchronous) frees every thread and clears control state.
 module rc_setup_unit #(
   parameter int unsigned Threads    = rc_pkg::CoreThreads,
   parameter int unsigned SetupUnits = 3,
+  parameter bit          Shadows    = 1'b1,
   // Derived (do not override).
   parameter int unsigned W          = rc_pkg::CoreFpW,
   parameter int unsigned ThrW       = (Threads > 1) ? $clog2(Threads) : 1
@@ -208,7 +211,8 @@ module rc_setup_unit #(
   logic [127:0]    pin_pix_q, pin_stri_q;
   logic [4*W-1:0]  pin_tlim_q;
   logic            pin_sh_q;
-  logic            pin_v_d;
+  logic            pin_v_d, pkt_sh;
+  assign pkt_sh  = Shadows & pkt_shadow_i;
   assign pin_v_d = pin_v_q ? ~acc_take_f : pkt_valid_i;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -224,8 +228,8 @@ module rc_setup_unit #(
       pin_dir_q  <= pkt_dir_i;
       pin_ilen_q <= pkt_inv_len_i;
       pin_pix_q  <= pkt_pixel_i;
-      pin_sh_q   <= pkt_shadow_i;
-      pin_tlim_q <= pkt_shadow_i ? pkt_t_hi_i : {4{rc_pkg::CoreFpPosInf}};
+      pin_sh_q   <= pkt_sh;
+      pin_tlim_q <= pkt_sh ? pkt_t_hi_i : {4{rc_pkg::CoreFpPosInf}};
       pin_stri_q <= pkt_start_tri_i;
     end
   end
@@ -474,7 +478,8 @@ module rc_setup_unit #(
     rc_ray_setup #(
       .ExpW (rc_pkg::Fp24ExpW),
       .FracW(rc_pkg::Fp24FracW),
-      .TagW (TagW)
+      .TagW (TagW),
+      .Limit(Shadows)
     ) u_setup (
       .clk_i,
       .rst_ni,

@@ -29,10 +29,12 @@
 //   hits then, and lets no light through).
 // - Errors: a failed shading or material read raises the core's bad-address bit (err_shd_o,
 //   err_mat_o: the packet's own error bits are final by then).
-// - Parameters: Threads.
+// - Parameters: Threads; Shadows: 1 = shadow packets as above, 0 = primary packets only
+//   (vm_rd_shadow_i not read).
 // - Reset: rst_ni (active low, asynchronous) clears control state.
 module rc_shade_seq #(
   parameter int unsigned Threads = rc_pkg::CoreThreads,
+  parameter bit          Shadows = 1'b1,
   // Derived (do not override).
   parameter int unsigned W       = rc_pkg::CoreFpW,
   parameter int unsigned ThrW    = (Threads > 1) ? $clog2(Threads) : 1,
@@ -259,8 +261,8 @@ module rc_shade_seq #(
     st1_hot_q <= gshp_q;
     st1_vm_q  <= shp_vm;
     st1_hm_q  <= shp_hm & {4{~shp_err}};
-    st1_sh_q  <= vm_rd_shadow_i;
-    st1_se_q  <= vm_rd_shadow_i & shp_err;
+    st1_sh_q  <= Shadows & vm_rd_shadow_i;
+    st1_se_q  <= Shadows & vm_rd_shadow_i & shp_err;
     st2_sh_q  <= st1_sh_q;
     st2_se_q  <= st1_se_q;
     st2_thr_q <= st1_thr_q;
