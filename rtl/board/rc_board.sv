@@ -342,7 +342,7 @@ module rc_board #(
     .ExpW   (ExpW),
     .FracW  (FracW),
     .Threads(Threads),
-    .Shadows(1'b0)   // primary rays only on the board, so far (docs/architecture.md, "Lighting")
+    .Secondary(1'b0)  // primary rays only on the board, so far (docs/architecture.md, "Lighting")
   ) u_core (
     .clk_i,
     .rst_ni,
@@ -362,7 +362,7 @@ module rc_board #(
     .pkt_dir_i       (pkt_dir),
     .pkt_inv_len_i   (pkt_inv_len),
     .pkt_pixel_i     (pkt_pixel),
-    .pkt_shadow_i    (1'b0),
+    .pkt_kind_i      (rc_pkg::RayPrimary),
     .pkt_t_hi_i      ('0),
     .pkt_start_tri_i ('0),
     .fb_valid_o      (fb_valid),

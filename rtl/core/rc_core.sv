@@ -10,22 +10,24 @@
 //   counts of those sections (the checks of docs/architecture.md, "Errors", use them);
 //   root_node_i: node 0's record (every packet's walk starts there; unused when the node section
 //   is empty); ambient_i/diffuse_i: the format values of ambient and 1 - ambient; background_i:
-//   the miss colour, R [7:0], G [15:8], B [23:16]; t_eps_i: a shadow ray's hits need t_eps < t
+//   the miss colour, R [7:0], G [15:8], B [23:16]; t_eps_i: a secondary ray's hits need t_eps < t
 //   (docs/architecture.md, "Lighting").
 // - Packet input: valid/ready. pkt_mask_i bit r: ray r exists. Per ray r: origin and direction
 //   component a at [(3r + a)*W +: W], inv_len at [r*W +: W], pixel id at [r*32 +: 32]. A packet
 //   is taken into the set-up unit's input register whenever it is empty (pkt_ready_o is that
 //   register's empty flag), and from there when a thread is free and the feeder is idle
-//   (rc_setup_unit). pkt_shadow_i makes it a shadow packet (docs/architecture.md, "Lighting"):
-//   ray r's interval ends at its limit pkt_t_hi_i[r*W +: W], which is also its initial best, a
-//   hit needs t_eps_i < t and never its start triangle pkt_start_tri_i[r*32 +: 32], and any hit
-//   ends the ray. A primary packet's t_hi and start triangles are not read.
+//   (rc_setup_unit). pkt_kind_i (rc_pkg::ray_kind_e) says what the packet is: a primary packet
+//   (RayPrimary), or one of secondary rays (docs/architecture.md, "Lighting", "Reflection"):
+//   ray r's interval ends at its limit pkt_t_hi_i[r*W +: W], which is also its initial best, and
+//   a hit needs t_eps_i < t and never its start triangle pkt_start_tri_i[r*32 +: 32]; in a
+//   shadow packet (RayShadow) any hit ends the ray, a bounce packet's (RayBounce) look for the
+//   closest hit. A primary packet's t_hi and start triangles are not read.
 // - Framebuffer write port: valid/ready, one write per existing ray of every packet, in no
 //   particular order: fb_pixel_o (the ray's pixel id), fb_rgb_o, and the ray's hit record
 //   (fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o; zero on a miss). A packet that met an error
-//   writes the background with no hit for every ray. A shadow packet's rays write their hit
-//   records (a hit: the ray is occluded; none: it reached its limit, the light) and colour 0, or
-//   1 when the packet met an error (no hits then; no light passes).
+//   writes the background with no hit for every ray. A secondary packet's rays are not shaded:
+//   they write their hit records (a shadow ray's hit: it is occluded; none: it reached its
+//   limit, the light) and colour 0, or 1 when the packet met an error (no hits then).
 // - Memory ports node_, list_, tri_, shd_, mat_: the protocol of docs/architecture.md ("Memory
 //   ports"): request (index, tag) and response (tag, data, error) handshakes, responses in any
 //   order after any delay. Records: node pair 128 bits (a request for node i answers records i
@@ -51,8 +53,8 @@
 //   outstanding, or two responses for one request (assertions catch both).
 // - Parameters: ExpW/FracW must be the package's format (docs/spec.toml [fp24]: the records of
 //   rc_pkg are typed with it); Threads 1 .. CoreMaxThreads; StackDepth a power of two up to
-//   KdtreeStackDepth; ListTags >= 2; IsectInterval 1 or 2; SetupUnits 1 to 3; Shadows: 1 =
-//   shadow packets as above, 0 = primary packets only (pkt_shadow_i, pkt_t_hi_i,
+//   KdtreeStackDepth; ListTags >= 2; IsectInterval 1 or 2; SetupUnits 1 to 3; Secondary: 1 =
+//   secondary packets as above, 0 = primary packets only (pkt_kind_i, pkt_t_hi_i,
 //   pkt_start_tri_i and t_eps_i are not read, and no logic is made for them).
 // - Reset: rst_ni, active low, asynchronous; clears all control state.
 module rc_core #(
@@ -64,7 +66,7 @@ module rc_core #(
   parameter int unsigned WatchdogCycles = rc_pkg::CoreWatchdogCycles,
   parameter int unsigned IsectInterval  = rc_pkg::CoreIsectInterval,
   parameter int unsigned SetupUnits     = rc_pkg::CoreSetupUnits,
-  parameter bit          Shadows        = 1'b1,
+  parameter bit          Secondary      = 1'b1,
   // Derived (do not override).
   parameter int unsigned W              = 1 + ExpW + FracW,
   parameter int unsigned TagW           = rc_pkg::CoreTagBits,
@@ -94,7 +96,7 @@ module rc_core #(
   input  logic [12*W-1:0]     pkt_dir_i,
   input  logic [4*W-1:0]      pkt_inv_len_i,
   input  logic [127:0]        pkt_pixel_i,
-  input  logic                pkt_shadow_i,
+  input  logic [rc_pkg::RayKindBits-1:0] pkt_kind_i,
   input  logic [4*W-1:0]      pkt_t_hi_i,
   input  logic [127:0]        pkt_start_tri_i,
 
@@ -197,7 +199,7 @@ module rc_core #(
   logic               acc_valid, raywr_valid, axwr_valid, invwr_valid, start_valid, start_ready;
   logic [ThrW-1:0]    acc_thr, raywr_thr, axwr_thr, invwr_thr;
   logic [3:0]         acc_vmask;
-  logic               acc_shadow;
+  logic               acc_anyhit, acc_sec;
   logic [Threads-1:0] acc_hot;
   logic [1:0]         raywr_ray, axwr_axis, invwr_axis;
   logic [6*W-1:0]     raywr_orgdir;
@@ -214,7 +216,7 @@ module rc_core #(
   rc_setup_unit #(
     .Threads   (Threads),
     .SetupUnits(SetupUnits),
-    .Shadows   (Shadows)
+    .Secondary (Secondary)
   ) u_setup (
     .clk_i,
     .rst_ni,
@@ -229,7 +231,7 @@ module rc_core #(
     .pkt_dir_i,
     .pkt_inv_len_i,
     .pkt_pixel_i,
-    .pkt_shadow_i,
+    .pkt_kind_i,
     .pkt_t_hi_i,
     .pkt_start_tri_i,
     .free_valid_i  (shd_free_valid),
@@ -240,7 +242,8 @@ module rc_core #(
     .acc_thr_o     (acc_thr),
     .acc_hot_o     (acc_hot),
     .acc_vmask_o   (acc_vmask),
-    .acc_shadow_o  (acc_shadow),
+    .acc_anyhit_o  (acc_anyhit),
+    .acc_sec_o     (acc_sec),
     .raywr_valid_o (raywr_valid),
     .raywr_thr_o   (raywr_thr),
     .raywr_ray_o   (raywr_ray),
@@ -280,7 +283,7 @@ module rc_core #(
 
   rc_ray_store #(
     .Threads(Threads),
-    .Shadows(Shadows)
+    .Secondary(Secondary)
   ) u_rays (
     .clk_i,
     .ray_we_i     (raywr_valid),
@@ -329,7 +332,7 @@ module rc_core #(
   logic [Threads-1:0]     thr_err, thr_shadow;
   logic [Threads*4-1:0]   thr_hit;
   logic [3:0]             thr_vm_rd;
-  logic                   thr_vm_rd_shadow;
+  logic                   thr_vm_rd_sec;
 
   rc_thread_ctrl #(
     .Threads(Threads)
@@ -340,7 +343,8 @@ module rc_core #(
     .acc_thr_i     (acc_thr),
     .acc_hot_i     (acc_hot),
     .acc_vmask_i   (acc_vmask),
-    .acc_shadow_i  (acc_shadow),
+    .acc_anyhit_i  (acc_anyhit),
+    .acc_sec_i     (acc_sec),
     .err0_valid_i  (trav_err_valid),
     .err0_thr_i    (trav_err_thr),
     .err1_valid_i  (trav_reqnr_valid),
@@ -367,7 +371,7 @@ module rc_core #(
     .sp_rd_o       (thr_sp_rd),
     .vm_rd_thr_i   (shd_vm_rd_thr),
     .vm_rd_o       (thr_vm_rd),
-    .vm_rd_shadow_o(thr_vm_rd_shadow)
+    .vm_rd_sec_o   (thr_vm_rd_sec)
   );
 
   //////////////////////
@@ -462,7 +466,7 @@ module rc_core #(
   rc_stack_unit #(
     .Threads   (Threads),
     .StackDepth(StackDepth),
-    .Shadows   (Shadows)
+    .Secondary (Secondary)
   ) u_stack (
     .clk_i,
     .rst_ni,
@@ -585,7 +589,7 @@ module rc_core #(
     .Threads      (Threads),
     .ListTags     (ListTags),
     .IsectInterval(IsectInterval),
-    .Shadows      (Shadows)
+    .Secondary    (Secondary)
   ) u_isect (
     .clk_i,
     .rst_ni,
@@ -675,7 +679,7 @@ module rc_core #(
 
   rc_shade_seq #(
     .Threads(Threads),
-    .Shadows(Shadows)
+    .Secondary(Secondary)
   ) u_shade (
     .clk_i,
     .rst_ni,
@@ -686,7 +690,7 @@ module rc_core #(
     .done_thr_i     (stk_done_thr),
     .vm_rd_thr_o    (shd_vm_rd_thr),
     .vm_rd_i        (thr_vm_rd),
-    .vm_rd_shadow_i (thr_vm_rd_shadow),
+    .vm_rd_sec_i    (thr_vm_rd_sec),
     .hit_i          (thr_hit),
     .err_i          (thr_err),
     .tri_re_o       (shd_tri_re),

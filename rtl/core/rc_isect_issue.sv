@@ -23,24 +23,25 @@
 //   read's edge sampled, or 0 where that commit came (the test then goes without a best). A bit
 //   and word sampled together are the same commit's, or the word is newer and the bit older;
 //   either only lets through a test the write-back rejects (it compares again).
-// - Shadow rays (the ray store's limit word {shadow, start_tri, tlim}, read with the ray): the
-//   test takes the shadow rules (rc_isect_unit shadow_i: a hit needs t_eps_i < t; excl_i: the
-//   triangle the ray starts on is never its hit) and the best {tlim, -1} whatever the hit bit
-//   says. Any hit before the light then occludes, and the write-back keeps the smallest (t, tri)
-//   of those found, so the ray's record is the one rc::trace_packet() gives (its best starts at
-//   {t_hi, -1} and the pop culls it once it has a hit).
+// - Secondary rays (the ray store's limit word {secondary, start_tri, tlim}, read with the ray):
+//   the test takes the secondary rules (rc_isect_unit secondary_i: a hit needs t_eps_i < t;
+//   excl_i: the triangle the ray starts on is never its hit) and the best {tlim, -1} whatever the
+//   hit bit says. The write-back compares again and keeps the smallest (t, tri) of the hits found
+//   before tlim, so the ray's record is the one rc::trace_packet() gives (its best starts at
+//   {t_hi, -1}): for a shadow ray any hit before the light occludes (the pop culls it once it has
+//   a hit); a bounce ray (tlim = +inf) gets its closest hit.
 // - Results (res_*): every test's result, one per cycle at most, never refused: {thread, ray, last
 //   (its list entry's last ray), triangle, hit, t, u, v, dz}.
 // - Counters: perf_test_o, a test issued.
-// - Parameters: Threads, IsectInterval (1: two transform units, 2: one used twice); Shadows: 1 =
-//   shadow rays as above, 0 = primary rays only (ray_lim_i and t_eps_i not read, no logic for
-//   them).
+// - Parameters: Threads, IsectInterval (1: two transform units, 2: one used twice); Secondary:
+//   1 = secondary rays as above, 0 = primary rays only (ray_lim_i and t_eps_i not read, no logic
+//   for them).
 // - Reset: rst_ni (active low, asynchronous) clears the valid bits.
 module rc_isect_issue #(
   parameter int unsigned Threads       = rc_pkg::CoreThreads,
   parameter int unsigned ListTags      = rc_pkg::CoreListTags,
   parameter int unsigned IsectInterval = rc_pkg::CoreIsectInterval,
-  parameter bit          Shadows       = 1'b1,
+  parameter bit          Secondary     = 1'b1,
   // Derived (do not override).
   parameter int unsigned W             = rc_pkg::CoreFpW,
   parameter int unsigned ThrW          = (Threads > 1) ? $clog2(Threads) : 1,
@@ -71,8 +72,8 @@ module rc_isect_issue #(
   output logic [ThrW-1:0]     ray_thr_o,
   output logic [1:0]          ray_ray_o,
   input  logic [6*W-1:0]      ray_orgdir_i,   // org x, y, z, dir x, y, z
-  input  logic [W+32:0]       ray_lim_i,      // {shadow, start triangle, tlim}
-  // A shadow ray's lower bound of t (a frame's constant).
+  input  logic [W+32:0]       ray_lim_i,      // {secondary, start triangle, tlim}
+  // A secondary ray's lower bound of t (a frame's constant).
   input  logic [W-1:0]        t_eps_i,
   // The best hits (the hit store's copy, per {thread, ray}; 2 cycles).
   input  logic [W+31:0]       best_i,         // {tri, t}
@@ -301,14 +302,14 @@ module rc_isect_issue #(
     i2_hs_q   <= i1_hs_q;
   end
 
-  // A shadow ray's test: its limit as the best, its start triangle excluded.
-  logic              sh_kind, sh_ray;
-  logic [31:0]       sh_start_tri, iu_best_tri;
-  logic [W-1:0]      sh_tlim, iu_best_t;
-  assign {sh_kind, sh_start_tri, sh_tlim} = ray_lim_i;
-  assign sh_ray      = Shadows & sh_kind;
-  assign iu_best_t   = sh_ray ? sh_tlim : best_i[W-1:0];
-  assign iu_best_tri = sh_ray ? 32'hffff_ffff : best_i[W +: 32];
+  // A secondary ray's test: its limit as the best, its start triangle excluded.
+  logic              sec_kind, sec_ray;
+  logic [31:0]       sec_start_tri, iu_best_tri;
+  logic [W-1:0]      sec_tlim, iu_best_t;
+  assign {sec_kind, sec_start_tri, sec_tlim} = ray_lim_i;
+  assign sec_ray     = Secondary & sec_kind;
+  assign iu_best_t   = sec_ray ? sec_tlim : best_i[W-1:0];
+  assign iu_best_tri = sec_ray ? 32'hffff_ffff : best_i[W +: 32];
 
   logic              iu_ready, ix_v, ix_hit;
   logic [IuTagW-1:0] ix_tag;
@@ -321,7 +322,7 @@ module rc_isect_issue #(
     .TagW        (IuTagW),
     .SharedXform (IsectInterval == 2),
     .Backpressure(1'b0),  // the write-back takes every result at once
-    .Shadow      (Shadows)
+    .Secondary   (Secondary)
   ) u_isect (
     .clk_i,
     .rst_ni,
@@ -334,9 +335,9 @@ module rc_isect_issue #(
     .dir_i     (ray_orgdir_i[3*W +: 3*W]),
     .best_t_i    (iu_best_t),
     .best_tri_i  (iu_best_tri),
-    .best_valid_i(i2_hit | sh_ray),
-    .shadow_i    (sh_ray),
-    .excl_i      (sh_ray & (i2_tri_q == sh_start_tri)),
+    .best_valid_i(i2_hit | sec_ray),
+    .secondary_i (sec_ray),
+    .excl_i      (sec_ray & (i2_tri_q == sec_start_tri)),
     .t_eps_i     (t_eps_i),
     .valid_o   (ix_v),
     .ready_i   (1'b1),

@@ -11,16 +11,16 @@
 //             && (lt(t, best_t) || (eq(t, best_t) && $signed(tri) < $signed(best_tri)))
 //   with (best_t, best_tri) = (best_t_i, best_tri_i) when best_valid_i is 1, and (+inf, -1), no
 //   hit yet, when it is 0 (best_t_i and best_tri_i are then not read); t_lo = t_eps_i for a
-//   shadow ray's pair (shadow_i) and 0 otherwise; excl_i marks the triangle a shadow ray starts
-//   on (the caller's compare), which is never its hit.
+//   secondary ray's pair (secondary_i: a shadow or bounce ray) and 0 otherwise; excl_i marks the
+//   triangle a secondary ray starts on (the caller's compare), which is never its hit.
 //   t_o, u_o, v_o, dz_o (= d'z) are the computed values whether or not the hit is accepted;
 //   intersect() records them only for an accepted hit. tri_o and tag_o are tri_i and tag_i.
 // - Packing: a word is {sign, exp[ExpW-1:0], frac[FracW-1:0]}, W = 1 + ExpW + FracW bits.
 //   m_i[k*W +: W] = m_k (k = 0..11, row-major 3x4), org_i/dir_i[c*W +: W] = component c (x, y, z).
-//   tri_i and best_tri_i are 32-bit two's complement. best_valid_i, shadow_i and excl_i travel
+//   tri_i and best_tri_i are 32-bit two's complement. best_valid_i, secondary_i and excl_i travel
 //   with the pair and are used only at the far end (beside the compares), so a caller may derive
 //   them late. t_eps_i is not carried: it is read when the pair's t reaches the compares, so it
-//   must hold its value while any shadow pair is in flight (a frame's constant).
+//   must hold its value while any secondary pair is in flight (a frame's constant).
 // - Handshake: valid_i/ready_o at the input, valid_o/ready_i at the output, AXI-style (a transfer
 //   happens on a clock edge where valid and ready are both 1). valid_o never depends on ready_i,
 //   ready_o depends only on registered state, and once valid_o is 1 it stays 1 with all outputs
@@ -46,8 +46,8 @@
 //   9 adders fewer, about 7,000 ECP5 LUT4 sites: docs/history.md), 0 = two transform units;
 //   Backpressure: 1 (default) = the output FIFO and credits above, 0 = ready_i is always 1 (a
 //   consumer that takes every result at once): one output register, the same latency;
-//   Shadow: 1 (default) = shadow_i, excl_i and t_eps_i as above, 0 = primary rays only (those
-//   inputs ignored, as if 0: no logic for them).
+//   Secondary: 1 (default) = secondary_i, excl_i and t_eps_i as above, 0 = primary rays only
+//   (those inputs ignored, as if 0: no logic for them).
 // - Illegal input: none; every bit pattern of every input is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (valid pipelines, FIFO
 //   pointers and counters); data registers have no reset.
@@ -79,9 +79,10 @@ module rc_isect_unit #(
   // result at once, as rc_core's write-back does): the FIFO is one output register, the same
   // latency, and ready_o follows only the shared transform's pass.
   parameter bit          Backpressure = 1'b1,
-  // 1: a shadow ray's rules (shadow_i, excl_i, t_eps_i); 0: primary rays only, those inputs are
-  // ignored and no logic is made for them (the compare with 0 keeps its constant operand).
-  parameter bit          Shadow       = 1'b1
+  // 1: a secondary ray's rules (secondary_i, excl_i, t_eps_i); 0: primary rays only, those
+  // inputs are ignored and no logic is made for them (the compare with 0 keeps its constant
+  // operand).
+  parameter bit          Secondary    = 1'b1
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -96,7 +97,7 @@ module rc_isect_unit #(
   input  logic [ExpW+FracW:0]          best_t_i,
   input  logic [31:0]                  best_tri_i,
   input  logic                         best_valid_i,
-  input  logic                         shadow_i,
+  input  logic                         secondary_i,
   input  logic                         excl_i,
   input  logic [ExpW+FracW:0]          t_eps_i,
   // Output
@@ -151,14 +152,14 @@ module rc_isect_unit #(
   ///////////////////////////////
 
   // Side band carried through the o' transform's tag: {tag, tri, best_t, best_tri, best_valid}
-  // and, with Shadow, {shadow, excl}. The best's select and the triangle order (tri < best_tri, a
-  // 32-bit compare) are taken at the far end, between two registers, so neither is on the path
-  // from the core's best-hit read into the unit.
+  // and, with Secondary, {secondary, excl}. The best's select and the triangle order (tri <
+  // best_tri, a 32-bit compare) are taken at the far end, between two registers, so neither is
+  // on the path from the core's best-hit read into the unit.
   localparam int unsigned SbBaseW = TagW + 32 + W + 32 + 1;
-  localparam int unsigned SbW     = SbBaseW + (Shadow ? 2 : 0);
+  localparam int unsigned SbW     = SbBaseW + (Secondary ? 2 : 0);
   logic [SbW-1:0] sb_in, sb_x;
-  if (Shadow) begin : g_sb_shadow
-    assign sb_in = {tag_i, tri_i, best_t_i, best_tri_i, best_valid_i, shadow_i, excl_i};
+  if (Secondary) begin : g_sb_secondary
+    assign sb_in = {tag_i, tri_i, best_t_i, best_tri_i, best_valid_i, secondary_i, excl_i};
   end else begin : g_sb_primary
     assign sb_in = {tag_i, tri_i, best_t_i, best_tri_i, best_valid_i};
   end
@@ -380,25 +381,25 @@ module rc_isect_unit #(
     best_t_cq <= best_t1;
     tri_lt_cq <= tri_lt1;
   end
-  // A shadow pair's t_lo (registered beside t_cq) and its exclusion (which waits for the
+  // A secondary pair's t_lo (registered beside t_cq) and its exclusion (which waits for the
   // comparator outputs, as tri < best_tri does: 1 + CmpStages cycles).
-  if (Shadow) begin : g_shadow
-    logic               shadow1, excl1, keep1;
+  if (Secondary) begin : g_secondary
+    logic               secondary1, excl1, keep1;
     logic [W-1:0]       t_lo_cq;
     logic [CmpStages:0] keep_q;
-    assign {shadow1, excl1} = sb1[1:0];
+    assign {secondary1, excl1} = sb1[1:0];
     assign keep1 = ~excl1;
     always_ff @(posedge clk_i) begin
-      t_lo_cq <= shadow1 ? t_eps_i : Zero;
+      t_lo_cq <= secondary1 ? t_eps_i : Zero;
       keep_q  <= (keep_q << 1) | (CmpStages + 1)'(keep1);
     end
     assign t_lo = t_lo_cq;
     assign keep = keep_q[CmpStages];
-  end else begin : g_no_shadow
+  end else begin : g_no_secondary
     assign t_lo = Zero;
     assign keep = 1'b1;
-    logic unused_shadow;
-    assign unused_shadow = ^{shadow_i, excl_i, t_eps_i};
+    logic unused_secondary;
+    assign unused_secondary = ^{secondary_i, excl_i, t_eps_i};
   end
 
   rc_fp_cmp #(.ExpW(ExpW), .FracW(FracW), .Stages(CmpStages)) u_cmp_0_t (

@@ -7,21 +7,21 @@
 //   (ax_*: written per axis as the packet's rays are taken) and their 1/d (inv_*: written per
 //   axis after the packet's set-up).
 // - Per ray, addressed {thread, ray} (written as each ray is taken): origin and direction, and
-//   the ray's kind, start triangle and limit {shadow, start_tri, tlim} (read together by the
+//   the ray's kind, start triangle and limit {secondary, start_tri, tlim} (read together by the
 //   intersection issue), inv_len (read by shading), the pixel id (read by the framebuffer
 //   write).
 // - A thread's words are written before any unit reads them (a packet's reads follow its start,
 //   which follows the writes) and not written while any unit may still read them (a thread is
 //   taken again only after its last framebuffer write).
-// - Parameters: Threads; Shadows: 1 = the limit words as above, 0 = none (ray_wlim_i not read,
-//   lim_o = 0: every ray a primary one).
+// - Parameters: Threads; Secondary: 1 = the limit words as above, 0 = none (ray_wlim_i not
+//   read, lim_o = 0: every ray a primary one).
 // - Reset: none.
 module rc_ray_store #(
-  parameter int unsigned Threads = rc_pkg::CoreThreads,
-  parameter bit          Shadows = 1'b1,
+  parameter int unsigned Threads   = rc_pkg::CoreThreads,
+  parameter bit          Secondary = 1'b1,
   // Derived (do not override).
-  parameter int unsigned W       = rc_pkg::CoreFpW,
-  parameter int unsigned ThrW    = (Threads > 1) ? $clog2(Threads) : 1
+  parameter int unsigned W         = rc_pkg::CoreFpW,
+  parameter int unsigned ThrW      = (Threads > 1) ? $clog2(Threads) : 1
 ) (
   input  logic            clk_i,
 
@@ -31,7 +31,7 @@ module rc_ray_store #(
   input  logic [1:0]      ray_wray_i,
   input  logic [6*W-1:0]  ray_worgdir_i,
   input  logic [W+31:0]   ray_wlenpix_i,   // {pixel id, inv_len}
-  input  logic [W+32:0]   ray_wlim_i,      // {shadow, start triangle, tlim}
+  input  logic [W+32:0]   ray_wlim_i,      // {secondary, start triangle, tlim}
   input  logic            ax_we_i,
   input  logic [ThrW-1:0] ax_wthr_i,
   input  logic [1:0]      ax_waxis_i,
@@ -87,10 +87,10 @@ module rc_ray_store #(
     .raddr_i({ax_rthr_i, ax_raxis_i}),
     .rdata_o(ax_inv_o)
   );
-  // The per-ray word: {limit word, origin and direction}, or the latter alone without Shadows.
-  localparam int unsigned OdW = 6 * W + (Shadows ? W + 33 : 0);
+  // The per-ray word: {limit word, origin and direction}, or the latter alone without Secondary.
+  localparam int unsigned OdW = 6 * W + (Secondary ? W + 33 : 0);
   logic [OdW-1:0] od_wdata, od_rdata;
-  if (Shadows) begin : g_od_lim
+  if (Secondary) begin : g_od_lim
     assign od_wdata       = {ray_wlim_i, ray_worgdir_i};
     assign {lim_o, od_o}  = od_rdata;
   end else begin : g_od

@@ -10,20 +10,22 @@
 // - Packet input (rc_core's pkt_* ports, valid/ready): a packet enters an input register when it
 //   is empty (pkt_ready_o: its empty flag, a flip-flop), and is taken from there into a thread
 //   when a thread is free (the free-thread choice, rc_rr_pick) and the feeder is idle.
-//   acc_valid_o/acc_thr_o/acc_vmask_o/acc_shadow_o announce the take in the cycle after it, and
+//   acc_valid_o/acc_thr_o/acc_vmask_o and the kind bits acc_anyhit_o (a shadow packet) and
+//   acc_sec_o (a secondary packet) announce the take in the cycle after it, and
 //   acc_hot_o the same as a one-hot vector (the free pick's grant registered: each bit drives
 //   one thread's state in rc_thread_ctrl and rc_isect_issue, so no unit decodes the thread
 //   number).
 // - Ray stores: the feeder offers the packet's rays 0..3, one per cycle while the set-up units
 //   take them, and writes per ray r, from registers in the cycle after it is taken, the ray
 //   store's per-ray words (raywr_*: origin and direction; ilen and pixel id; the ray's kind,
-//   start triangle and limit: {shadow, start_tri, tlim}) and, for r = axis
+//   start triangle and limit: {secondary, start_tri, tlim}) and, for r = axis
 //   a < 3, the per-axis word of the four rays' origins and direction signs on axis a (axwr_*).
 //   After the packet's last set-up result it writes the four rays' 1/d on each axis (invwr_*,
 //   axes x, y, z in three cycles), then offers the start entry.
-// - Shadow packets (pkt_shadow_i): each ray's interval ends at its pkt_t_hi_i (rc_ray_setup's
-//   limit, tlim = t_hi; a primary packet's rays get tlim = +inf and their t_hi is not read), and
-//   pkt_start_tri_i names the triangle each ray starts on (read by the intersection issue).
+// - Secondary packets (pkt_kind_i not RayPrimary): each ray's interval ends at its pkt_t_hi_i
+//   (rc_ray_setup's limit, tlim = t_hi; a primary packet's rays get tlim = +inf and their t_hi is
+//   not read), and pkt_start_tri_i names the triangle each ray starts on (read by the
+//   intersection issue).
 // - Set-up: SetupUnits instances of rc_ray_setup (each one ray per 3 cycles) take the rays in
 //   rotation, so the unit sets up SetupUnits rays per 3 cycles (3: one ray per cycle, a packet
 //   per 4 cycles); results are gathered in the same rotation, so in order.
@@ -33,14 +35,14 @@
 //   1/d word is written and held until taken.
 // - Status: all_free_o = every thread free and nothing in the input register or the feeder (the
 //   core is idle).
-// - Parameters: Threads, SetupUnits (1 to 3); Shadows: 1 = shadow packets as above, 0 = primary
-//   packets only (pkt_shadow_i, pkt_t_hi_i and pkt_start_tri_i not read: every packet is a
-//   primary one, and rc_ray_setup has no limit).
+// - Parameters: Threads, SetupUnits (1 to 3); Secondary: 1 = secondary packets as above, 0 =
+//   primary packets only (pkt_kind_i, pkt_t_hi_i and pkt_start_tri_i not read: every packet is
+//   a primary one, and rc_ray_setup has no limit).
 // - Reset: rst_ni (active low, asynchronous) frees every thread and clears control state.
 module rc_setup_unit #(
   parameter int unsigned Threads    = rc_pkg::CoreThreads,
   parameter int unsigned SetupUnits = 3,
-  parameter bit          Shadows    = 1'b1,
+  parameter bit          Secondary  = 1'b1,
   // Derived (do not override).
   parameter int unsigned W          = rc_pkg::CoreFpW,
   parameter int unsigned ThrW       = (Threads > 1) ? $clog2(Threads) : 1
@@ -62,7 +64,7 @@ module rc_setup_unit #(
   input  logic [12*W-1:0]       pkt_dir_i,
   input  logic [4*W-1:0]        pkt_inv_len_i,
   input  logic [127:0]          pkt_pixel_i,
-  input  logic                  pkt_shadow_i,
+  input  logic [rc_pkg::RayKindBits-1:0] pkt_kind_i,
   input  logic [4*W-1:0]        pkt_t_hi_i,
   input  logic [127:0]          pkt_start_tri_i,
 
@@ -77,7 +79,8 @@ module rc_setup_unit #(
   output logic [ThrW-1:0]       acc_thr_o,
   output logic [Threads-1:0]    acc_hot_o,      // acc_valid_o && acc_thr_o == t, a register
   output logic [3:0]            acc_vmask_o,
-  output logic                  acc_shadow_o,
+  output logic                  acc_anyhit_o,   // a shadow packet: any hit ends a ray
+  output logic                  acc_sec_o,      // a secondary packet (shadow or bounce)
 
   // Ray store writes.
   output logic                  raywr_valid_o,   // per ray: {thread, ray}
@@ -85,7 +88,7 @@ module rc_setup_unit #(
   output logic [1:0]            raywr_ray_o,
   output logic [6*W-1:0]        raywr_orgdir_o,  // org x, y, z, dir x, y, z
   output logic [W+31:0]         raywr_lenpix_o,  // {pixel id, inv_len}
-  output logic [W+32:0]         raywr_lim_o,     // {shadow, start triangle, tlim}
+  output logic [W+32:0]         raywr_lim_o,     // {secondary, start triangle, tlim}
   output logic                  axwr_valid_o,    // per axis: {thread, axis}
   output logic [ThrW-1:0]       axwr_thr_o,
   output logic [1:0]            axwr_axis_o,
@@ -210,9 +213,10 @@ module rc_setup_unit #(
   logic [4*W-1:0]  pin_ilen_q;
   logic [127:0]    pin_pix_q, pin_stri_q;
   logic [4*W-1:0]  pin_tlim_q;
-  logic            pin_sh_q;
-  logic            pin_v_d, pkt_sh;
-  assign pkt_sh  = Shadows & pkt_shadow_i;
+  logic            pin_sec_q, pin_any_q;
+  logic            pin_v_d, pkt_sec, pkt_any;
+  assign pkt_sec = Secondary & (pkt_kind_i != rc_pkg::RayPrimary);
+  assign pkt_any = Secondary & (pkt_kind_i == rc_pkg::RayShadow);
   assign pin_v_d = pin_v_q ? ~acc_take_f : pkt_valid_i;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -228,8 +232,9 @@ module rc_setup_unit #(
       pin_dir_q  <= pkt_dir_i;
       pin_ilen_q <= pkt_inv_len_i;
       pin_pix_q  <= pkt_pixel_i;
-      pin_sh_q   <= pkt_sh;
-      pin_tlim_q <= pkt_sh ? pkt_t_hi_i : {4{rc_pkg::CoreFpPosInf}};
+      pin_sec_q  <= pkt_sec;
+      pin_any_q  <= pkt_any;
+      pin_tlim_q <= pkt_sec ? pkt_t_hi_i : {4{rc_pkg::CoreFpPosInf}};
       pin_stri_q <= pkt_start_tri_i;
     end
   end
@@ -261,7 +266,7 @@ module rc_setup_unit #(
   logic [4*W-1:0]  feed_ilen_q;
   logic [127:0]    feed_pix_q, feed_stri_q;
   logic [4*W-1:0]  feed_tlim_q;
-  logic            feed_sh_q;
+  logic            feed_sec_q, feed_any_q;
   logic [3:0]      feed_vmask_q;
   logic [NU-1:0]   su_ready_all, su_valid_all;
   logic [UW-1:0]   out_u_q;
@@ -359,7 +364,8 @@ module rc_setup_unit #(
       feed_ilen_q  <= pin_ilen_q;
       feed_pix_q   <= pin_pix_q;
       feed_vmask_q <= pin_mask_q;
-      feed_sh_q    <= pin_sh_q;
+      feed_sec_q   <= pin_sec_q;
+      feed_any_q   <= pin_any_q;
       feed_tlim_q  <= pin_tlim_q;
       feed_stri_q  <= pin_stri_q;
     end
@@ -369,7 +375,8 @@ module rc_setup_unit #(
   assign acc_thr_o    = feed_thr_q;
   assign acc_hot_o    = gacc_q;
   assign acc_vmask_o  = feed_vmask_q;
-  assign acc_shadow_o = feed_sh_q;
+  assign acc_anyhit_o = feed_any_q;
+  assign acc_sec_o    = feed_sec_q;
 
   // The ray store's words of the ray being taken.
   logic [3*W-1:0] feed_org_r, feed_dir_r;
@@ -410,7 +417,7 @@ module rc_setup_unit #(
     rw_r_q      <= feed_r_q;
     rw_orgdir_q <= {feed_dir_r, feed_org_r};
     rw_lenpix_q <= {rc_pkg::lane32(feed_pix_q, feed_r_q), lane_w(feed_ilen_q, feed_r_q)};
-    rw_lim_q    <= {feed_sh_q, rc_pkg::lane32(feed_stri_q, feed_r_q),
+    rw_lim_q    <= {feed_sec_q, rc_pkg::lane32(feed_stri_q, feed_r_q),
                     lane_w(feed_tlim_q, feed_r_q)};
     aw_data_q   <= aw_data;
   end
@@ -479,7 +486,7 @@ module rc_setup_unit #(
       .ExpW (rc_pkg::Fp24ExpW),
       .FracW(rc_pkg::Fp24FracW),
       .TagW (TagW),
-      .Limit(Shadows)
+      .Limit(Secondary)
     ) u_setup (
       .clk_i,
       .rst_ni,

@@ -23,22 +23,22 @@
 //   then the misses. A write's pixel id (rc_ray_store) and hit record (the hit store's fb copy;
 //   zeros for a miss) are read on its way to the queue (two cycles). One write per existing ray;
 //   a thread's last write frees it (free_valid_o, two cycles after the write).
-// - Shadow packets (rc_thread_ctrl's kind bit, read with the rays): no ray is shaded; every ray
-//   goes the misses' way and is written with its hit record (an occluder's, or zeros when it
-//   has none: it reached the light) and colour 0, or 1 when the packet met an error (it has no
-//   hits then, and lets no light through).
+// - Secondary packets (shadow and bounce; rc_thread_ctrl's kind bit, read with the rays): no ray
+//   is shaded; every ray goes the misses' way and is written with its hit record (zeros when it
+//   has none: a shadow ray that reached the light, a bounce ray that left the scene) and colour
+//   0, or 1 when the packet met an error (it has no hits then).
 // - Errors: a failed shading or material read raises the core's bad-address bit (err_shd_o,
 //   err_mat_o: the packet's own error bits are final by then).
-// - Parameters: Threads; Shadows: 1 = shadow packets as above, 0 = primary packets only
-//   (vm_rd_shadow_i not read).
+// - Parameters: Threads; Secondary: 1 = secondary packets as above, 0 = primary packets only
+//   (vm_rd_sec_i not read).
 // - Reset: rst_ni (active low, asynchronous) clears control state.
 module rc_shade_seq #(
-  parameter int unsigned Threads = rc_pkg::CoreThreads,
-  parameter bit          Shadows = 1'b1,
+  parameter int unsigned Threads   = rc_pkg::CoreThreads,
+  parameter bit          Secondary = 1'b1,
   // Derived (do not override).
-  parameter int unsigned W       = rc_pkg::CoreFpW,
-  parameter int unsigned ThrW    = (Threads > 1) ? $clog2(Threads) : 1,
-  parameter int unsigned TagW    = rc_pkg::CoreTagBits
+  parameter int unsigned W         = rc_pkg::CoreFpW,
+  parameter int unsigned ThrW      = (Threads > 1) ? $clog2(Threads) : 1,
+  parameter int unsigned TagW      = rc_pkg::CoreTagBits
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -53,7 +53,7 @@ module rc_shade_seq #(
   input  logic [ThrW-1:0]      done_thr_i,
   output logic [ThrW-1:0]      vm_rd_thr_o,     // the picked thread's rays, read (rc_thread_ctrl)
   input  logic [3:0]           vm_rd_i,
-  input  logic                 vm_rd_shadow_i,  // the picked thread holds a shadow packet
+  input  logic                 vm_rd_sec_i,     // the picked thread holds a secondary packet
   input  logic [Threads*4-1:0] hit_i,
   input  logic [Threads-1:0]   err_i,
 
@@ -151,8 +151,8 @@ module rc_shade_seq #(
   logic               shp_any, shp_room, shp_v_q, st1_v_q, st2_v_q, sh_busy_q;
   logic [ThrW-1:0]    shp_idx, shp_thr_q, st1_thr_q, st2_thr_q, sh_thr_q;
   logic [3:0]         st1_vm_q, st1_hm_q, st2_vm_q, st2_hm_q, sh_vm_q, sh_hm_q;
-  logic               st1_sh_q, st2_sh_q, nb_sh_q, sh_sh_q;
-  logic               st1_se_q, st2_se_q, nb_se_q, sh_se_q;  // a shadow packet with an error
+  logic               st1_sec_q, st2_sec_q, nb_sec_q, sh_sec_q;
+  logic               st1_se_q, st2_se_q, nb_se_q, sh_se_q;  // a secondary packet with an error
   logic [Threads-1:0] st1_hot_q;
   logic [1:0]         sh_r_q;
   logic               sh_last_q;
@@ -201,7 +201,7 @@ module rc_shade_seq #(
   logic adv, to_shd, to_miss, sreq_free, miss_free, miss_v;
   logic sh_valid_r, sh_hit_r;
   logic [RidW-1:0] shd_req_rid, miss_rid;
-  logic            miss_take, miss_sh, miss_sh_hit, miss_sh_err;
+  logic            miss_take, miss_sec, miss_sec_hit, miss_sec_err;
 
   // The sequencer's two outputs, shading requests and misses, are two-entry queues whose room is
   // a flip-flop (rc_credit_fifo's credit): a ray's step depends on this unit's registers only,
@@ -212,9 +212,9 @@ module rc_shade_seq #(
   // only numbers the ray in the queues' data.
   assign sh_valid_r = sh_vm_q[0];
   assign sh_hit_r   = sh_hm_q[0];
-  // A shadow packet's rays all go the misses' way (with their hit bit, for the record).
-  assign to_shd     = sh_busy_q & sh_valid_r & sh_hit_r & ~sh_sh_q & sreq_free;
-  assign to_miss    = sh_busy_q & sh_valid_r & (~sh_hit_r | sh_sh_q) & miss_free;
+  // A secondary packet's rays all go the misses' way (with their hit bit, for the record).
+  assign to_shd     = sh_busy_q & sh_valid_r & sh_hit_r & ~sh_sec_q & sreq_free;
+  assign to_miss    = sh_busy_q & sh_valid_r & (~sh_hit_r | sh_sec_q) & miss_free;
   assign adv        = sh_busy_q & (~sh_valid_r | to_shd | to_miss);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -261,9 +261,9 @@ module rc_shade_seq #(
     st1_hot_q <= gshp_q;
     st1_vm_q  <= shp_vm;
     st1_hm_q  <= shp_hm & {4{~shp_err}};
-    st1_sh_q  <= Shadows & vm_rd_shadow_i;
-    st1_se_q  <= Shadows & vm_rd_shadow_i & shp_err;
-    st2_sh_q  <= st1_sh_q;
+    st1_sec_q <= Secondary & vm_rd_sec_i;
+    st1_se_q  <= Secondary & vm_rd_sec_i & shp_err;
+    st2_sec_q <= st1_sec_q;
     st2_se_q  <= st1_se_q;
     st2_thr_q <= st1_thr_q;
     st2_vm_q  <= st1_vm_q;
@@ -272,14 +272,14 @@ module rc_shade_seq #(
       nb_thr_q  <= st2_thr_q;
       nb_vm_q   <= st2_vm_q;
       nb_hm_q   <= st2_hm_q;
-      nb_sh_q   <= st2_sh_q;
+      nb_sec_q  <= st2_sec_q;
       nb_se_q   <= st2_se_q;
       nb_btri_q <= tri_i;
     end
     if (sh_load) begin
       sh_vm_q   <= nb_vm_q;
       sh_hm_q   <= nb_hm_q;
-      sh_sh_q   <= nb_sh_q;
+      sh_sec_q  <= nb_sec_q;
       sh_se_q   <= nb_se_q;
       sh_btri_q <= nb_btri_q;
     end else if (adv) begin
@@ -315,10 +315,10 @@ module rc_shade_seq #(
     .take_i    (to_miss),
     .credit_o  (miss_free),
     .wr_valid_i(to_miss),
-    .wr_data_i ({sh_sh_q, sh_sh_q & sh_hit_r, sh_se_q, sh_thr_q, sh_r_q}),
+    .wr_data_i ({sh_sec_q, sh_sec_q & sh_hit_r, sh_se_q, sh_thr_q, sh_r_q}),
     .valid_o   (miss_v),
     .ready_i   (miss_take),
-    .data_o    ({miss_sh, miss_sh_hit, miss_sh_err, miss_rid})
+    .data_o    ({miss_sec, miss_sec_hit, miss_sec_err, miss_rid})
   );
 
   ////////////////////////////////////
@@ -478,9 +478,9 @@ module rc_shade_seq #(
   logic [31:0]     rec_tri;
 
   assign f_take    = (sho_v | miss_v) & f_room_q;
-  assign f_hit     = sho_v | miss_sh_hit;
+  assign f_hit     = sho_v | miss_sec_hit;
   assign f_rid     = sho_v ? sho_rid : miss_rid;
-  assign f_rgb     = sho_v ? sho_rgb : (miss_sh ? {23'd0, miss_sh_err} : background_i);
+  assign f_rgb     = sho_v ? sho_rgb : (miss_sec ? {23'd0, miss_sec_err} : background_i);
   assign sho_ready = f_room_q;
   assign miss_take = miss_v & f_room_q & ~sho_v;
 

@@ -36,13 +36,13 @@
 //   register, cull compare, routing register), routing to queue 1.
 // - Counters (perf_*): pops, culled pops, failed packets (a walk that ends with an error), leaf
 //   visits and empty leaves of the routed entries.
-// - Parameters: Threads, StackDepth (a power of two, at most rc_pkg::KdtreeStackDepth); Shadows:
-//   1 = the shadow cull above, 0 = none (shadow_i not read).
+// - Parameters: Threads, StackDepth (a power of two, at most rc_pkg::KdtreeStackDepth);
+//   Secondary: 1 = the shadow cull above, 0 = none (shadow_i not read).
 // - Reset: rst_ni (active low, asynchronous) clears the requests and the pipeline's valid bits.
 module rc_stack_unit #(
   parameter int unsigned Threads     = rc_pkg::CoreThreads,
   parameter int unsigned StackDepth  = rc_pkg::KdtreeStackDepth,
-  parameter bit          Shadows     = 1'b1,
+  parameter bit          Secondary   = 1'b1,
   parameter int unsigned TravQDepth  = 16,
   parameter int unsigned LeafQDepth  = 16,
   // Derived (do not override).
@@ -223,7 +223,7 @@ module rc_stack_unit #(
   logic [SpW-1:0] pp_sp_q;
   always_ff @(posedge clk_i) pp_sp_q <= sp_rd_i;
   assign pp_err      = |(gpp_q & err_i);
-  assign pp_sh       = Shadows & |(gpp_q & shadow_i);
+  assign pp_sh       = Secondary & |(gpp_q & shadow_i);
   assign sp_rd_thr_o = pk_thr_q;
   assign pp_sp       = pp_sp_q;
   assign pp_end      = pp_err | (pp_sp == '0);

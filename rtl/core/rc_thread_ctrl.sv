@@ -14,8 +14,9 @@
 //   thread says which holds its depth or that it is 0 (a live-value table): two writers without a
 //   second write port.
 // - Rays that exist and the packet's kind: written at acc_*; read port vm_rd_thr_i -> vm_rd_o,
-//   vm_rd_shadow_o (asynchronous, from distributed RAM). shadow_o[t]: thread t holds a shadow
-//   packet (acc_shadow_i at its take); a flip-flop per thread.
+//   vm_rd_sec_o (a secondary packet: acc_sec_i at its take; asynchronous, from distributed RAM).
+//   shadow_o[t]: thread t holds a shadow packet (acc_anyhit_i at its take); a flip-flop per
+//   thread.
 // - Every event is for a thread in its unit's hands: the two depth writers never meet on one
 //   thread, and a new packet's thread has no other event (assertions).
 // - Timing: an event changes the state at the clock edge that ends its cycle; reads see it from the
@@ -37,7 +38,8 @@ module rc_thread_ctrl #(
   input  logic [ThrW-1:0]      acc_thr_i,
   input  logic [Threads-1:0]   acc_hot_i,     // acc_valid_i && acc_thr_i == t (a register)
   input  logic [3:0]           acc_vmask_i,
-  input  logic                 acc_shadow_i,
+  input  logic                 acc_anyhit_i,
+  input  logic                 acc_sec_i,
 
   // Errors met, from five units.
   input  logic                 err0_valid_i,    // the traversal decision
@@ -72,7 +74,7 @@ module rc_thread_ctrl #(
   output logic [SpW-1:0]       sp_rd_o,
   input  logic [ThrW-1:0]      vm_rd_thr_i,
   output logic [3:0]           vm_rd_o,
-  output logic                 vm_rd_shadow_o
+  output logic                 vm_rd_sec_o
 );
 
   if (Threads < 1 || (1 << ThrW) < Threads) begin : g_param_check
@@ -116,7 +118,7 @@ module rc_thread_ctrl #(
       shadow_q <= '0;
     end else begin
       err_q    <= (err_q & ~h_acc) | h_e0 | h_e1 | h_e2 | h_e3 | h_e4;
-      shadow_q <= (shadow_q & ~h_acc) | (h_acc & {Threads{acc_shadow_i}});
+      shadow_q <= (shadow_q & ~h_acc) | (h_acc & {Threads{acc_anyhit_i}});
     end
   end
   assign err_o    = err_q;
@@ -183,9 +185,9 @@ module rc_thread_ctrl #(
 
   logic [4:0] vm_m [0:Depth-1];
   always_ff @(posedge clk_i) begin
-    if (acc_valid_i) vm_m[acc_thr_i] <= {acc_shadow_i, acc_vmask_i};
+    if (acc_valid_i) vm_m[acc_thr_i] <= {acc_sec_i, acc_vmask_i};
   end
-  assign {vm_rd_shadow_o, vm_rd_o} = vm_m[vm_rd_thr_i];
+  assign {vm_rd_sec_o, vm_rd_o} = vm_m[vm_rd_thr_i];
 
 `ifndef SYNTHESIS
   logic checks_on;

@@ -33,6 +33,8 @@ struct RenderArgs {
   std::string input, output, hits, stats, diff, size, camera, engine = "golden", reference;
   std::string format = "7/16", ray_source;  // ray_source "": host, raygen for the board
   std::string lighting = "headlight";
+  uint32_t bounces = static_cast<uint32_t>(spec::kLightMaxBounces);
+  bool bounces_given = false;
   std::vector<std::string> models_path;
   bool auto_camera = false, quiet = false;
   unsigned threads = 0;
@@ -215,32 +217,34 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
   }
   nlohmann::json perf_all = nlohmann::json::array();
   for (uint64_t v : r.perf) perf_all.push_back(v);
-  nlohmann::json shadow = nullptr;
-  if (r.lit) {
-    const Counters& sc = r.frame.shadow_counters;
-    const harness::UnitUtilisation su = harness::unit_utilisation(
-        r.shadow_perf, r.shadow_cycles, harness::isect_interval(rtl_model(a)),
-        harness::model_setup_units(rtl_model(a)));
-    nlohmann::json shadow_perf = nlohmann::json::array();
-    for (uint64_t v : r.shadow_perf) shadow_perf.push_back(v);
-    shadow = {{"packets", r.shadow_packets},
-              {"cycles", r.shadow_cycles},
-              {"rays", sc.rays},
-              {"rays_per_cycle", share(sc.rays, r.shadow_cycles)},
-              {"traversal_steps", sc.traversal_steps},
-              {"triangle_tests", sc.triangle_tests},
-              {"efficiency", share(harness::ideal_cycles(sc, harness::isect_interval(rtl_model(a))),
-                                   r.shadow_cycles)},
-              {"utilisation",
-               {{"setup", su.setup},
-                {"trav", su.trav},
-                {"list", su.list},
-                {"isect", su.isect},
-                {"shade", su.shade}}},
-              {"busiest_unit", {{"unit", su.busiest_name}, {"utilisation", su.busiest}}},
-              {"error_bits", r.shadow_error_bits},
-              {"perf", shadow_perf}};
-  }
+  // Scene lighting: the secondary passes of one kind, summed (null without lighting).
+  const auto passes_json = [&](const harness::SecondaryPasses& p,
+                               const Counters& sc) -> nlohmann::json {
+    if (!r.lit) return nullptr;
+    const harness::UnitUtilisation su =
+        harness::unit_utilisation(p.perf, p.cycles, harness::isect_interval(rtl_model(a)),
+                                  harness::model_setup_units(rtl_model(a)));
+    nlohmann::json pass_perf = nlohmann::json::array();
+    for (uint64_t v : p.perf) pass_perf.push_back(v);
+    return {{"passes", p.passes},
+            {"packets", p.packets},
+            {"cycles", p.cycles},
+            {"rays", sc.rays},
+            {"rays_per_cycle", share(sc.rays, p.cycles)},
+            {"traversal_steps", sc.traversal_steps},
+            {"triangle_tests", sc.triangle_tests},
+            {"efficiency",
+             share(harness::ideal_cycles(sc, harness::isect_interval(rtl_model(a))), p.cycles)},
+            {"utilisation",
+             {{"setup", su.setup},
+              {"trav", su.trav},
+              {"list", su.list},
+              {"isect", su.isect},
+              {"shade", su.shade}}},
+            {"busiest_unit", {{"unit", su.busiest_name}, {"utilisation", su.busiest}}},
+            {"error_bits", p.error_bits},
+            {"perf", pass_perf}};
+  };
   return {{"cycles", r.cycles},
           {"core_cycles_counter", perf(spec::kCorePerfCycles)},
           {"rays", c.rays},
@@ -261,7 +265,8 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
           {"latency", a.latency},
           {"stall_seed", a.stall_seed},
           {"perf", perf_all},
-          {"shadow_pass", shadow}};
+          {"shadow_pass", passes_json(r.shadow, r.frame.shadow_counters)},
+          {"bounce_pass", passes_json(r.bounce, r.frame.bounce_counters)}};
 }
 
 void print_rtl_summary(const nlohmann::json& j) {
@@ -291,15 +296,18 @@ void print_rtl_summary(const nlohmann::json& j) {
   }
   std::printf("\n  simulation: %.0f cycles/s, %.2f s wall\n",
               j["simulated_cycles_per_second"].get<double>(), j["wall_seconds"].get<double>());
-  const auto& s = j["shadow_pass"];
-  if (!s.is_null())
+  for (const char* kind : {"shadow", "bounce"}) {
+    const auto& s = j[std::string(kind) + "_pass"];
+    if (s.is_null() || s["passes"].get<uint64_t>() == 0) continue;
     std::printf(
-        "  rtl shadow pass (shadow packets from the core's hits, light terms on the host): %llu "
+        "  rtl %s passes (%llu; packets from the core's hits, light terms on the host): %llu "
         "packets, %llu rays, %llu cycles, %.4f rays/cycle, efficiency %.3f, busiest: %s %.3f\n",
-        s["packets"].get<unsigned long long>(), s["rays"].get<unsigned long long>(),
-        s["cycles"].get<unsigned long long>(), s["rays_per_cycle"].get<double>(),
-        s["efficiency"].get<double>(), s["busiest_unit"]["unit"].get<std::string>().c_str(),
+        kind, s["passes"].get<unsigned long long>(), s["packets"].get<unsigned long long>(),
+        s["rays"].get<unsigned long long>(), s["cycles"].get<unsigned long long>(),
+        s["rays_per_cycle"].get<double>(), s["efficiency"].get<double>(),
+        s["busiest_unit"]["unit"].get<std::string>().c_str(),
         s["busiest_unit"]["utilisation"].get<double>());
+  }
 }
 
 harness::CoreSimResult run_rtl(const RenderArgs& a, const RenderInput& in,
@@ -334,29 +342,37 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   std::vector<std::string> counters, allowed;  // differences that fail the check, and not
   for (const CounterDifference& d : counter_differences(gold.counters, rtl.counters))
     (d.required ? counters : allowed).push_back(d.text());
-  // Scene lighting: which lights reach each pixel, and the shadow rays' counters.
-  uint64_t light_differ = 0;
-  if (gold.light_mask.size() != rtl.light_mask.size()) {
-    light_differ = std::max(gold.light_mask.size(), rtl.light_mask.size());
-  } else {
-    for (size_t i = 0; i < gold.light_mask.size(); ++i)
-      light_differ += gold.light_mask[i] != rtl.light_mask[i] ? 1 : 0;
-  }
-  if (!gold.light_mask.empty() || !rtl.light_mask.empty())
+  // Scene lighting: which lights reach each pixel, what its first mirror ray hits, and the
+  // secondary rays' counters.
+  const auto differ = [](const auto& x, const auto& y) -> uint64_t {
+    if (x.size() != y.size()) return std::max(x.size(), y.size());
+    uint64_t n = 0;
+    for (size_t i = 0; i < x.size(); ++i) n += x[i] != y[i] ? 1 : 0;
+    return n;
+  };
+  const uint64_t light_differ = differ(gold.light_mask, rtl.light_mask);
+  const uint64_t bounce_differ = differ(gold.bounce_tri, rtl.bounce_tri);
+  if (!gold.light_mask.empty() || !rtl.light_mask.empty()) {
     for (const CounterDifference& d :
          counter_differences(gold.shadow_counters, rtl.shadow_counters))
       (d.required ? counters : allowed).push_back("shadow " + d.text());
+    for (const CounterDifference& d :
+         counter_differences(gold.bounce_counters, rtl.bounce_counters))
+      (d.required ? counters : allowed).push_back("bounce " + d.text());
+  }
   // The run itself: idle at the end, misses without a hit record, one write per pixel, no
   // watchdog (the regression tests judge a run by the same function).
   const std::vector<std::string> run =
       sim ? harness::run_problems(*sim) : std::vector<std::string>{};
-  const bool ok = cmp.equal() && light_differ == 0 && counters.empty() && run.empty();
+  const bool ok =
+      cmp.equal() && light_differ == 0 && bounce_differ == 0 && counters.empty() && run.empty();
   js["check"] = {{"engine", "golden"},
                  {"pixels", cmp.pixels},
                  {"differing_pixels", cmp.differing},
                  {"rgb_differ", cmp.rgb_differ},
                  {"hits_differ", cmp.hits_differ},
                  {"light_masks_differ", light_differ},
+                 {"bounce_hits_differ", bounce_differ},
                  {"counter_differences", counters},
                  {"counter_differences_after_error", allowed},
                  {"run_problems", run},
@@ -404,6 +420,9 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   if (light_differ)
     std::printf("  %llu pixels differ in the lights that reach them\n",
                 static_cast<unsigned long long>(light_differ));
+  if (bounce_differ)
+    std::printf("  %llu pixels differ in what their first mirror ray hits\n",
+                static_cast<unsigned long long>(bounce_differ));
   for (const std::string& d : run) std::printf("  run: %s\n", d.c_str());
   for (const std::string& d : counters) std::printf("  counter %s\n", d.c_str());
   for (const std::string& d : allowed)
@@ -454,9 +473,14 @@ int run_render(const RenderArgs& a) {
   const Lighting lighting = parse_lighting(a.lighting);
   if (lighting == Lighting::kScene && a.engine == "board")
     throw Error(
-        "--lighting scene: the board traces primary rays only so far (the scene's lights and "
-        "shadow rays are in the golden model, the Embree reference and --engine rtl); use "
-        "--engine golden, embree or rtl");
+        "--lighting scene: the board traces primary rays only so far (the scene's lights, "
+        "shadow rays and mirror rays are in the golden model, the Embree reference and --engine "
+        "rtl); use --engine golden, embree or rtl");
+  if (a.bounces > static_cast<uint32_t>(spec::kLightBounceLimit))
+    throw Error("--bounces: at most " + std::to_string(spec::kLightBounceLimit) + ", got " +
+                std::to_string(a.bounces));
+  if (a.bounces_given && lighting != Lighting::kScene)
+    throw Error("--bounces needs --lighting scene (the headlight traces no mirror rays)");
   if (!a.reference.empty() && a.reference != "embree" && a.reference != "golden")
     throw Error("--reference: expected embree or golden, got '" + a.reference + "'");
   if (!a.diff.empty() && a.reference.empty() && !a.check)
@@ -503,6 +527,7 @@ int run_render(const RenderArgs& a) {
   opt.progress = !a.quiet;
   opt.ray_source = ray_source;
   opt.lighting = lighting;
+  opt.max_bounces = a.bounces;
 
   std::optional<harness::CoreSimResult> rtl;
   std::optional<harness::BoardSimResult> board;
@@ -525,8 +550,11 @@ int run_render(const RenderArgs& a) {
                        {"ray_source", ray_source_name(opt.ray_source)},
                        {"lighting", lighting_name(opt.lighting)},
                        {"counters", counters_json(f.counters)}};
-  if (!f.light_mask.empty() && a.engine != "embree")
+  if (!f.light_mask.empty()) js["max_bounces"] = opt.max_bounces;
+  if (!f.light_mask.empty() && a.engine != "embree") {
     js["shadow_counters"] = counters_json(f.shadow_counters);
+    js["bounce_counters"] = counters_json(f.bounce_counters);
+  }
   if (!a.quiet) {
     std::printf("%s: %ux%u, %s, engine %s: %.3f s, %.0f rays/s\n", a.input.c_str(), f.width,
                 f.height, in.image.format().name().c_str(), a.engine.c_str(), f.seconds,
@@ -550,6 +578,14 @@ int run_render(const RenderArgs& a) {
             static_cast<unsigned long long>(sc.traversal_steps),
             static_cast<unsigned long long>(sc.triangle_tests),
             static_cast<unsigned long long>(sc.errors));
+        const Counters& bc = f.bounce_counters;
+        std::printf(
+            "  mirror rays %llu in %llu packets (--bounces %u), traversal steps %llu, triangle "
+            "tests %llu, failed packets %llu\n",
+            static_cast<unsigned long long>(bc.rays), static_cast<unsigned long long>(bc.packets),
+            opt.max_bounces, static_cast<unsigned long long>(bc.traversal_steps),
+            static_cast<unsigned long long>(bc.triangle_tests),
+            static_cast<unsigned long long>(bc.errors));
       }
     }
   }
@@ -621,6 +657,16 @@ int run_render(const RenderArgs& a) {
             a.reference.c_str(), 100.0 * la.share(), static_cast<unsigned long long>(la.tests),
             static_cast<unsigned long long>(la.only_a_lit), a.engine.c_str(),
             static_cast<unsigned long long>(la.only_b_lit), a.reference.c_str());
+      const BounceAgreement ba = compare_bounces(f, ref);
+      js["reference"]["bounce_agreement"] = ba.share();
+      js["reference"]["bounce_rays"] = ba.rays;
+      js["reference"]["bounce_only_one"] = ba.only_one;
+      if (!a.quiet && ba.rays > 0)
+        std::printf(
+            "  first mirror ray against %s: %.4f%% of %llu agree on the triangle hit (%llu "
+            "traced by one engine only)\n",
+            a.reference.c_str(), 100.0 * ba.share(), static_cast<unsigned long long>(ba.rays),
+            static_cast<unsigned long long>(ba.only_one));
     }
   }
   if (!a.stats.empty()) {
@@ -710,9 +756,17 @@ void add_render_commands(CLI::App& app, Action* action) {
       ->capture_default_str();
   cmd->add_option("--size", args->size, "frame size WxH (default: the scene's)");
   cmd->add_option("--lighting", args->lighting,
-                  "headlight (the core's shading) or scene (the scene's lights with shadow rays: "
-                  "golden and embree only so far; a scene without lights keeps the headlight)")
+                  "headlight (the core's shading) or scene (the scene's lights with shadow rays "
+                  "and mirror rays: golden, embree and rtl so far; a scene without lights keeps "
+                  "the headlight)")
       ->capture_default_str();
+  cmd->add_option(
+         "--bounces", args->bounces,
+         "with --lighting scene: the depth of each pixel's mirror rays (0: none; at most " +
+             std::to_string(spec::kLightBounceLimit) + ")")
+      ->capture_default_str()
+      ->check(kDigits)
+      ->each([args](const std::string&) { args->bounces_given = true; });
   cmd->add_option("--ray-source", args->ray_source,
                   "host (double-precision camera, rounded once; the default) or raygen (the "
                   "board's ray generation unit: fp arithmetic from camera registers; the default "

@@ -146,4 +146,22 @@ LightAgreement compare_lights(const Frame& a, const Frame& b, size_t lights) {
   return la;
 }
 
+BounceAgreement compare_bounces(const Frame& a, const Frame& b) {
+  BounceAgreement ba;
+  if (a.bounce_tri.size() != a.hit_tri.size() || b.bounce_tri.size() != b.hit_tri.size() ||
+      a.hit_tri.size() != b.hit_tri.size())
+    return ba;
+  for (size_t p = 0; p < a.hit_tri.size(); ++p) {
+    if (a.hit_tri[p] < 0 || a.hit_tri[p] != b.hit_tri[p]) continue;
+    const bool ra = a.bounce_tri[p] != -2, rb = b.bounce_tri[p] != -2;
+    if (!ra && !rb) continue;
+    ++ba.rays;
+    if (ra && rb && a.bounce_tri[p] == b.bounce_tri[p])
+      ++ba.agree;
+    else if (ra != rb)
+      ++ba.only_one;
+  }
+  return ba;
+}
+
 }  // namespace rc

@@ -39,6 +39,18 @@ struct LightAgreement {
 };
 LightAgreement compare_lights(const Frame& a, const Frame& b, size_t lights);
 
+// The mirror rays' agreement (scene lighting): over the pixels where both frames hit the same
+// triangle and at least one traces a mirror ray, agree when both trace one and its first hit is
+// the same triangle (or both miss); only_one counts the pixels where one frame traces a mirror
+// ray and the other does not (a weight that underflowed).
+struct BounceAgreement {
+  uint64_t rays = 0, agree = 0, only_one = 0;
+  double share() const {
+    return rays ? static_cast<double>(agree) / static_cast<double>(rays) : 1.0;
+  }
+};
+BounceAgreement compare_bounces(const Frame& a, const Frame& b);
+
 // A difference image: pixels where the hits agree are the darkened image a; disagreeing pixels
 // are red (different triangle), green (only a hits) or blue (only b hits).
 std::vector<uint8_t> hit_difference_image(const Frame& a, const Frame& b);

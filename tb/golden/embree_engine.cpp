@@ -77,58 +77,103 @@ void exclude_start(const RTCFilterFunctionNArguments* args) {
 struct LitResult {
   std::array<uint8_t, 3> rgb;
   uint32_t lights;
+  int32_t bounce_tri;  // the first mirror ray's hit: -2 none, -1 a miss
 };
 
-// The lighting rules in double, shadow rays through Embree in float32.
-LitResult shade_lit_double(const EmbreeScene& es, const SoupTriangle& tri, unsigned prim,
-                           const glm::dvec3& org, const glm::dvec3& dir, double t,
-                           const std::vector<SoupLight>& lights, double t_eps) {
-  const double ambient = static_cast<double>(spec::kShadeAmbientPermille) / 1000.0;
-  const glm::dvec3 p = org + t * dir;
-  glm::dvec3 n = glm::normalize(glm::cross(tri.v[1] - tri.v[0], tri.v[2] - tri.v[0]));
-  if (glm::dot(n, dir) > 0.0) n = -n;
-  const glm::dvec3 v = glm::normalize(dir);
-  const uint32_t ns = light_exponent(fp32ftz::from_double(tri.ns));
-  glm::dvec3 sum(tri.kd[0] * ambient, tri.kd[1] * ambient, tri.kd[2] * ambient);
-  LitResult out{{0, 0, 0}, 0};
-  for (size_t li = 0; li < lights.size(); ++li) {
-    const SoupLight& l = lights[li];
-    glm::dvec3 lh = l.pos;
-    double dist = std::numeric_limits<double>::infinity();
-    if (!l.directional) {
-      const glm::dvec3 d = l.pos - p;
-      dist = glm::length(d);
-      lh = d / dist;
+// The lighting rules in double (docs/architecture.md, "Lighting" and "Reflection"), shadow and
+// mirror rays through Embree in float32.
+struct LitTracer {
+  const EmbreeScene& es;
+  const std::vector<SoupTriangle>& tris;
+  const std::vector<SoupLight>& lights;
+  double t_eps;
+  uint32_t max_bounces;
+  glm::dvec3 background;  // byte / 255
+
+  // Adds the terms of a hit (triangle prim at distance t along org + t * dir) seen with weight w
+  // at depth `depth` to sum; *lit gets the lights that reach it (the primary hit's).
+  void shade(unsigned prim, const glm::dvec3& org, const glm::dvec3& dir, double t, double w,
+             uint32_t depth, glm::dvec3& sum, uint32_t* lit, int32_t* bounce_tri) const {
+    const SoupTriangle& tri = tris[prim];
+    const double ambient = static_cast<double>(spec::kShadeAmbientPermille) / 1000.0;
+    const glm::dvec3 p = org + t * dir;
+    glm::dvec3 n = glm::normalize(glm::cross(tri.v[1] - tri.v[0], tri.v[2] - tri.v[0]));
+    if (glm::dot(n, dir) > 0.0) n = -n;
+    const glm::dvec3 v = glm::normalize(dir);
+    const uint32_t ns = light_exponent(fp32ftz::from_double(tri.ns));
+    for (int c = 0; c < 3; ++c) sum[c] += std::clamp(tri.kd[c] * ambient * w, 0.0, 1.0);
+    for (size_t li = 0; li < lights.size(); ++li) {
+      const SoupLight& l = lights[li];
+      glm::dvec3 lh = l.pos;
+      double dist = std::numeric_limits<double>::infinity();
+      if (!l.directional) {
+        const glm::dvec3 d = l.pos - p;
+        dist = glm::length(d);
+        lh = d / dist;
+      }
+      const double cos_l = glm::dot(n, lh);
+      if (!(cos_l > 0.0)) continue;
+      ShadowContext sc;
+      rtcInitIntersectContext(&sc.ctx);
+      sc.ctx.filter = exclude_start;
+      sc.exclude = prim;
+      RTCRay ray = embree_ray(p, lh, dist);
+      rtcOccluded1(es.scene, &sc.ctx, &ray);
+      if (ray.tfar < 0.0f) continue;  // occluded: Embree sets tfar to -inf
+      if (lit && li < 32) *lit |= 1u << li;
+      const glm::dvec3 h = glm::normalize(lh - v);
+      const double nh = glm::dot(n, h);
+      const double spec = nh > 0.0 ? std::pow(nh, static_cast<double>(ns)) : 0.0;
+      for (int c = 0; c < 3; ++c)
+        sum[c] += std::clamp((tri.kd[c] * cos_l + tri.ks[c] * spec) * l.color[c] * w, 0.0, 1.0);
     }
-    const double cos_l = glm::dot(n, lh);
-    if (!(cos_l > 0.0)) continue;
+    // The mirror ray: R = V - 2 (N . V) N from the hit point, closest hit beyond t_eps.
+    const double wm = w * tri.mirror;
+    if (depth >= max_bounces || !(tri.mirror > 0.0) || !(wm > 0.0)) return;
+    const glm::dvec3 r = v - 2.0 * glm::dot(n, v) * n;
     ShadowContext sc;
     rtcInitIntersectContext(&sc.ctx);
     sc.ctx.filter = exclude_start;
     sc.exclude = prim;
+    RTCRayHit rh{};
+    rh.ray = embree_ray(p, r, std::numeric_limits<double>::infinity());
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(es.scene, &sc.ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+      if (bounce_tri) *bounce_tri = -1;
+      for (int c = 0; c < 3; ++c) sum[c] += std::clamp(background[c] * wm, 0.0, 1.0);
+      return;
+    }
+    if (bounce_tri) *bounce_tri = static_cast<int32_t>(rh.hit.primID);
+    const glm::dvec3 ro(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z);
+    const glm::dvec3 rd(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+    shade(rh.hit.primID, ro, rd, rh.ray.tfar, wm, depth + 1, sum, nullptr, nullptr);
+  }
+
+  // A float32 ray from p along d (unit) beyond t_eps, up to tfar.
+  RTCRay embree_ray(const glm::dvec3& p, const glm::dvec3& d, double tfar) const {
     RTCRay ray{};
     ray.org_x = static_cast<float>(p.x);
     ray.org_y = static_cast<float>(p.y);
     ray.org_z = static_cast<float>(p.z);
-    ray.dir_x = static_cast<float>(lh.x);
-    ray.dir_y = static_cast<float>(lh.y);
-    ray.dir_z = static_cast<float>(lh.z);
+    ray.dir_x = static_cast<float>(d.x);
+    ray.dir_y = static_cast<float>(d.y);
+    ray.dir_z = static_cast<float>(d.z);
     ray.tnear = static_cast<float>(t_eps);
-    ray.tfar = static_cast<float>(dist);
+    ray.tfar = static_cast<float>(tfar);
     ray.mask = 0xffffffffu;
-    rtcOccluded1(es.scene, &sc.ctx, &ray);
-    if (ray.tfar < 0.0f) continue;  // occluded: Embree sets tfar to -inf
-    if (li < 32) out.lights |= 1u << li;
-    const glm::dvec3 h = glm::normalize(lh - v);
-    const double nh = glm::dot(n, h);
-    const double spec = nh > 0.0 ? std::pow(nh, static_cast<double>(ns)) : 0.0;
-    for (int c = 0; c < 3; ++c)
-      sum[c] += std::clamp((tri.kd[c] * cos_l + tri.ks[c] * spec) * l.color[c], 0.0, 1.0);
+    return ray;
   }
-  for (int c = 0; c < 3; ++c)
-    out.rgb[c] = static_cast<uint8_t>(std::nearbyint(std::min(sum[c], 1.0) * 255.0));
-  return out;
-}
+
+  LitResult primary(unsigned prim, const glm::dvec3& org, const glm::dvec3& dir, double t) const {
+    glm::dvec3 sum(0.0);
+    LitResult out{{0, 0, 0}, 0, -2};
+    shade(prim, org, dir, t, 1.0, 0, sum, &out.lights, &out.bounce_tri);
+    for (int c = 0; c < 3; ++c)
+      out.rgb[c] = static_cast<uint8_t>(std::nearbyint(std::min(sum[c], 1.0) * 255.0));
+    return out;
+  }
+};
 
 }  // namespace
 
@@ -149,11 +194,14 @@ Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& 
   double t_eps = 0.0;
   if (lit) {
     f.light_mask.assign(npix, 0);
+    f.bounce_tri.assign(npix, -2);
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
     for (const auto& t : tris)
       for (const auto& v : t.v) lo = glm::min(lo, v), hi = glm::max(hi, v);
     t_eps = tris.empty() ? 0.0 : glm::length(hi - lo) * kShadowEpsScale;
   }
+  LitTracer tracer{es, tris, lights, t_eps, opt.max_bounces, glm::dvec3(0.0)};
+  for (int c = 0; c < 3; ++c) tracer.background[c] = opt.background[c] / 255.0;
   parallel_rows(opt.height, opt.threads, opt.progress, "embree", [&](uint32_t y) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -179,10 +227,10 @@ Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& 
         const glm::dvec3 dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
         if (lit) {
           const glm::dvec3 org(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z);
-          const LitResult lr = shade_lit_double(es, tris[rh.hit.primID], rh.hit.primID, org, dir,
-                                                rh.ray.tfar, lights, t_eps);
+          const LitResult lr = tracer.primary(rh.hit.primID, org, dir, rh.ray.tfar);
           rgb = lr.rgb;
           f.light_mask[pix] = lr.lights;
+          f.bounce_tri[pix] = lr.bounce_tri;
         } else {
           rgb = shade_double(tris[rh.hit.primID], dir);
         }

@@ -36,6 +36,7 @@ Geometry<T> load_geometry(const scene::SceneImage& img) {
   g.kd.resize(materials, {T::zero(), T::zero(), T::zero()});
   g.ks.resize(materials, {T::zero(), T::zero(), T::zero()});
   g.ns.resize(materials, 0);
+  g.mirror.resize(materials, T::zero());
   for (size_t i = 0; i < img.material_count(); ++i) {
     const scene::MaterialRecord m = img.material(i);
     for (int c = 0; c < 3; ++c) {
@@ -43,6 +44,7 @@ Geometry<T> load_geometry(const scene::SceneImage& img) {
       g.ks[i][c] = T::from_bits(m.ks[c]);
     }
     g.ns[i] = light_exponent(T::from_bits(m.ns));
+    g.mirror[i] = T::from_bits(m.mirror);
   }
   // Lighting (docs/architecture.md, "Lighting"): each value computed in double from the image's
   // float32 fields and rounded to the format once.
@@ -86,6 +88,7 @@ std::vector<SoupTriangle> triangle_soup(const scene::Scene& s) {
       t.kd = {mat.kd.x, mat.kd.y, mat.kd.z};
       t.ks = {mat.ks.x, mat.ks.y, mat.ks.z};
       t.ns = mat.ns;
+      t.mirror = mat.mirror();
       out.push_back(t);
     }
   return out;

@@ -74,11 +74,14 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
   f.hit_tri.assign(static_cast<size_t>(opt.width) * opt.height, -1);
   f.hit_t.assign(static_cast<size_t>(opt.width) * opt.height, 0.0f);
   f.hits.assign(static_cast<size_t>(opt.width) * opt.height, HitRecord{});
-  if (opt.lighting == Lighting::kScene && !g.lights.empty())
-    f.light_mask.assign(static_cast<size_t>(opt.width) * opt.height, 0);
-  const uint32_t pw = (opt.width + 1) / 2, ph = (opt.height + 1) / 2;
-  std::vector<Counters> row_counters(ph), row_shadow(ph);
   const bool lit = opt.lighting == Lighting::kScene && !g.lights.empty();
+  if (lit) {
+    f.light_mask.assign(static_cast<size_t>(opt.width) * opt.height, 0);
+    f.bounce_tri.assign(static_cast<size_t>(opt.width) * opt.height, -2);
+  }
+  const uint32_t pw = (opt.width + 1) / 2, ph = (opt.height + 1) / 2;
+  std::vector<Counters> row_counters(ph), row_shadow(ph), row_bounce(ph);
+  const LitParams<T> lparams = lit_params<T>(opt.max_bounces, opt.background);
   parallel_rows(ph, opt.threads, opt.progress, "golden", [&](uint32_t py) {
     Counters& c = row_counters[py];
     std::array<Ray<T>, kPacketRays> rays;
@@ -87,7 +90,7 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
       const uint32_t mask = gen.packet(px, py, rays);
       trace_packet(g, rays, mask, hits, c);  // errors are counted in c
       LitPacket lp;
-      if (lit) lp = shade_lit(g, rays, mask, hits, row_shadow[py]);
+      if (lit) lp = shade_lit(g, rays, mask, hits, lparams, row_shadow[py], row_bounce[py]);
       for (int r = 0; r < kPacketRays; ++r) {
         if (!(mask >> r & 1)) continue;
         const size_t pix =
@@ -97,7 +100,7 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
         const std::array<uint8_t, 3> rgb = h.tri < 0 ? opt.background
                                            : lit     ? lp.rgb[r]
                                                      : shade(g, rays[r], h);
-        if (lit) f.light_mask[pix] = lp.lights[r];
+        if (lit) f.light_mask[pix] = lp.lights[r], f.bounce_tri[pix] = lp.bounce_tri[r];
         std::memcpy(&f.rgb[pix * 3], rgb.data(), 3);
         f.hit_tri[pix] = h.tri;
         f.hit_t[pix] = h.tri >= 0 ? h.t.to_float() : 0.0f;
@@ -107,6 +110,7 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
   });
   for (const Counters& c : row_counters) f.counters.add(c);  // in row order: same totals always
   for (const Counters& c : row_shadow) f.shadow_counters.add(c);
+  for (const Counters& c : row_bounce) f.bounce_counters.add(c);
   f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return f;
 }

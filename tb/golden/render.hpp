@@ -35,8 +35,12 @@ struct Frame {
   // Scene lighting: per pixel, bit l set when light l reaches the hit (in front of the surface
   // and unoccluded; lights 0 to 31); empty with the headlight.
   std::vector<uint32_t> light_mask;
+  // Scene lighting: per pixel, the triangle its first mirror ray hits (-1: it missed or its
+  // packet failed; -2: the pixel has no mirror ray); empty with the headlight.
+  std::vector<int32_t> bounce_tri;
   Counters counters;         // primary rays
   Counters shadow_counters;  // shadow rays (scene lighting)
+  Counters bounce_counters;  // mirror rays (scene lighting)
   double seconds = 0.0;
 };
 
@@ -47,8 +51,8 @@ RaySource parse_ray_source(const std::string& name);  // "host" | "raygen"; thro
 const char* ray_source_name(RaySource s);
 
 // How hits are shaded (docs/architecture.md, "Shading" and "Lighting"): the headlight (the
-// core's rule today), or the scene's lights with shadow rays (the golden model only so far; a
-// scene without lights keeps the headlight).
+// core's rule today), or the scene's lights with shadow rays and mirror rays (a scene without
+// lights keeps the headlight).
 enum class Lighting { kHeadlight, kScene };
 Lighting parse_lighting(const std::string& name);  // "headlight" | "scene"; throws otherwise
 const char* lighting_name(Lighting l);
@@ -64,6 +68,9 @@ struct RenderOptions {
   bool progress = true;  // progress bar on stderr for renders longer than a second
   RaySource ray_source = RaySource::kHost;
   Lighting lighting = Lighting::kHeadlight;
+  // Scene lighting: the depth of a pixel's ray tree (docs/architecture.md, "Reflection"); 0: no
+  // mirror rays. At most spec::kLightBounceLimit.
+  uint32_t max_bounces = static_cast<uint32_t>(spec::kLightMaxBounces);
 };
 
 // A generated ray as the core sees it: each component rounded to the format once.

@@ -54,6 +54,7 @@ struct Geometry {
   std::vector<std::array<T, 3>> normal;  // unit geometric normal n / |n| per triangle
   std::vector<std::array<T, 3>> ks;      // specular colour per material
   std::vector<uint32_t> ns;              // Blinn-Phong exponent per material, an integer
+  std::vector<T> mirror;                 // mirror reflection weight per material
   struct Light {
     bool directional = false;
     std::array<T, 3> pos;    // point: the position; directional: the unit vector toward it
@@ -208,25 +209,27 @@ StepResult<T> trav_step(T split, T org, T inv, T tmin, T tmax) {
   return {t, StepCase::kBothSplit};
 }
 
-// What a shadow packet's rays carry beside the primary rule (docs/architecture.md, "Lighting"):
-// per ray the lower bound of its hits' t, the triangle it starts on (never hit) and the light's
-// distance t_hi, which ends its interval at set-up and is its initial best t (only hits before
-// the light occlude); and any-hit termination (a ray with a hit is culled at the next pop).
+// What a secondary packet's rays carry beside the primary rule (docs/architecture.md,
+// "Lighting" and "Reflection"): per ray the lower bound of its hits' t, the triangle it starts on
+// (never hit) and its limit t_hi, which ends its interval at set-up and is its initial best t
+// (a shadow ray's: the light's distance, so only hits before the light occlude; a bounce ray's:
+// +inf); and for shadow rays any-hit termination (a ray with a hit is culled at the next pop).
 template <class T>
-struct ShadowLimits {
+struct SecondaryLimits {
   T t_lo;
   std::array<int32_t, kPacketRays> exclude{-1, -1, -1, -1};
   std::array<T, kPacketRays> t_hi;
+  bool any_hit = true;  // a shadow packet; false: a bounce packet (closest hit)
 };
 
 // Traces one packet of up to four rays (valid_mask bit r set: ray r exists) through the tree.
 // Returns the error bits (0 on success). The rules are those of docs/architecture.md. With
-// shadow limits (a shadow packet), each ray's best starts at {t_hi, -1} and a ray with a hit is
-// culled at the next pop.
+// limits (a secondary packet), each ray's best starts at {t_hi, -1}, hits need t_lo < t and not
+// the excluded triangle, and with any_hit a ray with a hit is culled at the next pop.
 template <class T>
 uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
                       uint32_t valid_mask, std::array<Hit<T>, kPacketRays>& hits, Counters& c,
-                      const ShadowLimits<T>* shadow = nullptr) {
+                      const SecondaryLimits<T>* shadow = nullptr) {
   constexpr int kStackDepth = static_cast<int>(spec::kKdtreeStackDepth);
   struct Entry {
     uint32_t node, mask;
@@ -324,7 +327,8 @@ uint32_t trace_packet(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays
     cur = stack[--sp];
     ++c.stack_pops;
     for (int r = 0; r < kPacketRays; ++r)
-      if ((cur.mask >> r & 1) && (!le(cur.tmin[r], hits[r].t) || (shadow && hits[r].tri >= 0)))
+      if ((cur.mask >> r & 1) &&
+          (!le(cur.tmin[r], hits[r].t) || (shadow && shadow->any_hit && hits[r].tri >= 0)))
         cur.mask &= ~(1u << r);
     if (cur.mask == 0) ++c.culled_pops;
   }
@@ -462,17 +466,18 @@ T dot3(const std::array<T, 3>& a, const std::array<T, 3>& b) {
   return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
 }
 
-// The ambient term per channel: Kd * ambient, fixed point.
+// The ambient term per channel, weighted: fix((Kd * ambient) * w).
 template <class T>
-std::array<uint32_t, 3> ambient_terms(const Geometry<T>& g, uint32_t material) {
+std::array<uint32_t, 3> ambient_terms(const Geometry<T>& g, uint32_t material, T w) {
   const T ambient = shade_ambient<T>();
   const auto& kd = g.kd[material];
-  return {light_fixed(kd[0] * ambient), light_fixed(kd[1] * ambient), light_fixed(kd[2] * ambient)};
+  return {light_fixed((kd[0] * ambient) * w), light_fixed((kd[1] * ambient) * w),
+          light_fixed((kd[2] * ambient) * w)};
 }
 
 template <class T>
 LightSample<T> light_sample(const Geometry<T>& g, const SurfacePoint<T>& sp,
-                            const typename Geometry<T>::Light& l) {
+                            const typename Geometry<T>::Light& l, T w) {
   LightSample<T> s;
   std::array<T, 3> lh;
   if (l.directional) {
@@ -498,39 +503,94 @@ LightSample<T> light_sample(const Geometry<T>& g, const SurfacePoint<T>& sp,
   const T spec = lt(T::zero(), nh) ? pow_int(nh, g.ns[sp.material]) : T::zero();
   const auto& kd = g.kd[sp.material];
   const auto& ks = g.ks[sp.material];
-  for (int c = 0; c < 3; ++c) s.term[c] = light_fixed((kd[c] * cos_l + ks[c] * spec) * l.color[c]);
+  for (int c = 0; c < 3; ++c)
+    s.term[c] = light_fixed(((kd[c] * cos_l + ks[c] * spec) * l.color[c]) * w);
   return s;
 }
 
-// A primary packet's work under the scene's lights (docs/architecture.md, "Lighting"): per hit the
-// ambient term, and per light, in the image's order, one shadow packet of the hits that face it
-// (lights no hit faces have none), with each ray's term.
+// The mirror direction of a hit: R = V - (c + c) * N with c = dot(N, V) (per component: the
+// product, then the difference).
+template <class T>
+std::array<T, 3> mirror_dir(const SurfacePoint<T>& sp) {
+  const T c = dot3(sp.n, sp.v);
+  const T k = c + c;
+  std::array<T, 3> r;
+  for (int a = 0; a < 3; ++a) r[a] = sp.v[a] - k * sp.n[a];
+  return r;
+}
+
+// What a lit frame needs beyond the geometry: the bounce depth and the background as format
+// values (byte / 255 in double, rounded once), the colour a bounce ray that misses sees.
+template <class T>
+struct LitParams {
+  uint32_t max_bounces = static_cast<uint32_t>(spec::kLightMaxBounces);
+  std::array<T, 3> background{T::zero(), T::zero(), T::zero()};
+};
+
+template <class T>
+LitParams<T> lit_params(uint32_t max_bounces, const std::array<uint8_t, 3>& background) {
+  LitParams<T> p;
+  p.max_bounces = max_bounces;
+  for (int c = 0; c < 3; ++c) p.background[c] = T::from_double(background[c] / 255.0);
+  return p;
+}
+
+// A packet's work under the scene's lights (docs/architecture.md, "Lighting" and "Reflection"):
+// per ray its base term (a hit's ambient term; a bounce ray that misses: the background's), and
+// per light, in the image's order, one shadow packet of the hits that face it (lights no hit
+// faces have none), with each ray's term; and the packet's bounce packet: the mirror rays of its
+// hits on mirror materials, lane for lane. Every term carries the ray's weight (1 for a primary
+// ray, exactly: x * 1 = x).
 template <class T>
 struct ShadowPacket {
   uint32_t light = 0;  // the light's index in the image's order
   uint32_t mask = 0;   // bit r: ray r's hit faces the light, so its shadow ray exists
   std::array<Ray<T>, kPacketRays> rays;
-  ShadowLimits<T> lim;
+  SecondaryLimits<T> lim;
   std::array<std::array<uint32_t, 3>, kPacketRays> term{};  // fixed point, per channel
 };
 
 template <class T>
-struct LitWork {
-  uint32_t hit_mask = 0;                                       // rays with a primary hit
-  std::array<std::array<uint32_t, 3>, kPacketRays> ambient{};  // fixed point, per channel
-  std::vector<ShadowPacket<T>> shadows;
+struct BouncePacket {
+  uint32_t mask = 0;  // bit r: ray r's hit has a mirror ray, in lane r
+  std::array<Ray<T>, kPacketRays> rays;
+  SecondaryLimits<T> lim;             // t_eps, the hit's triangle, t_hi = +inf, closest hit
+  std::array<T, kPacketRays> weight;  // the parent's weight x the material's mirror
 };
 
 template <class T>
+struct LitWork {
+  uint32_t mask = 0;                                        // the packet's rays
+  uint32_t hit_mask = 0;                                    // of those, rays with a hit
+  std::array<int32_t, kPacketRays> tri{-1, -1, -1, -1};     // each ray's hit triangle
+  std::array<std::array<uint32_t, 3>, kPacketRays> base{};  // fixed point, per channel
+  std::vector<ShadowPacket<T>> shadows;
+  BouncePacket<T> bounce;
+};
+
+// The work of a primary packet (depth 0, weight == nullptr: every weight 1) or of a bounce packet
+// at depth 1 .. max_bounces (its weights) that ended without an error, from its hits.
+template <class T>
 LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
-                    uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits) {
+                    uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits,
+                    const LitParams<T>& lp, uint32_t depth = 0,
+                    const std::array<T, kPacketRays>* weight = nullptr) {
   LitWork<T> w;
+  w.mask = mask;
   std::array<SurfacePoint<T>, kPacketRays> sp;
+  std::array<T, kPacketRays> wt;
   for (int r = 0; r < kPacketRays; ++r) {
-    if (!(mask >> r & 1) || hits[r].tri < 0) continue;
+    wt[r] = weight ? (*weight)[r] : T::one();
+    if (!(mask >> r & 1)) continue;
+    if (hits[r].tri < 0) {
+      if (depth > 0)
+        for (int c = 0; c < 3; ++c) w.base[r][c] = light_fixed(lp.background[c] * wt[r]);
+      continue;
+    }
     w.hit_mask |= 1u << r;
+    w.tri[r] = hits[r].tri;
     sp[r] = surface_point(g, rays[r], hits[r]);
-    w.ambient[r] = ambient_terms(g, sp[r].material);
+    w.base[r] = ambient_terms(g, sp[r].material, wt[r]);
   }
   for (size_t li = 0; li < g.lights.size(); ++li) {
     ShadowPacket<T> p;
@@ -539,7 +599,7 @@ LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>&
     for (int r = 0; r < kPacketRays; ++r) {
       p.lim.t_hi[r] = T::inf();
       if (!(w.hit_mask >> r & 1)) continue;
-      const LightSample<T> ls = light_sample(g, sp[r], g.lights[li]);
+      const LightSample<T> ls = light_sample(g, sp[r], g.lights[li], wt[r]);
       if (!ls.present) continue;
       p.rays[r] = ls.ray;
       p.lim.exclude[r] = hits[r].tri;
@@ -549,36 +609,80 @@ LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>&
     }
     if (p.mask != 0) w.shadows.push_back(p);
   }
+  BouncePacket<T>& b = w.bounce;
+  b.lim.t_lo = g.t_eps;
+  b.lim.any_hit = false;
+  for (int r = 0; r < kPacketRays; ++r) {
+    b.lim.t_hi[r] = T::inf();
+    b.weight[r] = T::zero();
+    if (!(w.hit_mask >> r & 1) || depth >= lp.max_bounces) continue;
+    const T m = g.mirror[sp[r].material];
+    if (!lt(T::zero(), m)) continue;  // not a mirror (or NaN)
+    const T wm = wt[r] * m;
+    if (!lt(T::zero(), wm)) continue;  // the weight underflowed: nothing to see
+    b.rays[r].org = sp[r].p;
+    b.rays[r].dir = mirror_dir(sp[r]);
+    b.rays[r].inv_len = T::one();
+    b.lim.exclude[r] = hits[r].tri;
+    b.weight[r] = wm;
+    b.mask |= 1u << r;
+  }
   return w;
 }
 
-// The packet's colours from its work and, per shadow packet (in the work's order), the rays that
-// reached the light (traced with any-hit termination: no hit; 0 for a packet that ended with an
-// error, which lets no light through). The sums are integers, so the colour does not depend on
-// the order in which shadow packets finish. Misses get {0, 0, 0} here (the caller gives them the
-// background).
+// A primary packet's sums over its ray tree. The sums are integers, so the colour does not depend
+// on the order in which the tree's packets finish.
+struct LitSums {
+  uint32_t hit_mask = 0;  // the primary rays with a hit (their colour is the sums')
+  std::array<std::array<uint64_t, 3>, kPacketRays> sum{};
+  std::array<uint32_t, kPacketRays> lights{};  // bit l: light l reaches the primary hit
+  // The first bounce's hit triangle per primary ray: -2 no mirror ray, -1 it missed (or its
+  // packet failed).
+  std::array<int32_t, kPacketRays> bounce_tri{-2, -2, -2, -2};
+};
+
+// The colours of a lit packet (misses get {0, 0, 0} here: the caller gives them the background).
 struct LitPacket {
   std::array<std::array<uint8_t, 3>, kPacketRays> rgb{};
   std::array<uint32_t, kPacketRays> lights{};  // bit l: light l reaches the ray's hit
+  std::array<int32_t, kPacketRays> bounce_tri{-2, -2, -2, -2};
 };
 
+// Adds a packet's work at `depth` to its primary packet's sums, given per shadow packet (in the
+// work's order) the rays that reached the light (traced with any-hit termination: no hit; 0 for a
+// packet that ended with an error, which lets no light through).
 template <class T>
-LitPacket lit_resolve(const LitWork<T>& w, const std::vector<uint32_t>& reached) {
-  LitPacket out;
-  std::array<std::array<uint64_t, 3>, kPacketRays> sum{};
+void lit_accumulate(const LitWork<T>& w, const std::vector<uint32_t>& reached, uint32_t depth,
+                    LitSums& s) {
+  if (depth == 0) s.hit_mask = w.hit_mask;
+  if (depth == 1)
+    for (int r = 0; r < kPacketRays; ++r)
+      if (w.mask >> r & 1) s.bounce_tri[r] = w.tri[r];
   for (int r = 0; r < kPacketRays; ++r)
-    for (int c = 0; c < 3; ++c) sum[r][c] = w.ambient[r][c];
+    for (int c = 0; c < 3; ++c) s.sum[r][c] += w.base[r][c];
   for (size_t k = 0; k < w.shadows.size(); ++k) {
     const ShadowPacket<T>& p = w.shadows[k];
     for (int r = 0; r < kPacketRays; ++r) {
       if (!(p.mask >> r & reached[k] >> r & 1u)) continue;
-      for (int c = 0; c < 3; ++c) sum[r][c] += p.term[r][c];
-      if (p.light < 32) out.lights[r] |= 1u << p.light;
+      for (int c = 0; c < 3; ++c) s.sum[r][c] += p.term[r][c];
+      if (depth == 0 && p.light < 32) s.lights[r] |= 1u << p.light;
     }
   }
+}
+
+// A first bounce packet that ended with an error: its rays add nothing and count as misses.
+inline void lit_bounce_failed(uint32_t mask, LitSums& s) {
   for (int r = 0; r < kPacketRays; ++r)
-    if (w.hit_mask >> r & 1)
-      for (int c = 0; c < 3; ++c) out.rgb[r][c] = light_byte(sum[r][c]);
+    if (mask >> r & 1) s.bounce_tri[r] = -1;
+}
+
+inline LitPacket lit_finish(const LitSums& s) {
+  LitPacket out;
+  out.lights = s.lights;
+  out.bounce_tri = s.bounce_tri;
+  for (int r = 0; r < kPacketRays; ++r)
+    if (s.hit_mask >> r & 1)
+      for (int c = 0; c < 3; ++c) out.rgb[r][c] = light_byte(s.sum[r][c]);
   return out;
 }
 
@@ -592,19 +696,32 @@ uint32_t shadow_reached(uint32_t mask, uint32_t err, const std::array<Hit<T>, kP
   return m;
 }
 
-// A primary packet shaded with the scene's lights: its work, each shadow packet traced (counted
-// in shadow), and the colours.
+// A primary packet shaded with the scene's lights: its ray tree, level by level (each level's
+// shadow packets, then its bounce packet), counted in shadow and bounce, and the colours.
 template <class T>
 LitPacket shade_lit(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
-                    uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits, Counters& shadow) {
-  const LitWork<T> w = lit_work(g, rays, mask, hits);
-  std::vector<uint32_t> reached;
-  for (const ShadowPacket<T>& p : w.shadows) {
-    std::array<Hit<T>, kPacketRays> shits;
-    const uint32_t err = trace_packet(g, p.rays, p.mask, shits, shadow, &p.lim);
-    reached.push_back(shadow_reached(p.mask, err, shits));
+                    uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits,
+                    const LitParams<T>& lp, Counters& shadow, Counters& bounce) {
+  LitSums s;
+  LitWork<T> w = lit_work(g, rays, mask, hits, lp);
+  for (uint32_t depth = 0;; ++depth) {
+    std::vector<uint32_t> reached;
+    for (const ShadowPacket<T>& p : w.shadows) {
+      std::array<Hit<T>, kPacketRays> shits;
+      const uint32_t err = trace_packet(g, p.rays, p.mask, shits, shadow, &p.lim);
+      reached.push_back(shadow_reached(p.mask, err, shits));
+    }
+    lit_accumulate(w, reached, depth, s);
+    const BouncePacket<T> b = w.bounce;
+    if (b.mask == 0) break;
+    std::array<Hit<T>, kPacketRays> bhits;
+    if (trace_packet(g, b.rays, b.mask, bhits, bounce, &b.lim) != 0) {
+      if (depth == 0) lit_bounce_failed(b.mask, s);
+      break;
+    }
+    w = lit_work(g, b.rays, b.mask, bhits, lp, depth + 1, &b.weight);
   }
-  return lit_resolve(w, reached);
+  return lit_finish(s);
 }
 
 }  // namespace rc

@@ -61,58 +61,155 @@ const char* model_module(CoreModel model) {
   }
 }
 
-// Scene lighting through the core (CoreSimResult's lit fields): the shadow packets of the primary
-// frame r, traced by the same model, and each pixel's sums.
+// One pass of secondary packets through the core: packet j's ray r writes slot 4j + r of a
+// 4-wide frame. Adds its figures to `sum` and returns the run.
+CoreSimResult secondary_pass(const scene::SceneImage& image, const std::vector<CorePacket>& packets,
+                             fp24 t_eps, const CoreSimOptions& options, CoreModel model,
+                             SecondaryPasses& sum) {
+  CoreSimOptions so = options;
+  so.trace_path.clear();  // a waveform covers the primary pass
+  CoreSimResult s =
+      trace_rtl(image, packets, 4, static_cast<uint32_t>(packets.size()), t_eps, so, model);
+  ++sum.passes;
+  sum.packets += packets.size();
+  sum.cycles += s.cycles;
+  for (size_t i = 0; i < sum.perf.size(); ++i)
+    sum.perf[i] = i == static_cast<size_t>(spec::kCorePerfMaxStack)
+                      ? std::max(sum.perf[i], s.perf[i])
+                      : sum.perf[i] + s.perf[i];
+  sum.error_bits |= s.error_bits;
+  for (const std::string& p : run_problems(s)) sum.problems.push_back(p);
+  return s;
+}
+
+// The packet of rays in `mask` of a secondary packet's rays and limits.
+CorePacket secondary_packet(RayKind kind, uint32_t mask,
+                            const std::array<Ray<fp24>, kPacketRays>& rays,
+                            const SecondaryLimits<fp24>& lim, size_t index) {
+  CorePacket p;
+  p.kind = kind;
+  p.mask = mask;
+  p.rays = rays;
+  p.t_hi = lim.t_hi;
+  p.start_tri = lim.exclude;
+  for (uint32_t r = 0; r < kPacketRays; ++r) p.slot[r] = static_cast<uint32_t>(4 * index + r);
+  return p;
+}
+
+// A secondary packet that ended with an error: the core writes colour 1 for each of its rays.
+bool secondary_failed(const Frame& f, size_t j, uint32_t mask) {
+  for (uint32_t r = 0; r < kPacketRays; ++r)
+    if ((mask >> r & 1u) && f.rgb[3 * (4 * j + r)] != 0) return true;
+  return false;
+}
+
+// Scene lighting through the core (CoreSimResult's lit fields): the pixels' ray trees, level by
+// level from the primary frame r's hits; per level the shadow packets, then the bounce packets,
+// each a pass of the same model; each pixel's sums.
 void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
                const CoreSimOptions& options, CoreModel model, CoreSimResult& r) {
   const Geometry<fp24> g = load_geometry<fp24>(image);
-  std::vector<LitWork<fp24>> works;
-  const std::vector<CorePacket> packets = shadow_core_packets(g, render, r.frame, works);
-  r.lit = true;
-  r.shadow_packets = packets.size();
-  Frame& f = r.frame;
-  f.shadow_counters = Counters{};
-  std::vector<uint32_t> reached(packets.size(), 0);
-  if (!packets.empty()) {
-    CoreSimOptions so = options;
-    so.trace_path.clear();  // a waveform covers the primary pass
-    const CoreSimResult s =
-        trace_rtl(image, packets, 4, static_cast<uint32_t>(packets.size()), g.t_eps, so, model);
-    r.shadow_cycles = s.cycles;
-    r.shadow_perf = s.perf;
-    r.shadow_error_bits = s.error_bits;
-    r.shadow_problems = run_problems(s);
-    f.shadow_counters = s.frame.counters;
-    // A ray reached the light when it has no hit and its packet no error (colour 1, rc_core).
-    for (size_t j = 0; j < packets.size(); ++j)
-      for (uint32_t k = 0; k < kPacketRays; ++k) {
-        const size_t slot = 4 * j + k;
-        if ((packets[j].mask >> k & 1u) && s.frame.hits[slot].tri < 0 && s.frame.rgb[3 * slot] == 0)
-          reached[j] |= 1u << k;
-      }
-  }
-  f.light_mask.assign(static_cast<size_t>(f.width) * f.height, 0);
+  const LitParams<fp24> lp = lit_params<fp24>(render.max_bounces, render.background);
   const PacketSource<fp24> gen(render.camera, render.width, render.height, render.ray_source);
-  const uint32_t pw = (render.width + 1) / 2;
-  size_t next = 0;  // the primary packet's first shadow packet
-  for (size_t k = 0; k < works.size(); ++k) {
-    const auto px = static_cast<uint32_t>(k % pw), py = static_cast<uint32_t>(k / pw);
-    std::array<Ray<fp24>, kPacketRays> rays;
-    const uint32_t mask = gen.packet(px, py, rays);
-    const LitWork<fp24>& w = works[k];
-    const auto first = reached.begin() + static_cast<std::ptrdiff_t>(next);
-    const std::vector<uint32_t> mine(first, first + static_cast<std::ptrdiff_t>(w.shadows.size()));
-    next += w.shadows.size();
-    const LitPacket lp = lit_resolve(w, mine);
-    for (uint32_t ray = 0; ray < kPacketRays; ++ray) {
-      if (!(mask >> ray & 1u)) continue;
-      const size_t pix =
-          static_cast<size_t>(2 * py + (ray >> 1)) * render.width + 2 * px + (ray & 1u);
-      f.light_mask[pix] = lp.lights[ray];
-      if (w.hit_mask >> ray & 1u)
-        std::copy(lp.rgb[ray].begin(), lp.rgb[ray].end(), &f.rgb[3 * pix]);
+  const uint32_t pw = (render.width + 1) / 2, ph = (render.height + 1) / 2;
+  Frame& f = r.frame;
+  r.lit = true;
+  f.shadow_counters = Counters{};
+  f.bounce_counters = Counters{};
+
+  // A packet of the current level: its primary packet and its work.
+  struct Open {
+    size_t primary;
+    LitWork<fp24> work;
+  };
+  std::vector<LitSums> sums(static_cast<size_t>(pw) * ph);
+  std::vector<Open> level;
+  for (uint32_t py = 0; py < ph; ++py)
+    for (uint32_t px = 0; px < pw; ++px) {
+      std::array<Ray<fp24>, kPacketRays> rays;
+      std::array<Hit<fp24>, kPacketRays> hits;
+      const uint32_t mask = gen.packet(px, py, rays);
+      for (uint32_t k = 0; k < kPacketRays; ++k) {
+        if (!(mask >> k & 1u)) continue;
+        const size_t pix =
+            static_cast<size_t>(2 * py + (k >> 1)) * render.width + 2 * px + (k & 1u);
+        hits[k] = hit_from_record(g, rays[k], f.hits.at(pix));
+      }
+      level.push_back({static_cast<size_t>(py) * pw + px, lit_work(g, rays, mask, hits, lp)});
     }
+
+  for (uint32_t depth = 0; !level.empty(); ++depth) {
+    // The level's shadow packets: a ray reached the light when it has no hit and its packet no
+    // error (colour 1, rc_core).
+    std::vector<CorePacket> packets;
+    for (const Open& o : level)
+      for (const ShadowPacket<fp24>& sp : o.work.shadows)
+        packets.push_back(
+            secondary_packet(RayKind::kShadow, sp.mask, sp.rays, sp.lim, packets.size()));
+    std::vector<uint32_t> reached(packets.size(), 0);
+    if (!packets.empty()) {
+      const CoreSimResult s = secondary_pass(image, packets, g.t_eps, options, model, r.shadow);
+      f.shadow_counters.add(s.frame.counters);
+      for (size_t j = 0; j < packets.size(); ++j)
+        for (uint32_t k = 0; k < kPacketRays; ++k)
+          if ((packets[j].mask >> k & 1u) && s.frame.hits[4 * j + k].tri < 0 &&
+              s.frame.rgb[3 * (4 * j + k)] == 0)
+            reached[j] |= 1u << k;
+    }
+    size_t next = 0;  // the packet's first shadow packet
+    for (const Open& o : level) {
+      const auto first = reached.begin() + static_cast<std::ptrdiff_t>(next);
+      const std::vector<uint32_t> mine(first,
+                                       first + static_cast<std::ptrdiff_t>(o.work.shadows.size()));
+      next += o.work.shadows.size();
+      lit_accumulate(o.work, mine, depth, sums[o.primary]);
+    }
+
+    // The level's bounce packets, and from their hits the next level.
+    std::vector<CorePacket> bpackets;
+    std::vector<const Open*> parent;
+    for (const Open& o : level) {
+      const BouncePacket<fp24>& b = o.work.bounce;
+      if (b.mask == 0) continue;
+      bpackets.push_back(
+          secondary_packet(RayKind::kBounce, b.mask, b.rays, b.lim, bpackets.size()));
+      parent.push_back(&o);
+    }
+    std::vector<Open> deeper;
+    if (!bpackets.empty()) {
+      const CoreSimResult s = secondary_pass(image, bpackets, g.t_eps, options, model, r.bounce);
+      f.bounce_counters.add(s.frame.counters);
+      for (size_t j = 0; j < bpackets.size(); ++j) {
+        const BouncePacket<fp24>& b = parent[j]->work.bounce;
+        const size_t primary = parent[j]->primary;
+        if (secondary_failed(s.frame, j, b.mask)) {
+          if (depth == 0) lit_bounce_failed(b.mask, sums[primary]);
+          continue;
+        }
+        std::array<Hit<fp24>, kPacketRays> hits;
+        for (uint32_t k = 0; k < kPacketRays; ++k)
+          if (b.mask >> k & 1u) hits[k] = hit_from_record(g, b.rays[k], s.frame.hits[4 * j + k]);
+        deeper.push_back({primary, lit_work(g, b.rays, b.mask, hits, lp, depth + 1, &b.weight)});
+      }
+    }
+    level = std::move(deeper);
   }
+
+  f.light_mask.assign(static_cast<size_t>(f.width) * f.height, 0);
+  f.bounce_tri.assign(static_cast<size_t>(f.width) * f.height, -2);
+  for (uint32_t py = 0; py < ph; ++py)
+    for (uint32_t px = 0; px < pw; ++px) {
+      const LitPacket lpk = lit_finish(sums[static_cast<size_t>(py) * pw + px]);
+      const LitSums& ls = sums[static_cast<size_t>(py) * pw + px];
+      for (uint32_t k = 0; k < kPacketRays; ++k) {
+        const uint32_t x = 2 * px + (k & 1u), y = 2 * py + (k >> 1);
+        if (x >= render.width || y >= render.height) continue;
+        const size_t pix = static_cast<size_t>(y) * render.width + x;
+        f.light_mask[pix] = lpk.lights[k];
+        f.bounce_tri[pix] = lpk.bounce_tri[k];
+        if (ls.hit_mask >> k & 1u) std::copy(lpk.rgb[k].begin(), lpk.rgb[k].end(), &f.rgb[3 * pix]);
+      }
+    }
 }
 
 }  // namespace

@@ -78,6 +78,17 @@ uint64_t ideal_cycles(const Counters& c,
 // Applies the stall recipe of `stall_seed` to the port parameters (keeps latency and limits).
 void apply_stall_recipe(std::array<MemoryParams, kCorePorts>& memory, uint64_t stall_seed);
 
+// The passes of one kind of secondary packets (scene lighting), summed: packets, cycles, the
+// performance counters (max_stack: the largest), error bits and run_problems() of each pass.
+struct SecondaryPasses {
+  uint64_t passes = 0;
+  uint64_t packets = 0;
+  uint64_t cycles = 0;
+  std::array<uint64_t, kCorePerfCount> perf{};
+  uint32_t error_bits = 0;
+  std::vector<std::string> problems;
+};
+
 struct CoreSimResult {
   Frame frame;          // rgb, hit_tri, hit_t, exact hits; counters from the core's perf counters
   uint64_t cycles = 0;  // clock cycles after reset
@@ -96,16 +107,14 @@ struct CoreSimResult {
   double cycles_per_second = 0.0;    // simulated cycles per wall second
 
   // Scene lighting (RenderOptions::lighting kScene, an image with lights; docs/architecture.md,
-  // "Lighting"): the frame above is the lit one (rgb, light_mask, shadow_counters) and the fields
-  // above are the primary pass's. The shadow packets are made from the core's primary hits and
-  // traced by the core in a second pass (its figures here); the light terms and the pixel sums
-  // are the golden model's functions, on the host (the core has no light unit yet).
+  // "Lighting" and "Reflection"): the frame above is the lit one (rgb, light_mask, bounce_tri,
+  // shadow_counters, bounce_counters) and the fields above are the primary pass's. The secondary
+  // packets are made from the core's hits, level by level of the pixels' ray trees, and traced
+  // by the core in passes of their own: each level's shadow packets, then its bounce packets
+  // (their figures here, summed per kind); the light terms and the pixel sums are the golden
+  // model's functions, on the host (the core has no light unit yet).
   bool lit = false;
-  uint64_t shadow_packets = 0;
-  uint64_t shadow_cycles = 0;
-  std::array<uint64_t, kCorePerfCount> shadow_perf{};
-  uint32_t shadow_error_bits = 0;
-  std::vector<std::string> shadow_problems;  // run_problems() of the shadow pass
+  SecondaryPasses shadow, bounce;
 };
 
 // What a run must show besides a frame and counters equal to the golden model's: the core idle at
@@ -123,14 +132,22 @@ class CoreSimError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The kind of a packet (rc_core's pkt_kind_i, docs/spec.toml [ray_kind]).
+enum class RayKind : uint8_t {
+  kPrimary = spec::kRayKindPrimary,
+  kShadow = spec::kRayKindShadow,
+  kBounce = spec::kRayKindBounce,
+};
+
 // A packet as the core's packet port takes it (rc_core's pkt_*): up to four rays (mask bit r: ray
-// r exists), each writing framebuffer pixel `slot[r]`; a shadow packet (docs/architecture.md,
-// "Lighting") also gives each ray its limit t_hi and the triangle it starts on.
+// r exists), each writing framebuffer pixel `slot[r]`; a secondary packet (a shadow or bounce
+// packet: docs/architecture.md, "Lighting" and "Reflection") also gives each ray its limit t_hi
+// and the triangle it starts on.
 struct CorePacket {
   uint32_t mask = 0;
   std::array<Ray<fp24>, kPacketRays> rays{};
   std::array<uint32_t, kPacketRays> slot{};
-  bool shadow = false;
+  RayKind kind = RayKind::kPrimary;
   std::array<fp24, kPacketRays> t_hi{};
   std::array<int32_t, kPacketRays> start_tri{-1, -1, -1, -1};
 };
@@ -221,13 +238,6 @@ CoreSimResult render_rtl(const scene::SceneImage& image, const RenderOptions& re
 // The hit of a primary ray from the core's hit record (tri, t, u, v) and d'z, computed again with
 // the intersection unit's expression (rc::transformed_dz()): what the lighting needs.
 Hit<fp24> hit_from_record(const Geometry<fp24>& g, const Ray<fp24>& ray, const HitRecord& rec);
-
-// The shadow packets of a lit frame for the core (rc::lit_work() per primary packet, in the
-// camera's packet order, from the primary frame's hits): packet j's ray r writes slot 4j + r of
-// a 4-wide frame. works[k] is primary packet k's work; its shadow packets are numbered in order.
-std::vector<CorePacket> shadow_core_packets(const Geometry<fp24>& g, const RenderOptions& render,
-                                            const Frame& primary,
-                                            std::vector<LitWork<fp24>>& works);
 
 // Traces explicit packets through the verilated core (CoreSim::trace()).
 CoreSimResult trace_rtl(const scene::SceneImage& image, const std::vector<CorePacket>& packets,

@@ -135,7 +135,8 @@ std::vector<std::string> run_problems(const CoreSimResult& r) {
     out.push_back("framebuffer writes: the core counted " + std::to_string(counted) +
                   ", the harness saw " + std::to_string(r.fb_writes) + ", the frame's rays " +
                   std::to_string(r.writes_due));
-  for (const std::string& p : r.shadow_problems) out.push_back("shadow pass: " + p);
+  for (const std::string& p : r.shadow.problems) out.push_back("shadow pass: " + p);
+  for (const std::string& p : r.bounce.problems) out.push_back("bounce pass: " + p);
   return out;
 }
 
@@ -148,42 +149,6 @@ Hit<fp24> hit_from_record(const Geometry<fp24>& g, const Ray<fp24>& ray, const H
   h.dz = rec.tri >= 0 ? transformed_dz(g.tris.at(static_cast<size_t>(rec.tri)), ray.dir)
                       : fp24::zero();
   return h;
-}
-
-std::vector<CorePacket> shadow_core_packets(const Geometry<fp24>& g, const RenderOptions& render,
-                                            const Frame& primary,
-                                            std::vector<LitWork<fp24>>& works) {
-  const PacketSource<fp24> gen(render.camera, render.width, render.height, render.ray_source);
-  const uint32_t pw = (render.width + 1) / 2, ph = (render.height + 1) / 2;
-  std::vector<CorePacket> out;
-  works.clear();
-  works.reserve(static_cast<size_t>(pw) * ph);
-  for (uint32_t py = 0; py < ph; ++py) {
-    for (uint32_t px = 0; px < pw; ++px) {
-      std::array<Ray<fp24>, kPacketRays> rays;
-      std::array<Hit<fp24>, kPacketRays> hits;
-      const uint32_t mask = gen.packet(px, py, rays);
-      for (uint32_t r = 0; r < kPacketRays; ++r) {
-        if (!(mask >> r & 1u)) continue;
-        const size_t pix =
-            static_cast<size_t>(2 * py + (r >> 1)) * render.width + 2 * px + (r & 1u);
-        hits[r] = hit_from_record(g, rays[r], primary.hits.at(pix));
-      }
-      works.push_back(lit_work(g, rays, mask, hits));
-      for (const ShadowPacket<fp24>& sp : works.back().shadows) {
-        CorePacket p;
-        p.mask = sp.mask;
-        p.rays = sp.rays;
-        p.shadow = true;
-        p.t_hi = sp.lim.t_hi;
-        p.start_tri = sp.lim.exclude;
-        const auto j = static_cast<uint32_t>(out.size());
-        for (uint32_t r = 0; r < kPacketRays; ++r) p.slot[r] = 4 * j + r;
-        out.push_back(p);
-      }
-    }
-  }
-  return out;
 }
 
 uint64_t ideal_cycles(const Counters& c, uint32_t isect_interval) {

@@ -202,7 +202,7 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
                    static_cast<uint32_t>(feed.background[1]) << 8 |
                    static_cast<uint32_t>(feed.background[2]) << 16;
   m.t_eps_i = feed.t_eps.bits();
-  m.pkt_shadow_i = 0;
+  m.pkt_kind_i = static_cast<uint8_t>(spec::kRayKindPrimary);
   m.pkt_valid_i = 0;
   m.fb_ready_i = 0;
   m.perf_sel_i = 0;
@@ -253,7 +253,8 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
   const auto load_packet = [&](uint64_t k) {
     const CorePacket& p = packets[k];
     m.pkt_mask_i = static_cast<uint8_t>(p.mask);
-    m.pkt_shadow_i = p.shadow;
+    m.pkt_kind_i = static_cast<uint8_t>(p.kind);
+    const bool secondary = p.kind != RayKind::kPrimary;
     for (unsigned r = 0; r < kPacketRays; ++r) {
       const bool on = (p.mask >> r & 1u) != 0;
       for (unsigned a = 0; a < 3; ++a) {
@@ -262,9 +263,9 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
       }
       set_field(m.pkt_inv_len_i, r * W, W, on ? p.rays[r].inv_len.bits() : 0u);
       set_field(m.pkt_pixel_i, r * 32, 32, on ? p.slot[r] : 0u);
-      set_field(m.pkt_t_hi_i, r * W, W, on && p.shadow ? p.t_hi[r].bits() : 0u);
+      set_field(m.pkt_t_hi_i, r * W, W, on && secondary ? p.t_hi[r].bits() : 0u);
       set_field(m.pkt_start_tri_i, r * 32, 32,
-                on && p.shadow ? static_cast<uint32_t>(p.start_tri[r]) : 0u);
+                on && secondary ? static_cast<uint32_t>(p.start_tri[r]) : 0u);
     }
   };
 

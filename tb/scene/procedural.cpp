@@ -89,7 +89,8 @@ void block(MeshBuilder* mb, glm::dvec3 center, glm::dvec3 size, double deg, uint
   mb->quad(c[0], c[4], c[6], c[2], mat);  // -x
 }
 
-Mesh cornell() {
+// mirror_block: the tall block is a mirror (grey, reflect 0.8) instead of white.
+Mesh cornell(bool mirror_block) {
   MeshBuilder mb("builtin:cornell");
   const uint32_t white = mb.material(diffuse("white", {0.73, 0.73, 0.73}));
   const uint32_t red = mb.material(diffuse("red", {0.65, 0.05, 0.05}));
@@ -97,6 +98,7 @@ Mesh cornell() {
   Material lamp = diffuse("light", {0.78, 0.78, 0.78});
   lamp.ke = {17.0, 12.0, 4.0};
   const uint32_t light = mb.material(lamp);
+  const uint32_t tall = mirror_block ? mb.material(mirror("mirror", {0.1, 0.1, 0.1}, 0.8)) : white;
   // The box: x in [-1, 1], y in [0, 2], z in [-1, 1], open towards +z; walls face inwards.
   mb.quad({-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}, white);    // floor
   mb.quad({-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}, white);    // ceiling
@@ -107,7 +109,7 @@ Mesh cornell() {
   mb.quad({-0.25, 1.98, -0.25}, {0.25, 1.98, -0.25}, {0.25, 1.98, 0.25}, {-0.25, 1.98, 0.25},
           light);
   block(&mb, {0.34, 0.0, 0.32}, {0.6, 0.6, 0.6}, -18.0, white);  // short block
-  block(&mb, {-0.34, 0.0, -0.3}, {0.6, 1.2, 0.6}, 17.0, white);  // tall block
+  block(&mb, {-0.34, 0.0, -0.3}, {0.6, 1.2, 0.6}, 17.0, tall);   // tall block
   return mb.take();
 }
 
@@ -324,8 +326,8 @@ Mesh builtin_mesh(const std::string& name, const nlohmann::json& params) {
   const nlohmann::json empty = nlohmann::json::object();
   const nlohmann::json& p = params.is_null() ? empty : params;
   if (name == "cornell") {
-    check_params(p, name, {});
-    return cornell();
+    check_params(p, name, {"mirror_block"});
+    return cornell(int_param(p, name, "mirror_block", 0, 0, 1) != 0);
   }
   if (name == "spheres") {
     check_params(p, name, {"count"});

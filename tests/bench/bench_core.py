@@ -4,9 +4,10 @@ several memory latencies and thread counts, and at latency 16 with one and two r
 bit for bit against the golden model, and prints one table: cycles, rays per cycle, efficiency
 (ideal cycles / cycles), the utilisation of each unit and of the busiest one
 (docs/architecture.md, "Counters"), and the simulation's speed. A second table lights the scenes
-with their own lights (--lighting scene) and gives each ray kind's figures: the primary frame and
-the shadow pass (the shadow packets the core traces after it, docs/architecture.md "Lighting"),
-and what the shadow rays add to the frame's cycles. It measures; it judges nothing but the
+with their own lights (--lighting scene, mirror rays to the default depth) and gives each ray
+kind's figures: the primary frame, the shadow passes and the mirror passes (the secondary packets
+the core traces after it, docs/architecture.md "Lighting" and "Reflection"), and what they add to
+the frame's cycles. It measures; it judges nothing but the
 bit-exact check (a run that differs from the golden model fails it).
 
 Usage: bench_core.py RAYCORE [--models DIR] [--jobs N] [--markdown FILE] [--quick]
@@ -29,8 +30,10 @@ SCENES = [
     ("spheres", "scenes/spheres.json", "256x192", []),
     ("bunny", "{models}/bunny/bunny.obj", "512x384", ["--auto-camera"]),
 ]
-# The lit scenes (their own lights, shadow rays traced by the core), at latency 16.
+# The lit scenes (their own lights, shadow and mirror rays traced by the core), at latency 16.
 LIT_SCENES = ["default", "spheres", "sponza", "conference"]
+# Lit only: the box with a mirror block.
+LIT_EXTRA = [("cornell-mirror", "scenes/cornell-mirror.json", "256x192", [])]
 LATENCIES = [1, 16, 64]
 THREADS = ["16", "64", "default"]
 # The cores with fewer ray set-up units than the default (docs/spec.toml [core] setup_units), at
@@ -71,7 +74,7 @@ def run(raycore, root, models, scene, latency, threads, setup_units="default", l
             "efficiency": r["efficiency"], "util": r["utilisation"],
             "busiest": r["busiest_unit"], "pass": d["check"]["pass"],
             "speed": r["simulated_cycles_per_second"], "wall": wall,
-            "shadow": r.get("shadow_pass")}
+            "shadow": r.get("shadow_pass"), "bounce": r.get("bounce_pass")}
 
 
 def lit_table(rows):
@@ -82,19 +85,25 @@ def lit_table(rows):
         if "error" in x:
             lines.append(f"| {x['label']} | | failed: {' '.join(x['error'])} |" + " |" * 8)
             continue
-        s = x["shadow"] or {"packets": 0, "rays": 0, "cycles": 0, "rays_per_cycle": 0.0,
-                            "efficiency": 0.0, "busiest_unit": {"unit": "-", "utilisation": 0.0}}
+        none = {"packets": 0, "rays": 0, "cycles": 0, "rays_per_cycle": 0.0,
+                "efficiency": 0.0, "busiest_unit": {"unit": "-", "utilisation": 0.0}}
         ok = "yes" if x["pass"] else "NO"
         lines.append(
             f"| {x['label']} | {x['size']} | primary | | | {x['cycles']:,} | "
             f"{x['rays_per_cycle']:.3f} | {x['efficiency']:.3f} | {x['busiest']['unit']} "
             f"{x['busiest']['utilisation']:.3f} | 1.00 | {ok} |")
-        ratio = (x["cycles"] + s["cycles"]) / x["cycles"] if x["cycles"] else 0.0
-        lines.append(
-            f"| {x['label']} | {x['size']} | shadow | {s['packets']:,} | {s['rays']:,} | "
-            f"{s['cycles']:,} | {s['rays_per_cycle']:.3f} | {s['efficiency']:.3f} | "
-            f"{s['busiest_unit']['unit']} {s['busiest_unit']['utilisation']:.3f} | "
-            f"{ratio:.2f} | {ok} |")
+        total = x["cycles"]
+        for kind, name in (("shadow", "shadow"), ("bounce", "mirror")):
+            s = x[kind] or none
+            if kind == "bounce" and s["rays"] == 0:
+                continue
+            total += s["cycles"]
+            ratio = total / x["cycles"] if x["cycles"] else 0.0
+            lines.append(
+                f"| {x['label']} | {x['size']} | {name} | {s['packets']:,} | {s['rays']:,} | "
+                f"{s['cycles']:,} | {s['rays_per_cycle']:.3f} | {s['efficiency']:.3f} | "
+                f"{s['busiest_unit']['unit']} {s['busiest_unit']['utilisation']:.3f} | "
+                f"{ratio:.2f} | {ok} |")
     return "\n".join(lines)
 
 
@@ -137,7 +146,7 @@ def main():
     jobs = [(s, l, t) for s in scenes for t in thrs for l in lats]
     if not a.quick:
         jobs += [(s, 16, "default", n) for s in scenes for n in SETUP_UNITS]
-    lit_jobs = [s for s in scenes if s[0] in LIT_SCENES]
+    lit_jobs = [s for s in scenes if s[0] in LIT_SCENES] + LIT_EXTRA
     start = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
         rows = list(ex.map(lambda j: run(a.raycore, root, models, *j), jobs))
@@ -145,7 +154,8 @@ def main():
                                              lit=True), lit_jobs))
     text = table(rows)
     text += ("\n\nLit by the scenes' own lights (--lighting scene), latency 16, the default "
-             "threads: per ray kind; the shadow pass follows the primary frame\n\n" +
+             "threads: per ray kind; the secondary passes follow the primary frame (frame "
+             "cycles / primary: the sum so far)\n\n" +
              lit_table(lit_rows))
     print(text)
     print()

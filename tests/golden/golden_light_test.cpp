@@ -41,6 +41,7 @@ void set_material(Geometry<T>& g, double kd, double ks, uint32_t ns) {
   g.kd = {{f(kd), f(kd), f(kd)}};
   g.ks = {{f(ks), f(ks), f(ks)}};
   g.ns = {ns};
+  g.mirror = {f(0.0)};
 }
 
 Geometry<T>::Light point_light(glm::dvec3 p, double intensity) {
@@ -73,7 +74,10 @@ LitPacket shade_rays(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>
                      uint32_t mask, Counters& primary, Counters& shadow) {
   std::array<Hit<T>, kPacketRays> hits;
   EXPECT_EQ(trace_packet(g, rays, mask, hits, primary), 0u);
-  return shade_lit(g, rays, mask, hits, shadow);
+  Counters bounce;
+  const LitPacket p = shade_lit(g, rays, mask, hits, LitParams<T>{}, shadow, bounce);
+  EXPECT_EQ(bounce.rays, 0u) << "no mirror materials here";
+  return p;
 }
 
 TEST(GoldenLight, OccludedPointGetsOnlyTheAmbientTerm) {
@@ -150,7 +154,7 @@ TEST(GoldenLight, DirectionalLight) {
 TEST(GoldenLight, StartTriangleNeverOccludes) {
   const ShadowScene s;
   const auto shadow_hit = [&](glm::dvec3 o, T t_lo, int32_t exclude) {
-    ShadowLimits<T> lim;
+    SecondaryLimits<T> lim;
     lim.t_lo = t_lo;
     lim.exclude = {exclude, -1, -1, -1};
     lim.t_hi = {f(10), f(10), f(10), f(10)};
@@ -208,7 +212,7 @@ TEST(GoldenLight, ShadowRayEndsAtTheFirstOccluder) {
   ASSERT_EQ(trace_packet(g, {r, r, r, r}, 0x1u, hits, closest), 0u);
   EXPECT_EQ(closest.leaf_visits, 2u);
   EXPECT_EQ(hits[0].t.to_double(), 3.0);
-  ShadowLimits<T> lim;
+  SecondaryLimits<T> lim;
   lim.t_lo = f(1e-3);
   lim.t_hi = {T::inf(), T::inf(), T::inf(), T::inf()};
   Counters any;
@@ -228,7 +232,7 @@ TEST(GoldenLight, ShadowRayIntervalEndsAtTheLight) {
   const RaySetup<T> su = setup_ray(r, g.bounds, f(3.5));
   EXPECT_EQ(su.tmax.to_double(), 3.5);
   EXPECT_TRUE(su.active);
-  ShadowLimits<T> lim;
+  SecondaryLimits<T> lim;
   lim.t_lo = f(1e-3);
   lim.t_hi = {f(3.5), T::inf(), T::inf(), T::inf()};
   std::array<Hit<T>, kPacketRays> hits;

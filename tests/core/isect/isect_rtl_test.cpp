@@ -2,7 +2,7 @@
 // (rtl/core/rc_isect_unit.sv) against the golden model, bit for bit.
 //
 // - rc_isect_unit at fp24 against rc::intersect<fp24>() (tb/golden/trace.hpp), for primary and
-//   shadow rays' pairs (t_lo = t_eps, the start triangle excluded) and with and without a valid
+//   secondary rays' pairs (t_lo = t_eps, the start triangle excluded) and with and without a valid
 //   best: hit_o always;
 //   t/u/v/dz for accepted hits; and t/u/v/dz whenever the same triangle would be accepted against
 //   an empty best (intersect() with best = {+inf, INT32_MAX}), which checks the values of hits
@@ -249,7 +249,7 @@ struct IsectDrv {
     d.best_t_i = c.best_t.bits();
     d.best_tri_i = static_cast<uint32_t>(c.best_tri);
     d.best_valid_i = c.best_valid;
-    d.shadow_i = c.shadow;
+    d.secondary_i = c.shadow;
     d.excl_i = c.excl;
     d.t_eps_i = c.t_eps.bits();
   }

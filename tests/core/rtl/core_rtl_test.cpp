@@ -59,14 +59,21 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
       std::printf("%s: counter after an error (allowed to differ) %s\n", what.c_str(),
                   d.text().c_str());
   }
-  // Scene lighting: the lights that reach each pixel and the shadow rays' counters.
+  // Scene lighting: the lights that reach each pixel, what its first mirror ray hits, and the
+  // secondary rays' counters.
   uint64_t light_differ = 0;
   EXPECT_EQ(gold.light_mask.size(), f.light_mask.size()) << what << ": lit in one engine only";
   for (size_t i = 0; i < std::min(gold.light_mask.size(), f.light_mask.size()); ++i)
     light_differ += gold.light_mask[i] != f.light_mask[i] ? 1 : 0;
-  if (!gold.light_mask.empty())
+  EXPECT_EQ(gold.bounce_tri.size(), f.bounce_tri.size()) << what << ": lit in one engine only";
+  for (size_t i = 0; i < std::min(gold.bounce_tri.size(), f.bounce_tri.size()); ++i)
+    light_differ += gold.bounce_tri[i] != f.bounce_tri[i] ? 1 : 0;
+  if (!gold.light_mask.empty()) {
     for (const CounterDifference& d : counter_differences(gold.shadow_counters, f.shadow_counters))
       if (d.required) counters.push_back("shadow " + d.text());
+    for (const CounterDifference& d : counter_differences(gold.bounce_counters, f.bounce_counters))
+      if (d.required) counters.push_back("bounce " + d.text());
+  }
   std::printf(
       "[cases] core rtl %s %ux%u: %llu cases, %llu mismatches (%llu cycles, %.3f rays/cycle, "
       "efficiency %.3f, %.0f cycles/s)\n",
@@ -94,7 +101,9 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
                   << (repro.empty() ? "" : "\n  rerun: " + repro);
   }
   if (light_differ)
-    ADD_FAILURE() << what << ": " << light_differ << " pixels differ in the lights that reach them"
+    ADD_FAILURE() << what << ": " << light_differ
+                  << " pixel entries differ in the lights that reach them or the triangle their "
+                     "first mirror ray hits"
                   << (repro.empty() ? "" : "\n  rerun: " + repro);
   for (const std::string& d : counters)
     ADD_FAILURE() << what << ": counter " << d << (repro.empty() ? "" : "\n  rerun: " + repro);
@@ -264,13 +273,20 @@ TEST_P(CoreRtlLit, MatchesGoldenBitForBit) {
   expect_bit_exact(std::string(c.input) + " lit " + mode.name, gold, r, repro, mode.model);
   const Counters& sc = gold.shadow_counters;
   std::printf(
-      "  shadow pass: %llu packets, %llu rays, %llu cycles (primary %llu); golden: %llu shadow "
-      "rays, %llu culled pops\n",
-      static_cast<unsigned long long>(r.shadow_packets),
+      "  shadow passes: %llu packets, %llu rays, %llu cycles (primary %llu); golden: %llu shadow "
+      "rays, %llu culled pops; bounce passes: %llu packets, %llu rays, %llu cycles\n",
+      static_cast<unsigned long long>(r.shadow.packets),
       static_cast<unsigned long long>(r.frame.shadow_counters.rays),
-      static_cast<unsigned long long>(r.shadow_cycles), static_cast<unsigned long long>(r.cycles),
-      static_cast<unsigned long long>(sc.rays), static_cast<unsigned long long>(sc.culled_pops));
+      static_cast<unsigned long long>(r.shadow.cycles), static_cast<unsigned long long>(r.cycles),
+      static_cast<unsigned long long>(sc.rays), static_cast<unsigned long long>(sc.culled_pops),
+      static_cast<unsigned long long>(r.bounce.packets),
+      static_cast<unsigned long long>(r.frame.bounce_counters.rays),
+      static_cast<unsigned long long>(r.bounce.cycles));
   EXPECT_GT(sc.rays, 0u) << "shadow rays were traced";
+  if (std::string(c.input) == "scenes/spheres.json" ||
+      std::string(c.input) == "scenes/cornell-mirror.json") {
+    EXPECT_GT(gold.bounce_counters.rays, 0u) << "the mirrors send mirror rays";
+  }
   // Light reaches some hits, and (where the view has occluders) is blocked at others.
   uint64_t lit_pairs = 0;
   for (uint32_t m : gold.light_mask) lit_pairs += static_cast<uint64_t>(__builtin_popcount(m));
@@ -283,6 +299,7 @@ TEST_P(CoreRtlLit, MatchesGoldenBitForBit) {
 const SceneCase kLitScenes[] = {
     {"scenes/default.json", false, false, 64, 48},
     {"scenes/cornell.json", false, false, 65, 49},
+    {"scenes/cornell-mirror.json", false, false, 64, 48},  // a mirror block
     {"scenes/spheres.json", false, false, 64, 48},
     {"scenes/terrain.json", false, false, 64, 48},  // a directional light: t_hi = +inf
     {"scenes/conference.json", false, true, 48, 36},

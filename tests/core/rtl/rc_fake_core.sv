@@ -35,7 +35,7 @@ module rc_fake_core #(
   input  logic [12*W-1:0]   pkt_dir_i,
   input  logic [4*W-1:0]    pkt_inv_len_i,
   input  logic [127:0]      pkt_pixel_i,
-  input  logic              pkt_shadow_i,
+  input  logic [1:0]        pkt_kind_i,
   input  logic [4*W-1:0]    pkt_t_hi_i,
   input  logic [127:0]      pkt_start_tri_i,
   output logic              fb_valid_o,
