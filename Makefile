@@ -95,12 +95,14 @@ test: build
 	$(PYTHON) $(CURDIR)/tests/ctest_summary.py "$$junit" || rc=1; \
 	rm -f "$$junit"; exit $$rc
 
-# The main job on the built-in default scene: rendered by the verilated RTL core, checked bit for
-# bit (every pixel, hit record and counter) against the golden model; fails on any difference.
+# The main job on the built-in default scene: rendered by the verilated RTL core under the scene's
+# light (shadow rays through the core; docs/architecture.md, "Lighting"), checked bit for bit
+# (every pixel, hit record, light mask and counter) against the golden model; fails on any
+# difference.
 RENDER_OUT ?= out
 render: raycore
 	@mkdir -p $(RENDER_OUT)
-	$(BUILD)/tb/app/raycore render scenes/default.json --engine rtl --check \
+	$(BUILD)/tb/app/raycore render scenes/default.json --engine rtl --lighting scene --check \
 	  -o $(RENDER_OUT)/default.png --hits $(RENDER_OUT)/default.hits --stats $(RENDER_OUT)/default.json
 	@echo "wrote $(RENDER_OUT)/default.png, $(RENDER_OUT)/default.hits, $(RENDER_OUT)/default.json"
 
