@@ -20,8 +20,9 @@
 //   (RayPrimary), or one of secondary rays (docs/architecture.md, "Lighting", "Reflection"):
 //   ray r's interval ends at its limit pkt_t_hi_i[r*W +: W], which is also its initial best, and
 //   a hit needs t_eps_i < t and never its start triangle pkt_start_tri_i[r*32 +: 32]; in a
-//   shadow packet (RayShadow) any hit ends the ray, a bounce packet's (RayBounce) look for the
-//   closest hit. A primary packet's t_hi and start triangles are not read.
+//   shadow packet (RayShadow) any hit ends the ray, a bounce packet's rays (RayBounce) look for
+//   the closest hit (the code 3 is not a kind: it is taken as RayBounce). A primary packet's t_hi
+//   and start triangles are not read.
 // - Framebuffer write port: valid/ready, one write per existing ray of every packet, in no
 //   particular order: fb_pixel_o (the ray's pixel id), fb_rgb_o, and the ray's hit record
 //   (fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o; zero on a miss). A packet that met an error
