@@ -191,7 +191,7 @@ FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
 # nextpnr's seed: 1, of the seeds that closed HEAD's netlist the one with the most slack (run
-# 68, 5c7f185's RTL: seeds 1 and 2 at 108.25 and 100.87 MHz; seeds 3 to 5 not measured;
+# 68, 5c7f185's RTL: seeds 1 and 2 at 108.25 and 100.87 MHz; seed 4 at 99.80; 3, 5 not measured;
 # docs/fpga.md, "Status"). Every netlist needs its own sweep.
 FPGA_SEED  ?= 1
 ECPPACK    ?= yowasp-ecppack
