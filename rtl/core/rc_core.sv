@@ -17,12 +17,12 @@
 //   is taken into the set-up unit's input register whenever it is empty (pkt_ready_o is that
 //   register's empty flag), and from there when a thread is free and the feeder is idle
 //   (rc_setup_unit). pkt_kind_i (rc_pkg::ray_kind_e) says what the packet is: a primary packet
-//   (RayPrimary), or one of secondary rays (docs/architecture.md, "Lighting", "Reflection"):
-//   ray r's interval ends at its limit pkt_t_hi_i[r*W +: W], which is also its initial best, and
-//   a hit needs t_eps_i < t and never its start triangle pkt_start_tri_i[r*32 +: 32]; in a
-//   shadow packet (RayShadow) any hit ends the ray, a bounce packet's rays (RayBounce) look for
-//   the closest hit (the code 3 is not a kind: it is taken as RayBounce). A primary packet's t_hi
-//   and start triangles are not read.
+//   (RayPrimary), or one of secondary rays (docs/architecture.md, "Lighting", "Reflection",
+//   "Refraction"): ray r's interval ends at its limit pkt_t_hi_i[r*W +: W], which is also its
+//   initial best, and a hit needs t_eps_i < t and never its start triangle
+//   pkt_start_tri_i[r*32 +: 32]; in a shadow packet (RayShadow) any hit ends the ray, the rays of
+//   a mirror (RayBounce) or refraction (RayRefract) packet look for the closest hit (the core
+//   treats the two kinds alike). A primary packet's t_hi and start triangles are not read.
 // - Framebuffer write port: valid/ready, one write per existing ray of every packet, in no
 //   particular order: fb_pixel_o (the ray's pixel id), fb_rgb_o, and the ray's hit record
 //   (fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o; zero on a miss). A packet that met an error

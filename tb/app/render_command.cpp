@@ -266,7 +266,8 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
           {"stall_seed", a.stall_seed},
           {"perf", perf_all},
           {"shadow_pass", passes_json(r.shadow, r.frame.shadow_counters)},
-          {"bounce_pass", passes_json(r.bounce, r.frame.bounce_counters)}};
+          {"bounce_pass", passes_json(r.bounce, r.frame.bounce_counters)},
+          {"refract_pass", passes_json(r.refract, r.frame.refract_counters)}};
 }
 
 void print_rtl_summary(const nlohmann::json& j) {
@@ -296,7 +297,7 @@ void print_rtl_summary(const nlohmann::json& j) {
   }
   std::printf("\n  simulation: %.0f cycles/s, %.2f s wall\n",
               j["simulated_cycles_per_second"].get<double>(), j["wall_seconds"].get<double>());
-  for (const char* kind : {"shadow", "bounce"}) {
+  for (const char* kind : {"shadow", "bounce", "refract"}) {
     const auto& s = j[std::string(kind) + "_pass"];
     if (s.is_null() || s["passes"].get<uint64_t>() == 0) continue;
     std::printf(
@@ -342,8 +343,8 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   std::vector<std::string> counters, allowed;  // differences that fail the check, and not
   for (const CounterDifference& d : counter_differences(gold.counters, rtl.counters))
     (d.required ? counters : allowed).push_back(d.text());
-  // Scene lighting: which lights reach each pixel, what its first mirror ray hits, and the
-  // secondary rays' counters.
+  // Scene lighting: which lights reach each pixel, what its first mirror and refraction rays hit,
+  // and the secondary rays' counters.
   const auto differ = [](const auto& x, const auto& y) -> uint64_t {
     if (x.size() != y.size()) return std::max(x.size(), y.size());
     uint64_t n = 0;
@@ -352,6 +353,7 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   };
   const uint64_t light_differ = differ(gold.light_mask, rtl.light_mask);
   const uint64_t bounce_differ = differ(gold.bounce_tri, rtl.bounce_tri);
+  const uint64_t refract_differ = differ(gold.refract_tri, rtl.refract_tri);
   if (!gold.light_mask.empty() || !rtl.light_mask.empty()) {
     for (const CounterDifference& d :
          counter_differences(gold.shadow_counters, rtl.shadow_counters))
@@ -359,13 +361,16 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
     for (const CounterDifference& d :
          counter_differences(gold.bounce_counters, rtl.bounce_counters))
       (d.required ? counters : allowed).push_back("bounce " + d.text());
+    for (const CounterDifference& d :
+         counter_differences(gold.refract_counters, rtl.refract_counters))
+      (d.required ? counters : allowed).push_back("refract " + d.text());
   }
   // The run itself: idle at the end, misses without a hit record, one write per pixel, no
   // watchdog (the regression tests judge a run by the same function).
   const std::vector<std::string> run =
       sim ? harness::run_problems(*sim) : std::vector<std::string>{};
-  const bool ok =
-      cmp.equal() && light_differ == 0 && bounce_differ == 0 && counters.empty() && run.empty();
+  const bool ok = cmp.equal() && light_differ == 0 && bounce_differ == 0 && refract_differ == 0 &&
+                  counters.empty() && run.empty();
   js["check"] = {{"engine", "golden"},
                  {"pixels", cmp.pixels},
                  {"differing_pixels", cmp.differing},
@@ -373,6 +378,7 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
                  {"hits_differ", cmp.hits_differ},
                  {"light_masks_differ", light_differ},
                  {"bounce_hits_differ", bounce_differ},
+                 {"refract_hits_differ", refract_differ},
                  {"counter_differences", counters},
                  {"counter_differences_after_error", allowed},
                  {"run_problems", run},
@@ -423,6 +429,9 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   if (bounce_differ)
     std::printf("  %llu pixels differ in what their first mirror ray hits\n",
                 static_cast<unsigned long long>(bounce_differ));
+  if (refract_differ)
+    std::printf("  %llu pixels differ in what their first refraction ray hits\n",
+                static_cast<unsigned long long>(refract_differ));
   for (const std::string& d : run) std::printf("  run: %s\n", d.c_str());
   for (const std::string& d : counters) std::printf("  counter %s\n", d.c_str());
   for (const std::string& d : allowed)
@@ -474,13 +483,14 @@ int run_render(const RenderArgs& a) {
   if (lighting == Lighting::kScene && a.engine == "board")
     throw Error(
         "--lighting scene: the board traces primary rays only so far (the scene's lights, "
-        "shadow rays and mirror rays are in the golden model, the Embree reference and --engine "
-        "rtl); use --engine golden, embree or rtl");
+        "shadow, mirror and refraction rays are in the golden model, the Embree reference and "
+        "--engine rtl); use --engine golden, embree or rtl");
   if (a.bounces > static_cast<uint32_t>(spec::kLightBounceLimit))
     throw Error("--bounces: at most " + std::to_string(spec::kLightBounceLimit) + ", got " +
                 std::to_string(a.bounces));
   if (a.bounces_given && lighting != Lighting::kScene)
-    throw Error("--bounces needs --lighting scene (the headlight traces no mirror rays)");
+    throw Error(
+        "--bounces needs --lighting scene (the headlight traces no mirror or refraction rays)");
   if (!a.reference.empty() && a.reference != "embree" && a.reference != "golden")
     throw Error("--reference: expected embree or golden, got '" + a.reference + "'");
   if (!a.diff.empty() && a.reference.empty() && !a.check)
@@ -554,6 +564,7 @@ int run_render(const RenderArgs& a) {
   if (!f.light_mask.empty() && a.engine != "embree") {
     js["shadow_counters"] = counters_json(f.shadow_counters);
     js["bounce_counters"] = counters_json(f.bounce_counters);
+    js["refract_counters"] = counters_json(f.refract_counters);
   }
   if (!a.quiet) {
     std::printf("%s: %ux%u, %s, engine %s: %.3f s, %.0f rays/s\n", a.input.c_str(), f.width,
@@ -586,6 +597,14 @@ int run_render(const RenderArgs& a) {
             opt.max_bounces, static_cast<unsigned long long>(bc.traversal_steps),
             static_cast<unsigned long long>(bc.triangle_tests),
             static_cast<unsigned long long>(bc.errors));
+        const Counters& tc = f.refract_counters;
+        std::printf(
+            "  refraction rays %llu in %llu packets, traversal steps %llu, triangle tests %llu, "
+            "failed packets %llu\n",
+            static_cast<unsigned long long>(tc.rays), static_cast<unsigned long long>(tc.packets),
+            static_cast<unsigned long long>(tc.traversal_steps),
+            static_cast<unsigned long long>(tc.triangle_tests),
+            static_cast<unsigned long long>(tc.errors));
       }
     }
   }
@@ -667,6 +686,16 @@ int run_render(const RenderArgs& a) {
             "traced by one engine only)\n",
             a.reference.c_str(), 100.0 * ba.share(), static_cast<unsigned long long>(ba.rays),
             static_cast<unsigned long long>(ba.only_one));
+      const BounceAgreement ra = compare_refractions(f, ref);
+      js["reference"]["refract_agreement"] = ra.share();
+      js["reference"]["refract_rays"] = ra.rays;
+      js["reference"]["refract_only_one"] = ra.only_one;
+      if (!a.quiet && ra.rays > 0)
+        std::printf(
+            "  first refraction ray against %s: %.4f%% of %llu agree on the triangle hit (%llu "
+            "traced by one engine only)\n",
+            a.reference.c_str(), 100.0 * ra.share(), static_cast<unsigned long long>(ra.rays),
+            static_cast<unsigned long long>(ra.only_one));
     }
   }
   if (!a.stats.empty()) {
@@ -756,13 +785,14 @@ void add_render_commands(CLI::App& app, Action* action) {
       ->capture_default_str();
   cmd->add_option("--size", args->size, "frame size WxH (default: the scene's)");
   cmd->add_option("--lighting", args->lighting,
-                  "headlight (the core's shading) or scene (the scene's lights with shadow rays "
-                  "and mirror rays: golden, embree and rtl so far; a scene without lights keeps "
-                  "the headlight)")
+                  "headlight (the core's shading) or scene (the scene's lights with shadow, "
+                  "mirror and refraction rays: golden, embree and rtl so far; a scene without "
+                  "lights keeps the headlight)")
       ->capture_default_str();
   cmd->add_option(
          "--bounces", args->bounces,
-         "with --lighting scene: the depth of each pixel's mirror rays (0: none; at most " +
+         "with --lighting scene: the depth of each pixel's tree of mirror and refraction rays (0: "
+         "none; at most " +
              std::to_string(spec::kLightBounceLimit) + ")")
       ->capture_default_str()
       ->check(kDigits)

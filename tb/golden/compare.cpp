@@ -146,22 +146,37 @@ LightAgreement compare_lights(const Frame& a, const Frame& b, size_t lights) {
   return la;
 }
 
-BounceAgreement compare_bounces(const Frame& a, const Frame& b) {
+namespace {
+
+// The agreement of one child ray's first hit (Frame::bounce_tri or Frame::refract_tri).
+BounceAgreement compare_first_hits(const Frame& a, const Frame& b,
+                                   std::vector<int32_t> Frame::*first) {
   BounceAgreement ba;
-  if (a.bounce_tri.size() != a.hit_tri.size() || b.bounce_tri.size() != b.hit_tri.size() ||
+  const std::vector<int32_t>&fa = a.*first, &fb = b.*first;
+  if (fa.size() != a.hit_tri.size() || fb.size() != b.hit_tri.size() ||
       a.hit_tri.size() != b.hit_tri.size())
     return ba;
   for (size_t p = 0; p < a.hit_tri.size(); ++p) {
     if (a.hit_tri[p] < 0 || a.hit_tri[p] != b.hit_tri[p]) continue;
-    const bool ra = a.bounce_tri[p] != -2, rb = b.bounce_tri[p] != -2;
+    const bool ra = fa[p] != -2, rb = fb[p] != -2;
     if (!ra && !rb) continue;
     ++ba.rays;
-    if (ra && rb && a.bounce_tri[p] == b.bounce_tri[p])
+    if (ra && rb && fa[p] == fb[p])
       ++ba.agree;
     else if (ra != rb)
       ++ba.only_one;
   }
   return ba;
+}
+
+}  // namespace
+
+BounceAgreement compare_bounces(const Frame& a, const Frame& b) {
+  return compare_first_hits(a, b, &Frame::bounce_tri);
+}
+
+BounceAgreement compare_refractions(const Frame& a, const Frame& b) {
+  return compare_first_hits(a, b, &Frame::refract_tri);
 }
 
 }  // namespace rc

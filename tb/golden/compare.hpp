@@ -50,6 +50,8 @@ struct BounceAgreement {
   }
 };
 BounceAgreement compare_bounces(const Frame& a, const Frame& b);
+// The same for the refraction rays (Frame::refract_tri).
+BounceAgreement compare_refractions(const Frame& a, const Frame& b);
 
 // A difference image: pixels where the hits agree are the darkened image a; disagreeing pixels
 // are red (different triangle), green (only a hits) or blue (only b hits).

@@ -77,11 +77,12 @@ void exclude_start(const RTCFilterFunctionNArguments* args) {
 struct LitResult {
   std::array<uint8_t, 3> rgb;
   uint32_t lights;
-  int32_t bounce_tri;  // the first mirror ray's hit: -2 none, -1 a miss
+  int32_t bounce_tri;   // the first mirror ray's hit: -2 none, -1 a miss
+  int32_t refract_tri;  // the first refraction ray's hit: -2 none, -1 a miss
 };
 
-// The lighting rules in double (docs/architecture.md, "Lighting" and "Reflection"), shadow and
-// mirror rays through Embree in float32.
+// The lighting rules in double (docs/architecture.md, "Lighting", "Reflection" and
+// "Refraction"), shadow, mirror and refraction rays through Embree in float32.
 struct LitTracer {
   const EmbreeScene& es;
   const std::vector<SoupTriangle>& tris;
@@ -91,14 +92,17 @@ struct LitTracer {
   glm::dvec3 background;  // byte / 255
 
   // Adds the terms of a hit (triangle prim at distance t along org + t * dir) seen with weight w
-  // at depth `depth` to sum; *lit gets the lights that reach it (the primary hit's).
+  // at depth `depth` to sum; *lit gets the lights that reach it, *bounce_tri and *refract_tri the
+  // hits of its mirror and refraction rays (the primary hit's).
   void shade(unsigned prim, const glm::dvec3& org, const glm::dvec3& dir, double t, double w,
-             uint32_t depth, glm::dvec3& sum, uint32_t* lit, int32_t* bounce_tri) const {
+             uint32_t depth, glm::dvec3& sum, uint32_t* lit, int32_t* bounce_tri,
+             int32_t* refract_tri) const {
     const SoupTriangle& tri = tris[prim];
     const double ambient = static_cast<double>(spec::kShadeAmbientPermille) / 1000.0;
     const glm::dvec3 p = org + t * dir;
     glm::dvec3 n = glm::normalize(glm::cross(tri.v[1] - tri.v[0], tri.v[2] - tri.v[0]));
-    if (glm::dot(n, dir) > 0.0) n = -n;
+    const bool leaving = glm::dot(n, dir) > 0.0;  // the ray travels along n: it leaves the medium
+    if (leaving) n = -n;
     const glm::dvec3 v = glm::normalize(dir);
     const uint32_t ns = light_exponent(fp32ftz::from_double(tri.ns));
     for (int c = 0; c < 3; ++c) sum[c] += std::clamp(tri.kd[c] * ambient * w, 0.0, 1.0);
@@ -127,27 +131,43 @@ struct LitTracer {
       for (int c = 0; c < 3; ++c)
         sum[c] += std::clamp((tri.kd[c] * cos_l + tri.ks[c] * spec) * l.color[c] * w, 0.0, 1.0);
     }
+    if (depth >= max_bounces) return;
     // The mirror ray: R = V - 2 (N . V) N from the hit point, closest hit beyond t_eps.
+    const double c = glm::dot(n, v);
     const double wm = w * tri.mirror;
-    if (depth >= max_bounces || !(tri.mirror > 0.0) || !(wm > 0.0)) return;
-    const glm::dvec3 r = v - 2.0 * glm::dot(n, v) * n;
+    if (tri.mirror > 0.0 && wm > 0.0) follow(prim, p, v - 2.0 * c * n, wm, depth, sum, bounce_tri);
+    // The refraction ray (Snell, e = ior leaving, 1 / ior entering; total internal reflection
+    // takes the mirror direction).
+    const double wt = w * tri.transmit;
+    if (tri.transmit > 0.0 && wt > 0.0) {
+      const double e = leaving ? tri.ior : 1.0 / tri.ior;
+      const double q = 1.0 - e * e * (1.0 - c * c);
+      const glm::dvec3 d = q > 0.0 ? e * v - (e * c + std::sqrt(q)) * n : v - 2.0 * c * n;
+      follow(prim, p, d, wt, depth, sum, refract_tri);
+    }
+  }
+
+  // A mirror or refraction ray from the hit point p on triangle prim along d (unit) with weight w:
+  // its closest hit beyond t_eps adds its terms at depth + 1; a miss, the background.
+  void follow(unsigned prim, const glm::dvec3& p, const glm::dvec3& d, double w, uint32_t depth,
+              glm::dvec3& sum, int32_t* first_tri) const {
     ShadowContext sc;
     rtcInitIntersectContext(&sc.ctx);
     sc.ctx.filter = exclude_start;
     sc.exclude = prim;
     RTCRayHit rh{};
-    rh.ray = embree_ray(p, r, std::numeric_limits<double>::infinity());
+    rh.ray = embree_ray(p, d, std::numeric_limits<double>::infinity());
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(es.scene, &sc.ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-      if (bounce_tri) *bounce_tri = -1;
-      for (int c = 0; c < 3; ++c) sum[c] += std::clamp(background[c] * wm, 0.0, 1.0);
+      if (first_tri) *first_tri = -1;
+      for (int c = 0; c < 3; ++c) sum[c] += std::clamp(background[c] * w, 0.0, 1.0);
       return;
     }
-    if (bounce_tri) *bounce_tri = static_cast<int32_t>(rh.hit.primID);
+    if (first_tri) *first_tri = static_cast<int32_t>(rh.hit.primID);
     const glm::dvec3 ro(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z);
     const glm::dvec3 rd(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
-    shade(rh.hit.primID, ro, rd, rh.ray.tfar, wm, depth + 1, sum, nullptr, nullptr);
+    shade(rh.hit.primID, ro, rd, rh.ray.tfar, w, depth + 1, sum, nullptr, nullptr, nullptr);
   }
 
   // A float32 ray from p along d (unit) beyond t_eps, up to tfar.
@@ -167,8 +187,8 @@ struct LitTracer {
 
   LitResult primary(unsigned prim, const glm::dvec3& org, const glm::dvec3& dir, double t) const {
     glm::dvec3 sum(0.0);
-    LitResult out{{0, 0, 0}, 0, -2};
-    shade(prim, org, dir, t, 1.0, 0, sum, &out.lights, &out.bounce_tri);
+    LitResult out{{0, 0, 0}, 0, -2, -2};
+    shade(prim, org, dir, t, 1.0, 0, sum, &out.lights, &out.bounce_tri, &out.refract_tri);
     for (int c = 0; c < 3; ++c)
       out.rgb[c] = static_cast<uint8_t>(std::nearbyint(std::min(sum[c], 1.0) * 255.0));
     return out;
@@ -195,6 +215,7 @@ Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& 
   if (lit) {
     f.light_mask.assign(npix, 0);
     f.bounce_tri.assign(npix, -2);
+    f.refract_tri.assign(npix, -2);
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
     for (const auto& t : tris)
       for (const auto& v : t.v) lo = glm::min(lo, v), hi = glm::max(hi, v);
@@ -231,6 +252,7 @@ Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& 
           rgb = lr.rgb;
           f.light_mask[pix] = lr.lights;
           f.bounce_tri[pix] = lr.bounce_tri;
+          f.refract_tri[pix] = lr.refract_tri;
         } else {
           rgb = shade_double(tris[rh.hit.primID], dir);
         }

@@ -17,7 +17,9 @@ struct SoupTriangle {
   std::array<double, 3> kd;
   std::array<double, 3> ks{0.0, 0.0, 0.0};
   double ns = 0.0;
-  double mirror = 0.0;  // mirror reflection weight (docs/memory-format.md, materials)
+  double mirror = 0.0;    // mirror reflection weight (docs/memory-format.md, materials)
+  double transmit = 0.0;  // refraction weight
+  double ior = 1.0;       // index of refraction (Ni)
 };
 
 // A scene light for the reference: a point light's position, or the unit vector toward a
@@ -31,10 +33,10 @@ struct SoupLight {
 // Traces every pixel's ray (from the shared ray generator, rounded to the core's format T as the
 // core sees it, then widened to float32 exactly) with Embree; shades hits in double: with the
 // headlight model, or with opt.lighting == kScene and lights, by the lighting rules
-// (docs/architecture.md, "Lighting" and "Reflection") with Embree's occlusion test for the
-// shadow rays and its closest hit for the mirror rays (from the hit point, float32, beyond t_eps,
-// the start triangle excluded), to opt.max_bounces. Frame.counters.rays is set; the other
-// counters stay zero.
+// (docs/architecture.md, "Lighting", "Reflection" and "Refraction") with Embree's occlusion test
+// for the shadow rays and its closest hit for the mirror and refraction rays (from the hit point,
+// float32, beyond t_eps, the start triangle excluded), to opt.max_bounces. Frame.counters.rays is
+// set; the other counters stay zero.
 template <class T>
 Frame render_embree(const std::vector<SoupTriangle>& tris, const RenderOptions& opt,
                     const std::vector<SoupLight>& lights = {});

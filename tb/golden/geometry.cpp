@@ -37,6 +37,9 @@ Geometry<T> load_geometry(const scene::SceneImage& img) {
   g.ks.resize(materials, {T::zero(), T::zero(), T::zero()});
   g.ns.resize(materials, 0);
   g.mirror.resize(materials, T::zero());
+  g.transmit.resize(materials, T::zero());
+  g.eta_enter.resize(materials, T::one());
+  g.eta_leave.resize(materials, T::one());
   for (size_t i = 0; i < img.material_count(); ++i) {
     const scene::MaterialRecord m = img.material(i);
     for (int c = 0; c < 3; ++c) {
@@ -45,6 +48,11 @@ Geometry<T> load_geometry(const scene::SceneImage& img) {
     }
     g.ns[i] = light_exponent(T::from_bits(m.ns));
     g.mirror[i] = T::from_bits(m.mirror);
+    g.transmit[i] = T::from_bits(m.transmit);
+    // The ratios of refraction (docs/architecture.md, "Refraction"): entering, 1 / ior in double
+    // rounded once; leaving, ior.
+    g.eta_leave[i] = T::from_bits(m.ior);
+    g.eta_enter[i] = T::from_double(1.0 / g.eta_leave[i].to_double());
   }
   // Lighting (docs/architecture.md, "Lighting"): each value computed in double from the image's
   // float32 fields and rounded to the format once.
@@ -89,6 +97,8 @@ std::vector<SoupTriangle> triangle_soup(const scene::Scene& s) {
       t.ks = {mat.ks.x, mat.ks.y, mat.ks.z};
       t.ns = mat.ns;
       t.mirror = mat.mirror();
+      t.transmit = mat.transmit();
+      t.ior = mat.ior;
       out.push_back(t);
     }
   return out;

@@ -78,9 +78,11 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
   if (lit) {
     f.light_mask.assign(static_cast<size_t>(opt.width) * opt.height, 0);
     f.bounce_tri.assign(static_cast<size_t>(opt.width) * opt.height, -2);
+    f.refract_tri.assign(static_cast<size_t>(opt.width) * opt.height, -2);
   }
   const uint32_t pw = (opt.width + 1) / 2, ph = (opt.height + 1) / 2;
-  std::vector<Counters> row_counters(ph), row_shadow(ph), row_bounce(ph);
+  std::vector<Counters> row_counters(ph);
+  std::vector<LitCounters> row_lit(ph);
   const LitParams<T> lparams = lit_params<T>(opt.max_bounces, opt.background);
   parallel_rows(ph, opt.threads, opt.progress, "golden", [&](uint32_t py) {
     Counters& c = row_counters[py];
@@ -90,7 +92,7 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
       const uint32_t mask = gen.packet(px, py, rays);
       trace_packet(g, rays, mask, hits, c);  // errors are counted in c
       LitPacket lp;
-      if (lit) lp = shade_lit(g, rays, mask, hits, lparams, row_shadow[py], row_bounce[py]);
+      if (lit) lp = shade_lit(g, rays, mask, hits, lparams, row_lit[py]);
       for (int r = 0; r < kPacketRays; ++r) {
         if (!(mask >> r & 1)) continue;
         const size_t pix =
@@ -100,7 +102,11 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
         const std::array<uint8_t, 3> rgb = h.tri < 0 ? opt.background
                                            : lit     ? lp.rgb[r]
                                                      : shade(g, rays[r], h);
-        if (lit) f.light_mask[pix] = lp.lights[r], f.bounce_tri[pix] = lp.bounce_tri[r];
+        if (lit) {
+          f.light_mask[pix] = lp.lights[r];
+          f.bounce_tri[pix] = lp.bounce_tri[r];
+          f.refract_tri[pix] = lp.refract_tri[r];
+        }
         std::memcpy(&f.rgb[pix * 3], rgb.data(), 3);
         f.hit_tri[pix] = h.tri;
         f.hit_t[pix] = h.tri >= 0 ? h.t.to_float() : 0.0f;
@@ -109,8 +115,11 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt) {
     }
   });
   for (const Counters& c : row_counters) f.counters.add(c);  // in row order: same totals always
-  for (const Counters& c : row_shadow) f.shadow_counters.add(c);
-  for (const Counters& c : row_bounce) f.bounce_counters.add(c);
+  for (const LitCounters& c : row_lit) {
+    f.shadow_counters.add(c.shadow);
+    f.bounce_counters.add(c.bounce);
+    f.refract_counters.add(c.refract);
+  }
   f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return f;
 }

@@ -38,9 +38,12 @@ struct Frame {
   // Scene lighting: per pixel, the triangle its first mirror ray hits (-1: it missed or its
   // packet failed; -2: the pixel has no mirror ray); empty with the headlight.
   std::vector<int32_t> bounce_tri;
-  Counters counters;         // primary rays
-  Counters shadow_counters;  // shadow rays (scene lighting)
-  Counters bounce_counters;  // mirror rays (scene lighting)
+  // Scene lighting: the same for the pixel's refraction ray.
+  std::vector<int32_t> refract_tri;
+  Counters counters;          // primary rays
+  Counters shadow_counters;   // shadow rays (scene lighting)
+  Counters bounce_counters;   // mirror rays (scene lighting)
+  Counters refract_counters;  // refraction rays (scene lighting)
   double seconds = 0.0;
 };
 
@@ -51,8 +54,8 @@ RaySource parse_ray_source(const std::string& name);  // "host" | "raygen"; thro
 const char* ray_source_name(RaySource s);
 
 // How hits are shaded (docs/architecture.md, "Shading" and "Lighting"): the headlight (the
-// core's rule today), or the scene's lights with shadow rays and mirror rays (a scene without
-// lights keeps the headlight).
+// core's rule today), or the scene's lights with shadow, mirror and refraction rays (a scene
+// without lights keeps the headlight).
 enum class Lighting { kHeadlight, kScene };
 Lighting parse_lighting(const std::string& name);  // "headlight" | "scene"; throws otherwise
 const char* lighting_name(Lighting l);
@@ -68,8 +71,8 @@ struct RenderOptions {
   bool progress = true;  // progress bar on stderr for renders longer than a second
   RaySource ray_source = RaySource::kHost;
   Lighting lighting = Lighting::kHeadlight;
-  // Scene lighting: the depth of a pixel's ray tree (docs/architecture.md, "Reflection"); 0: no
-  // mirror rays. At most spec::kLightBounceLimit.
+  // Scene lighting: the depth of a pixel's ray tree (docs/architecture.md, "Reflection" and
+  // "Refraction"); 0: no mirror or refraction rays. At most spec::kLightBounceLimit.
   uint32_t max_bounces = static_cast<uint32_t>(spec::kLightMaxBounces);
 };
 

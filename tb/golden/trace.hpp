@@ -55,6 +55,8 @@ struct Geometry {
   std::vector<std::array<T, 3>> ks;      // specular colour per material
   std::vector<uint32_t> ns;              // Blinn-Phong exponent per material, an integer
   std::vector<T> mirror;                 // mirror reflection weight per material
+  std::vector<T> transmit;               // refraction weight per material
+  std::vector<T> eta_enter, eta_leave;   // ratio of refraction into (1 / ior) and out of (ior)
   struct Light {
     bool directional = false;
     std::array<T, 3> pos;    // point: the position; directional: the unit vector toward it
@@ -519,6 +521,22 @@ std::array<T, 3> mirror_dir(const SurfacePoint<T>& sp) {
   return r;
 }
 
+// The refraction direction of a hit (docs/architecture.md, "Refraction"), with e the ratio of
+// refraction (eta_leave when the ray leaves through the triangle's back, else eta_enter):
+// c = dot(N, V), q = 1 - (e * e) * (1 - c * c); if 0 < q: T = e * V - (e * c + sqrt(q)) * N (per
+// component: the two products, then the difference); else (total internal reflection, or NaN)
+// the mirror direction.
+template <class T>
+std::array<T, 3> refract_dir(const SurfacePoint<T>& sp, T e) {
+  const T c = dot3(sp.n, sp.v);
+  const T q = T::one() - (e * e) * (T::one() - c * c);
+  if (!lt(T::zero(), q)) return mirror_dir(sp);
+  const T k = e * c + sqrt(q);
+  std::array<T, 3> r;
+  for (int a = 0; a < 3; ++a) r[a] = e * sp.v[a] - k * sp.n[a];
+  return r;
+}
+
 // What a lit frame needs beyond the geometry: the bounce depth and the background as format
 // values (byte / 255 in double, rounded once), the colour a bounce ray that misses sees.
 template <class T>
@@ -535,12 +553,16 @@ LitParams<T> lit_params(uint32_t max_bounces, const std::array<uint8_t, 3>& back
   return p;
 }
 
-// A packet's work under the scene's lights (docs/architecture.md, "Lighting" and "Reflection"):
-// per ray its base term (a hit's ambient term; a bounce ray that misses: the background's), and
-// per light, in the image's order, one shadow packet of the hits that face it (lights no hit
-// faces have none), with each ray's term; and the packet's bounce packet: the mirror rays of its
-// hits on mirror materials, lane for lane. Every term carries the ray's weight (1 for a primary
-// ray, exactly: x * 1 = x).
+// The rays of a pixel's tree: its primary ray and, below a hit, mirror and refraction rays.
+enum class TreeRay : uint8_t { kPrimary, kMirror, kRefract };
+
+// A packet's work under the scene's lights (docs/architecture.md, "Lighting", "Reflection" and
+// "Refraction"): per ray its base term (a hit's ambient term; a mirror or refraction ray that
+// misses: the background's), and per light, in the image's order, one shadow packet of the hits
+// that face it (lights no hit faces have none), with each ray's term; and the packet's two
+// children: the mirror rays of its hits on mirror materials and the refraction rays of its hits
+// on transparent ones, each a packet, lane for lane. Every term carries the ray's weight (1 for a
+// primary ray, exactly: x * 1 = x).
 template <class T>
 struct ShadowPacket {
   uint32_t light = 0;  // the light's index in the image's order
@@ -552,30 +574,73 @@ struct ShadowPacket {
 
 template <class T>
 struct BouncePacket {
-  uint32_t mask = 0;  // bit r: ray r's hit has a mirror ray, in lane r
+  TreeRay kind = TreeRay::kMirror;  // mirror or refraction rays
+  uint32_t mask = 0;                // bit r: ray r's hit sends one, in lane r
   std::array<Ray<T>, kPacketRays> rays;
   SecondaryLimits<T> lim;             // t_eps, the hit's triangle, t_hi = +inf, closest hit
-  std::array<T, kPacketRays> weight;  // the parent's weight x the material's mirror
+  std::array<T, kPacketRays> weight;  // the parent's weight x the material's mirror (transmit)
 };
 
 template <class T>
 struct LitWork {
+  TreeRay kind = TreeRay::kPrimary;                         // the packet's rays
   uint32_t mask = 0;                                        // the packet's rays
   uint32_t hit_mask = 0;                                    // of those, rays with a hit
   std::array<int32_t, kPacketRays> tri{-1, -1, -1, -1};     // each ray's hit triangle
   std::array<std::array<uint32_t, 3>, kPacketRays> base{};  // fixed point, per channel
   std::vector<ShadowPacket<T>> shadows;
-  BouncePacket<T> bounce;
+  BouncePacket<T> bounce;   // the mirror rays
+  BouncePacket<T> refract;  // the refraction rays
 };
 
-// The work of a primary packet (depth 0, weight == nullptr: every weight 1) or of a bounce packet
-// at depth 1 .. max_bounces (its weights) that ended without an error, from its hits.
+// The child packet of `kind` (mirror or refraction) of a packet's hits at `depth`: a ray for each
+// hit whose material's weight x (mirror or transmit) is above 0, while depth < max_bounces.
+template <class T>
+BouncePacket<T> bounce_packet(const Geometry<T>& g, TreeRay kind, uint32_t hit_mask,
+                              const std::array<SurfacePoint<T>, kPacketRays>& sp,
+                              const std::array<Hit<T>, kPacketRays>& hits,
+                              const std::array<T, kPacketRays>& wt, uint32_t depth,
+                              const LitParams<T>& lp) {
+  BouncePacket<T> b;
+  b.kind = kind;
+  b.lim.t_lo = g.t_eps;
+  b.lim.any_hit = false;
+  for (int r = 0; r < kPacketRays; ++r) {
+    b.lim.t_hi[r] = T::inf();
+    b.weight[r] = T::zero();
+    if (!(hit_mask >> r & 1) || depth >= lp.max_bounces) continue;
+    const uint32_t mat = sp[r].material;
+    const T x = kind == TreeRay::kMirror ? g.mirror[mat] : g.transmit[mat];
+    if (!lt(T::zero(), x)) continue;  // not a mirror (not transparent), or NaN
+    const T wx = wt[r] * x;
+    if (!lt(T::zero(), wx)) continue;  // the weight underflowed: nothing to see
+    b.rays[r].org = sp[r].p;
+    if (kind == TreeRay::kMirror) {
+      b.rays[r].dir = mirror_dir(sp[r]);
+    } else {
+      // The ray leaves the medium through the triangle's back (d'z > 0), else enters it.
+      const bool leaving = lt(T::zero(), hits[r].dz);
+      b.rays[r].dir = refract_dir(sp[r], leaving ? g.eta_leave[mat] : g.eta_enter[mat]);
+    }
+    b.rays[r].inv_len = T::one();
+    b.lim.exclude[r] = hits[r].tri;
+    b.weight[r] = wx;
+    b.mask |= 1u << r;
+  }
+  return b;
+}
+
+// The work of a primary packet (depth 0, weight == nullptr: every weight 1) or of a mirror or
+// refraction packet at depth 1 .. max_bounces (its weights) that ended without an error, from
+// its hits.
 template <class T>
 LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
                     uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits,
                     const LitParams<T>& lp, uint32_t depth = 0,
-                    const std::array<T, kPacketRays>* weight = nullptr) {
+                    const std::array<T, kPacketRays>* weight = nullptr,
+                    TreeRay kind = TreeRay::kPrimary) {
   LitWork<T> w;
+  w.kind = kind;
   w.mask = mask;
   std::array<SurfacePoint<T>, kPacketRays> sp;
   std::array<T, kPacketRays> wt;
@@ -609,24 +674,8 @@ LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>&
     }
     if (p.mask != 0) w.shadows.push_back(p);
   }
-  BouncePacket<T>& b = w.bounce;
-  b.lim.t_lo = g.t_eps;
-  b.lim.any_hit = false;
-  for (int r = 0; r < kPacketRays; ++r) {
-    b.lim.t_hi[r] = T::inf();
-    b.weight[r] = T::zero();
-    if (!(w.hit_mask >> r & 1) || depth >= lp.max_bounces) continue;
-    const T m = g.mirror[sp[r].material];
-    if (!lt(T::zero(), m)) continue;  // not a mirror (or NaN)
-    const T wm = wt[r] * m;
-    if (!lt(T::zero(), wm)) continue;  // the weight underflowed: nothing to see
-    b.rays[r].org = sp[r].p;
-    b.rays[r].dir = mirror_dir(sp[r]);
-    b.rays[r].inv_len = T::one();
-    b.lim.exclude[r] = hits[r].tri;
-    b.weight[r] = wm;
-    b.mask |= 1u << r;
-  }
+  w.bounce = bounce_packet(g, TreeRay::kMirror, w.hit_mask, sp, hits, wt, depth, lp);
+  w.refract = bounce_packet(g, TreeRay::kRefract, w.hit_mask, sp, hits, wt, depth, lp);
   return w;
 }
 
@@ -636,9 +685,10 @@ struct LitSums {
   uint32_t hit_mask = 0;  // the primary rays with a hit (their colour is the sums')
   std::array<std::array<uint64_t, 3>, kPacketRays> sum{};
   std::array<uint32_t, kPacketRays> lights{};  // bit l: light l reaches the primary hit
-  // The first bounce's hit triangle per primary ray: -2 no mirror ray, -1 it missed (or its
-  // packet failed).
+  // The hit triangle of the primary ray's mirror ray and of its refraction ray: -2 no such ray,
+  // -1 it missed (or its packet failed).
   std::array<int32_t, kPacketRays> bounce_tri{-2, -2, -2, -2};
+  std::array<int32_t, kPacketRays> refract_tri{-2, -2, -2, -2};
 };
 
 // The colours of a lit packet (misses get {0, 0, 0} here: the caller gives them the background).
@@ -646,6 +696,7 @@ struct LitPacket {
   std::array<std::array<uint8_t, 3>, kPacketRays> rgb{};
   std::array<uint32_t, kPacketRays> lights{};  // bit l: light l reaches the ray's hit
   std::array<int32_t, kPacketRays> bounce_tri{-2, -2, -2, -2};
+  std::array<int32_t, kPacketRays> refract_tri{-2, -2, -2, -2};
 };
 
 // Adds a packet's work at `depth` to its primary packet's sums, given per shadow packet (in the
@@ -655,9 +706,11 @@ template <class T>
 void lit_accumulate(const LitWork<T>& w, const std::vector<uint32_t>& reached, uint32_t depth,
                     LitSums& s) {
   if (depth == 0) s.hit_mask = w.hit_mask;
-  if (depth == 1)
+  if (depth == 1) {
+    auto& first = w.kind == TreeRay::kRefract ? s.refract_tri : s.bounce_tri;
     for (int r = 0; r < kPacketRays; ++r)
-      if (w.mask >> r & 1) s.bounce_tri[r] = w.tri[r];
+      if (w.mask >> r & 1) first[r] = w.tri[r];
+  }
   for (int r = 0; r < kPacketRays; ++r)
     for (int c = 0; c < 3; ++c) s.sum[r][c] += w.base[r][c];
   for (size_t k = 0; k < w.shadows.size(); ++k) {
@@ -670,16 +723,19 @@ void lit_accumulate(const LitWork<T>& w, const std::vector<uint32_t>& reached, u
   }
 }
 
-// A first bounce packet that ended with an error: its rays add nothing and count as misses.
-inline void lit_bounce_failed(uint32_t mask, LitSums& s) {
+// A mirror or refraction packet at depth 1 that ended with an error: its rays add nothing and
+// count as misses.
+inline void lit_bounce_failed(TreeRay kind, uint32_t mask, LitSums& s) {
+  auto& first = kind == TreeRay::kRefract ? s.refract_tri : s.bounce_tri;
   for (int r = 0; r < kPacketRays; ++r)
-    if (mask >> r & 1) s.bounce_tri[r] = -1;
+    if (mask >> r & 1) first[r] = -1;
 }
 
 inline LitPacket lit_finish(const LitSums& s) {
   LitPacket out;
   out.lights = s.lights;
   out.bounce_tri = s.bounce_tri;
+  out.refract_tri = s.refract_tri;
   for (int r = 0; r < kPacketRays; ++r)
     if (s.hit_mask >> r & 1)
       for (int c = 0; c < 3; ++c) out.rgb[r][c] = light_byte(s.sum[r][c]);
@@ -696,30 +752,46 @@ uint32_t shadow_reached(uint32_t mask, uint32_t err, const std::array<Hit<T>, kP
   return m;
 }
 
-// A primary packet shaded with the scene's lights: its ray tree, level by level (each level's
-// shadow packets, then its bounce packet), counted in shadow and bounce, and the colours.
+// The counters of a lit frame's secondary rays, per kind.
+struct LitCounters {
+  Counters shadow, bounce, refract;  // shadow, mirror and refraction rays
+  void add(const LitCounters& o) {
+    shadow.add(o.shadow);
+    bounce.add(o.bounce);
+    refract.add(o.refract);
+  }
+};
+
+// A primary packet shaded with the scene's lights: its ray tree, level by level (each packet's
+// shadow packets, then its mirror and refraction packets), counted per kind, and the colours.
 template <class T>
 LitPacket shade_lit(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>& rays,
                     uint32_t mask, const std::array<Hit<T>, kPacketRays>& hits,
-                    const LitParams<T>& lp, Counters& shadow, Counters& bounce) {
+                    const LitParams<T>& lp, LitCounters& counters) {
   LitSums s;
-  LitWork<T> w = lit_work(g, rays, mask, hits, lp);
-  for (uint32_t depth = 0;; ++depth) {
-    std::vector<uint32_t> reached;
-    for (const ShadowPacket<T>& p : w.shadows) {
-      std::array<Hit<T>, kPacketRays> shits;
-      const uint32_t err = trace_packet(g, p.rays, p.mask, shits, shadow, &p.lim);
-      reached.push_back(shadow_reached(p.mask, err, shits));
+  std::vector<LitWork<T>> level{lit_work(g, rays, mask, hits, lp)};
+  for (uint32_t depth = 0; !level.empty(); ++depth) {
+    std::vector<LitWork<T>> deeper;
+    for (const LitWork<T>& w : level) {
+      std::vector<uint32_t> reached;
+      for (const ShadowPacket<T>& p : w.shadows) {
+        std::array<Hit<T>, kPacketRays> shits;
+        const uint32_t err = trace_packet(g, p.rays, p.mask, shits, counters.shadow, &p.lim);
+        reached.push_back(shadow_reached(p.mask, err, shits));
+      }
+      lit_accumulate(w, reached, depth, s);
+      for (const BouncePacket<T>* b : {&w.bounce, &w.refract}) {
+        if (b->mask == 0) continue;
+        Counters& c = b->kind == TreeRay::kMirror ? counters.bounce : counters.refract;
+        std::array<Hit<T>, kPacketRays> bhits;
+        if (trace_packet(g, b->rays, b->mask, bhits, c, &b->lim) != 0) {
+          if (depth == 0) lit_bounce_failed(b->kind, b->mask, s);
+          continue;
+        }
+        deeper.push_back(lit_work(g, b->rays, b->mask, bhits, lp, depth + 1, &b->weight, b->kind));
+      }
     }
-    lit_accumulate(w, reached, depth, s);
-    const BouncePacket<T> b = w.bounce;
-    if (b.mask == 0) break;
-    std::array<Hit<T>, kPacketRays> bhits;
-    if (trace_packet(g, b.rays, b.mask, bhits, bounce, &b.lim) != 0) {
-      if (depth == 0) lit_bounce_failed(b.mask, s);
-      break;
-    }
-    w = lit_work(g, b.rays, b.mask, bhits, lp, depth + 1, &b.weight);
+    level = std::move(deeper);
   }
   return lit_finish(s);
 }

@@ -104,8 +104,8 @@ bool secondary_failed(const Frame& f, size_t j, uint32_t mask) {
 }
 
 // Scene lighting through the core (CoreSimResult's lit fields): the pixels' ray trees, level by
-// level from the primary frame r's hits; per level the shadow packets, then the bounce packets,
-// each a pass of the same model; each pixel's sums.
+// level from the primary frame r's hits; per level the shadow packets, then the mirror packets,
+// then the refraction packets, each a pass of the same model; each pixel's sums.
 void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
                const CoreSimOptions& options, CoreModel model, CoreSimResult& r) {
   const Geometry<fp24> g = load_geometry<fp24>(image);
@@ -116,6 +116,7 @@ void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
   r.lit = true;
   f.shadow_counters = Counters{};
   f.bounce_counters = Counters{};
+  f.refract_counters = Counters{};
 
   // A packet of the current level: its primary packet and its work.
   struct Open {
@@ -165,31 +166,36 @@ void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
       lit_accumulate(o.work, mine, depth, sums[o.primary]);
     }
 
-    // The level's bounce packets, and from their hits the next level.
-    std::vector<CorePacket> bpackets;
-    std::vector<const Open*> parent;
-    for (const Open& o : level) {
-      const BouncePacket<fp24>& b = o.work.bounce;
-      if (b.mask == 0) continue;
-      bpackets.push_back(
-          secondary_packet(RayKind::kBounce, b.mask, b.rays, b.lim, bpackets.size()));
-      parent.push_back(&o);
-    }
+    // The level's mirror packets, then its refraction packets, and from their hits the next
+    // level.
     std::vector<Open> deeper;
-    if (!bpackets.empty()) {
-      const CoreSimResult s = secondary_pass(image, bpackets, g.t_eps, options, model, r.bounce);
-      f.bounce_counters.add(s.frame.counters);
+    for (const TreeRay kind : {TreeRay::kMirror, TreeRay::kRefract}) {
+      const bool mirror = kind == TreeRay::kMirror;
+      std::vector<CorePacket> bpackets;
+      std::vector<const Open*> parent;
+      for (const Open& o : level) {
+        const BouncePacket<fp24>& b = mirror ? o.work.bounce : o.work.refract;
+        if (b.mask == 0) continue;
+        bpackets.push_back(secondary_packet(mirror ? RayKind::kBounce : RayKind::kRefract, b.mask,
+                                            b.rays, b.lim, bpackets.size()));
+        parent.push_back(&o);
+      }
+      if (bpackets.empty()) continue;
+      const CoreSimResult s =
+          secondary_pass(image, bpackets, g.t_eps, options, model, mirror ? r.bounce : r.refract);
+      (mirror ? f.bounce_counters : f.refract_counters).add(s.frame.counters);
       for (size_t j = 0; j < bpackets.size(); ++j) {
-        const BouncePacket<fp24>& b = parent[j]->work.bounce;
+        const BouncePacket<fp24>& b = mirror ? parent[j]->work.bounce : parent[j]->work.refract;
         const size_t primary = parent[j]->primary;
         if (secondary_failed(s.frame, j, b.mask)) {
-          if (depth == 0) lit_bounce_failed(b.mask, sums[primary]);
+          if (depth == 0) lit_bounce_failed(kind, b.mask, sums[primary]);
           continue;
         }
         std::array<Hit<fp24>, kPacketRays> hits;
         for (uint32_t k = 0; k < kPacketRays; ++k)
           if (b.mask >> k & 1u) hits[k] = hit_from_record(g, b.rays[k], s.frame.hits[4 * j + k]);
-        deeper.push_back({primary, lit_work(g, b.rays, b.mask, hits, lp, depth + 1, &b.weight)});
+        deeper.push_back(
+            {primary, lit_work(g, b.rays, b.mask, hits, lp, depth + 1, &b.weight, kind)});
       }
     }
     level = std::move(deeper);
@@ -197,6 +203,7 @@ void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
 
   f.light_mask.assign(static_cast<size_t>(f.width) * f.height, 0);
   f.bounce_tri.assign(static_cast<size_t>(f.width) * f.height, -2);
+  f.refract_tri.assign(static_cast<size_t>(f.width) * f.height, -2);
   for (uint32_t py = 0; py < ph; ++py)
     for (uint32_t px = 0; px < pw; ++px) {
       const LitPacket lpk = lit_finish(sums[static_cast<size_t>(py) * pw + px]);
@@ -207,6 +214,7 @@ void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
         const size_t pix = static_cast<size_t>(y) * render.width + x;
         f.light_mask[pix] = lpk.lights[k];
         f.bounce_tri[pix] = lpk.bounce_tri[k];
+        f.refract_tri[pix] = lpk.refract_tri[k];
         if (ls.hit_mask >> k & 1u) std::copy(lpk.rgb[k].begin(), lpk.rgb[k].end(), &f.rgb[3 * pix]);
       }
     }

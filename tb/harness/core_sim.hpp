@@ -107,14 +107,15 @@ struct CoreSimResult {
   double cycles_per_second = 0.0;    // simulated cycles per wall second
 
   // Scene lighting (RenderOptions::lighting kScene, an image with lights; docs/architecture.md,
-  // "Lighting" and "Reflection"): the frame above is the lit one (rgb, light_mask, bounce_tri,
-  // shadow_counters, bounce_counters) and the fields above are the primary pass's. The secondary
-  // packets are made from the core's hits, level by level of the pixels' ray trees, and traced
-  // by the core in passes of their own: each level's shadow packets, then its bounce packets
-  // (their figures here, summed per kind); the light terms and the pixel sums are the golden
-  // model's functions, on the host (the core has no light unit yet).
+  // "Lighting", "Reflection" and "Refraction"): the frame above is the lit one (rgb, light_mask,
+  // bounce_tri, refract_tri and the shadow, bounce and refract counters) and the fields above are
+  // the primary pass's. The secondary packets are made from the core's hits, level by level of
+  // the pixels' ray trees, and traced by the core in passes of their own: each level's shadow
+  // packets, then its mirror packets, then its refraction packets (their figures here, summed per
+  // kind); the light terms, the directions and the pixel sums are the golden model's functions,
+  // on the host (the core has no light unit yet).
   bool lit = false;
-  SecondaryPasses shadow, bounce;
+  SecondaryPasses shadow, bounce, refract;
 };
 
 // What a run must show besides a frame and counters equal to the golden model's: the core idle at
@@ -137,12 +138,13 @@ enum class RayKind : uint8_t {
   kPrimary = spec::kRayKindPrimary,
   kShadow = spec::kRayKindShadow,
   kBounce = spec::kRayKindBounce,
+  kRefract = spec::kRayKindRefract,
 };
 
 // A packet as the core's packet port takes it (rc_core's pkt_*): up to four rays (mask bit r: ray
-// r exists), each writing framebuffer pixel `slot[r]`; a secondary packet (a shadow or bounce
-// packet: docs/architecture.md, "Lighting" and "Reflection") also gives each ray its limit t_hi
-// and the triangle it starts on.
+// r exists), each writing framebuffer pixel `slot[r]`; a secondary packet (a shadow, bounce or
+// refract packet: docs/architecture.md, "Lighting", "Reflection", "Refraction") also gives each ray
+// its limit t_hi and the triangle it starts on.
 struct CorePacket {
   uint32_t mask = 0;
   std::array<Ray<fp24>, kPacketRays> rays{};

@@ -137,6 +137,7 @@ std::vector<std::string> run_problems(const CoreSimResult& r) {
                   std::to_string(r.writes_due));
   for (const std::string& p : r.shadow.problems) out.push_back("shadow pass: " + p);
   for (const std::string& p : r.bounce.problems) out.push_back("bounce pass: " + p);
+  for (const std::string& p : r.refract.problems) out.push_back("refract pass: " + p);
   return out;
 }
 

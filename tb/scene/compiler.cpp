@@ -203,6 +203,7 @@ Compiled compile_scene(const Scene& scene, const CompileOptions& options) {
       }
       put_le(&mat_bytes, r + spec::kImageMaterialNs, fmt.encode(m.ns), 4);
       put_le(&mat_bytes, r + spec::kImageMaterialMirror, fmt.encode(m.mirror()), 4);
+      put_le(&mat_bytes, r + spec::kImageMaterialTransmit, fmt.encode(m.transmit()), 4);
       put_le(&mat_bytes, r + spec::kImageMaterialDissolve, fmt.encode(m.dissolve), 4);
       put_le(&mat_bytes, r + spec::kImageMaterialIor, fmt.encode(m.ior), 4);
     }

@@ -371,6 +371,7 @@ MaterialRecord SceneImage::material(size_t i) const {
   }
   m.ns = word(spec::kImageMaterialNs);
   m.mirror = word(spec::kImageMaterialMirror);
+  m.transmit = word(spec::kImageMaterialTransmit);
   m.dissolve = word(spec::kImageMaterialDissolve);
   m.ior = word(spec::kImageMaterialIor);
   const SectionInfo& strings = section(spec::kImageSectionIdStrings);

@@ -95,9 +95,9 @@ struct MaterialRecord {
   std::string name;
   uint32_t illum = 0;
   uint32_t flags = 0;
-  // Format values (bit patterns): kd, ks, ke, tf rgb; ns, ior, dissolve, mirror.
+  // Format values (bit patterns): kd, ks, ke, tf rgb; ns, ior, dissolve, mirror, transmit.
   std::array<uint32_t, 3> kd{}, ks{}, ke{}, tf{};
-  uint32_t ns = 0, ior = 0, dissolve = 0, mirror = 0;
+  uint32_t ns = 0, ior = 0, dissolve = 0, mirror = 0, transmit = 0;
 };
 
 struct ViewRecord {

@@ -25,6 +25,9 @@ struct Material {
   // Ray-traced reflection weight: MTL illumination models 3 to 7 turn ray-traced reflection on
   // with the specular colour as reflectance; this is its largest channel (0 for other models).
   double mirror() const;
+  // Refraction weight: max(1 - d, t_f), at most 1, where t_f is Tf's largest channel for the MTL
+  // models with refraction (illum 4, 6, 7) and 0 for the others.
+  double transmit() const;
 };
 
 struct Mesh {

@@ -41,6 +41,12 @@ double Material::mirror() const {
   return std::max(ks.r, std::max(ks.g, ks.b));
 }
 
+double Material::transmit() const {
+  const bool refracts = illum == 4 || illum == 6 || illum == 7;
+  const double tf_max = refracts ? std::max(tf.r, std::max(tf.g, tf.b)) : 0.0;
+  return std::min(std::max(1.0 - dissolve, tf_max), 1.0);
+}
+
 namespace {
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }

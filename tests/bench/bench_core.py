@@ -4,10 +4,10 @@ several memory latencies and thread counts, and at latency 16 with one and two r
 bit for bit against the golden model, and prints one table: cycles, rays per cycle, efficiency
 (ideal cycles / cycles), the utilisation of each unit and of the busiest one
 (docs/architecture.md, "Counters"), and the simulation's speed. A second table lights the scenes
-with their own lights (--lighting scene, mirror rays to the default depth) and gives each ray
-kind's figures: the primary frame, the shadow passes and the mirror passes (the secondary packets
-the core traces after it, docs/architecture.md "Lighting" and "Reflection"), and what they add to
-the frame's cycles. It measures; it judges nothing but the
+with their own lights (--lighting scene, mirror and refraction rays to the default depth) and
+gives each ray kind's figures: the primary frame, the shadow passes, the mirror passes and the
+refraction passes (the secondary packets the core traces after it, docs/architecture.md
+"Lighting", "Reflection" and "Refraction"), and what they add to the frame's cycles. It measures; it judges nothing but the
 bit-exact check (a run that differs from the golden model fails it).
 
 Usage: bench_core.py RAYCORE [--models DIR] [--jobs N] [--markdown FILE] [--quick]
@@ -30,10 +30,12 @@ SCENES = [
     ("spheres", "scenes/spheres.json", "256x192", []),
     ("bunny", "{models}/bunny/bunny.obj", "512x384", ["--auto-camera"]),
 ]
-# The lit scenes (their own lights, shadow and mirror rays traced by the core), at latency 16.
+# The lit scenes (their own lights, shadow, mirror and refraction rays traced by the core), at
+# latency 16.
 LIT_SCENES = ["default", "spheres", "sponza", "conference"]
-# Lit only: the box with a mirror block.
-LIT_EXTRA = [("cornell-mirror", "scenes/cornell-mirror.json", "256x192", [])]
+# Lit only: the box with a mirror block, and the shared box with a mirror and a glass sphere.
+LIT_EXTRA = [("cornell-mirror", "scenes/cornell-mirror.json", "256x192", []),
+             ("cornell-glass", "scenes/cornell-glass.json", "256x192", [])]
 LATENCIES = [1, 16, 64]
 THREADS = ["16", "64", "default"]
 # The cores with fewer ray set-up units than the default (docs/spec.toml [core] setup_units), at
@@ -74,7 +76,8 @@ def run(raycore, root, models, scene, latency, threads, setup_units="default", l
             "efficiency": r["efficiency"], "util": r["utilisation"],
             "busiest": r["busiest_unit"], "pass": d["check"]["pass"],
             "speed": r["simulated_cycles_per_second"], "wall": wall,
-            "shadow": r.get("shadow_pass"), "bounce": r.get("bounce_pass")}
+            "shadow": r.get("shadow_pass"), "bounce": r.get("bounce_pass"),
+            "refract": r.get("refract_pass")}
 
 
 def lit_table(rows):
@@ -93,9 +96,9 @@ def lit_table(rows):
             f"{x['rays_per_cycle']:.3f} | {x['efficiency']:.3f} | {x['busiest']['unit']} "
             f"{x['busiest']['utilisation']:.3f} | 1.00 | {ok} |")
         total = x["cycles"]
-        for kind, name in (("shadow", "shadow"), ("bounce", "mirror")):
+        for kind, name in (("shadow", "shadow"), ("bounce", "mirror"), ("refract", "refraction")):
             s = x[kind] or none
-            if kind == "bounce" and s["rays"] == 0:
+            if kind != "shadow" and s["rays"] == 0:
                 continue
             total += s["cycles"]
             ratio = total / x["cycles"] if x["cycles"] else 0.0

@@ -42,6 +42,8 @@ void set_material(Geometry<T>& g, double kd, double ks, uint32_t ns) {
   g.ks = {{f(ks), f(ks), f(ks)}};
   g.ns = {ns};
   g.mirror = {f(0.0)};
+  g.transmit = {f(0.0)};
+  g.eta_enter = g.eta_leave = {f(1.0)};
 }
 
 Geometry<T>::Light point_light(glm::dvec3 p, double intensity) {
@@ -74,9 +76,11 @@ LitPacket shade_rays(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>
                      uint32_t mask, Counters& primary, Counters& shadow) {
   std::array<Hit<T>, kPacketRays> hits;
   EXPECT_EQ(trace_packet(g, rays, mask, hits, primary), 0u);
-  Counters bounce;
-  const LitPacket p = shade_lit(g, rays, mask, hits, LitParams<T>{}, shadow, bounce);
-  EXPECT_EQ(bounce.rays, 0u) << "no mirror materials here";
+  LitCounters lc;
+  const LitPacket p = shade_lit(g, rays, mask, hits, LitParams<T>{}, lc);
+  shadow.add(lc.shadow);
+  EXPECT_EQ(lc.bounce.rays, 0u) << "no mirror materials here";
+  EXPECT_EQ(lc.refract.rays, 0u) << "no transparent materials here";
   return p;
 }
 

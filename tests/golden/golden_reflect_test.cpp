@@ -63,6 +63,8 @@ struct MirrorScene {
     g.ks = {{f(0.0), f(0.0), f(0.0)}, {f(0.0), f(0.0), f(0.0)}};
     g.ns = {0, 0};
     g.mirror = {f(mirror), f(0.0)};
+    g.transmit = {f(0.0), f(0.0)};
+    g.eta_enter = g.eta_leave = {f(1.0), f(1.0)};
     g.nodes = {KdNode::leaf(0, 4).raw};
     g.lists = {floor[0], floor[1], wall0, wall1};
     set_box(g, -8, 8);
@@ -79,7 +81,7 @@ const Ray<T> kFloorRay = ray({-3, 0, 0}, {1, 0, -1});
 
 struct Shaded {
   LitPacket p;
-  Counters primary, shadow, bounce;
+  Counters primary, shadow, bounce, refract;
 };
 
 Shaded shade_one(const Geometry<T>& g, const Ray<T>& r, uint32_t max_bounces,
@@ -87,8 +89,11 @@ Shaded shade_one(const Geometry<T>& g, const Ray<T>& r, uint32_t max_bounces,
   Shaded s;
   std::array<Hit<T>, kPacketRays> hits;
   EXPECT_EQ(trace_packet(g, {r, r, r, r}, 0x1u, hits, s.primary), 0u);
-  s.p = shade_lit(g, {r, r, r, r}, 0x1u, hits, lit_params<T>(max_bounces, background), s.shadow,
-                  s.bounce);
+  LitCounters lc;
+  s.p = shade_lit(g, {r, r, r, r}, 0x1u, hits, lit_params<T>(max_bounces, background), lc);
+  s.shadow = lc.shadow;
+  s.bounce = lc.bounce;
+  s.refract = lc.refract;
   return s;
 }
 
@@ -151,6 +156,8 @@ TEST(GoldenReflect, FacingMirrorsStopAtTheBounceDepth) {
   g.ks = {{f(0.0), f(0.0), f(0.0)}};
   g.ns = {0};
   g.mirror = {f(0.5)};
+  g.transmit = {f(0.0)};
+  g.eta_enter = g.eta_leave = {f(1.0)};
   g.nodes = {KdNode::leaf(0, 4).raw};
   g.lists = {floor[0], floor[1], ceiling[0], ceiling[1]};
   set_box(g, -8, 8);
@@ -216,16 +223,17 @@ TEST(GoldenReflect, SceneWithoutMirrorsIsTheSameAtAnyDepth) {
   for (int32_t t : f3.bounce_tri) ASSERT_EQ(t, -2);
 }
 
-// The spheres scene has mirror spheres and a mirror ground: at depth 3, every pixel without a
-// mirror ray keeps its depth-0 colour, and the pixels with one change; the mirror rays' first
-// hits agree with Embree's.
+// The spheres scene has mirror spheres, glass spheres and a mirror ground: at depth 3, every
+// pixel without a mirror or refraction ray keeps its depth-0 colour, and the pixels with one
+// change; the mirror and refraction rays' first hits agree with Embree's.
 TEST(GoldenReflect, SpheresScene) {
   const RenderInput in = load(kRoot + "/scenes/spheres.json");
   const Geometry<T> g = load_geometry<T>(in.image);
   const Frame f0 = lit_frame(g, in, 0), f3 = lit_frame(g, in, 3);
-  uint64_t with_ray = 0, changed = 0;
+  uint64_t with_ray = 0, changed = 0, with_refraction = 0;
   for (size_t p = 0; p < f3.bounce_tri.size(); ++p) {
-    if (f3.bounce_tri[p] == -2) {
+    with_refraction += f3.refract_tri[p] != -2;
+    if (f3.bounce_tri[p] == -2 && f3.refract_tri[p] == -2) {
       ASSERT_EQ(f3.rgb[3 * p], f0.rgb[3 * p]) << "pixel " << p;
       ASSERT_EQ(f3.rgb[3 * p + 1], f0.rgb[3 * p + 1]) << "pixel " << p;
       ASSERT_EQ(f3.rgb[3 * p + 2], f0.rgb[3 * p + 2]) << "pixel " << p;
@@ -238,7 +246,8 @@ TEST(GoldenReflect, SpheresScene) {
   EXPECT_GT(with_ray, 100u);
   EXPECT_GT(changed, with_ray / 2);
   EXPECT_EQ(f3.bounce_counters.errors, 0u);
-  EXPECT_GE(f3.bounce_counters.rays, with_ray) << "first mirror rays, and deeper ones";
+  EXPECT_GE(f3.bounce_counters.rays + f3.refract_counters.rays, with_ray)
+      << "first mirror and refraction rays, and deeper ones";
   EXPECT_EQ(f0.bounce_counters.rays, 0u);
 
   RenderOptions opt = input_options(in);
@@ -256,6 +265,27 @@ TEST(GoldenReflect, SpheresScene) {
       static_cast<unsigned long long>(ba.only_one));
   EXPECT_GT(ba.rays, with_ray / 2);
   EXPECT_GE(ba.share(), 0.99);
+  const BounceAgreement ra = compare_refractions(f3, e);
+  std::printf(
+      "[refract agreement] spheres at 96x72: first refraction ray %.4f%% of %llu agree on the "
+      "triangle hit (%llu traced by one engine only)\n",
+      100.0 * ra.share(), static_cast<unsigned long long>(ra.rays),
+      static_cast<unsigned long long>(ra.only_one));
+  EXPECT_GT(with_refraction, 50u) << "the glass spheres";
+  EXPECT_GT(ra.rays, with_refraction / 2);
+  EXPECT_GE(ra.share(), 0.99);
+  EXPECT_EQ(f3.refract_counters.errors, 0u);
+  EXPECT_EQ(f0.refract_counters.rays, 0u);
+}
+
+// A scene without transparent materials (the Cornell box with its mirror block) traces no
+// refraction ray.
+TEST(GoldenReflect, SceneWithoutGlassTracesNoRefraction) {
+  const RenderInput in = load(kRoot + "/scenes/cornell-mirror.json");
+  const Frame f3 = lit_frame(load_geometry<T>(in.image), in, 3);
+  EXPECT_GT(f3.bounce_counters.rays, 0u);
+  EXPECT_EQ(f3.refract_counters.rays, 0u);
+  for (int32_t t : f3.refract_tri) ASSERT_EQ(t, -2);
 }
 
 }  // namespace

@@ -50,6 +50,31 @@ inline std::array<uint32_t, 2> add_quad(Geometry<T>& g, double x0, double x1, do
           add_tri(g, {x1, y0, z}, {x1, y1, z}, {x0, y1, z})};
 }
 
+// Appends a material (grey Kd kd, no specular term) with a mirror weight, a refraction weight and
+// an index of refraction, first giving every per-material table of g the entries its triangles'
+// default material 0 needs; returns its index.
+inline uint32_t add_material(Geometry<T>& g, glm::dvec3 kd, double mirror = 0.0,
+                             double transmit = 0.0, double ior = 1.0) {
+  const auto fill = [&](size_t n) {
+    g.kd.resize(n, {f(1.0), f(1.0), f(1.0)});
+    g.ks.resize(n, {f(0.0), f(0.0), f(0.0)});
+    g.ns.resize(n, 0);
+    g.mirror.resize(n, f(0.0));
+    g.transmit.resize(n, f(0.0));
+    g.eta_enter.resize(n, f(1.0));
+    g.eta_leave.resize(n, f(1.0));
+  };
+  const size_t i = g.kd.size();
+  fill(i);
+  fill(i + 1);
+  g.kd[i] = {f(kd.x), f(kd.y), f(kd.z)};
+  g.mirror[i] = f(mirror);
+  g.transmit[i] = f(transmit);
+  g.eta_leave[i] = f(ior);
+  g.eta_enter[i] = f(1.0 / f(ior).to_double());
+  return static_cast<uint32_t>(i);
+}
+
 inline Ray<T> ray(glm::dvec3 o, glm::dvec3 d) {
   Ray<T> r;
   for (int a = 0; a < 3; ++a) {

@@ -111,6 +111,7 @@ TEST(Image, WriteReadRoundTrip) {
     EXPECT_EQ(m.ior, img.format().encode(want.ior));
     EXPECT_EQ(m.dissolve, img.format().encode(want.dissolve));
     EXPECT_EQ(m.mirror, img.format().encode(want.mirror()));
+    EXPECT_EQ(m.transmit, img.format().encode(want.transmit()));
   }
   const auto view = img.view();
   EXPECT_EQ(view.width, scene.width);
@@ -178,7 +179,7 @@ TEST(Image, LoadErrors) {
       {"wrong magic", [](auto* b, auto&) { (*b)[0] = 'X'; }, "not a raycore image"},
       {"wrong major version",
        [](auto* b, auto&) { patch(b, spec::kImageHeaderVersionMajor, 2, 2), fix_checksum(b); },
-       "unsupported image version 2.0"},
+       "unsupported image version 2." + std::to_string(spec::kImageVersionMinor)},
       {"checksum mismatch", [](auto* b, auto&) { (*b)[b->size() / 2] ^= 0x40; },
        "checksum mismatch"},
       {"checksum field changed", [](auto* b, auto&) { (*b)[spec::kImageHeaderChecksum] ^= 1; },

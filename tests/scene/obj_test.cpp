@@ -113,6 +113,28 @@ TEST(Obj, MaterialsFromMtl) {
   EXPECT_EQ(lamp.mirror(), 0.0);
   EXPECT_NEAR(m.materials[2].dissolve, 0.25, 1e-12);
   EXPECT_EQ(m.materials[2].illum, 7);
+  EXPECT_EQ(red.transmit(), 0.0);
+  EXPECT_NEAR(lamp.transmit(), 0.5, 1e-12) << "1 - d; Tf counts only for illum 4, 6, 7";
+  EXPECT_NEAR(m.materials[2].transmit(), 0.75, 1e-12) << "1 - d (Tr 0.75), Tf 0";
+}
+
+// The refraction weight: max(1 - d, Tf's largest channel for illum 4, 6, 7), at most 1.
+TEST(Obj, TransmitWeight) {
+  rc::scene::Material m;
+  EXPECT_EQ(m.transmit(), 0.0) << "the default material is opaque";
+  m.tf = {0.2, 0.9, 0.4};
+  EXPECT_EQ(m.transmit(), 0.0) << "illum 2 has no refraction";
+  for (int illum : {4, 6, 7}) {
+    m.illum = illum;
+    EXPECT_EQ(m.transmit(), 0.9) << illum;
+  }
+  m.illum = 5;
+  EXPECT_EQ(m.transmit(), 0.0) << "illum 5 reflects only";
+  m.illum = 7;
+  m.dissolve = 0.05;
+  EXPECT_EQ(m.transmit(), 1.0 - 0.05) << "1 - d is larger";
+  m.tf = {3.0, 0.0, 0.0};
+  EXPECT_EQ(m.transmit(), 1.0) << "clamped";
 }
 
 TEST(Obj, MissingMtlIsAWarning) {

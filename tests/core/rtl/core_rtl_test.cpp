@@ -59,8 +59,8 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
       std::printf("%s: counter after an error (allowed to differ) %s\n", what.c_str(),
                   d.text().c_str());
   }
-  // Scene lighting: the lights that reach each pixel, what its first mirror ray hits, and the
-  // secondary rays' counters.
+  // Scene lighting: the lights that reach each pixel, what its first mirror and refraction rays
+  // hit, and the secondary rays' counters.
   uint64_t light_differ = 0;
   EXPECT_EQ(gold.light_mask.size(), f.light_mask.size()) << what << ": lit in one engine only";
   for (size_t i = 0; i < std::min(gold.light_mask.size(), f.light_mask.size()); ++i)
@@ -68,11 +68,17 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
   EXPECT_EQ(gold.bounce_tri.size(), f.bounce_tri.size()) << what << ": lit in one engine only";
   for (size_t i = 0; i < std::min(gold.bounce_tri.size(), f.bounce_tri.size()); ++i)
     light_differ += gold.bounce_tri[i] != f.bounce_tri[i] ? 1 : 0;
+  EXPECT_EQ(gold.refract_tri.size(), f.refract_tri.size()) << what << ": lit in one engine only";
+  for (size_t i = 0; i < std::min(gold.refract_tri.size(), f.refract_tri.size()); ++i)
+    light_differ += gold.refract_tri[i] != f.refract_tri[i] ? 1 : 0;
   if (!gold.light_mask.empty()) {
     for (const CounterDifference& d : counter_differences(gold.shadow_counters, f.shadow_counters))
       if (d.required) counters.push_back("shadow " + d.text());
     for (const CounterDifference& d : counter_differences(gold.bounce_counters, f.bounce_counters))
       if (d.required) counters.push_back("bounce " + d.text());
+    for (const CounterDifference& d :
+         counter_differences(gold.refract_counters, f.refract_counters))
+      if (d.required) counters.push_back("refract " + d.text());
   }
   std::printf(
       "[cases] core rtl %s %ux%u: %llu cases, %llu mismatches (%llu cycles, %.3f rays/cycle, "
@@ -274,18 +280,26 @@ TEST_P(CoreRtlLit, MatchesGoldenBitForBit) {
   const Counters& sc = gold.shadow_counters;
   std::printf(
       "  shadow passes: %llu packets, %llu rays, %llu cycles (primary %llu); golden: %llu shadow "
-      "rays, %llu culled pops; bounce passes: %llu packets, %llu rays, %llu cycles\n",
+      "rays, %llu culled pops; bounce passes: %llu packets, %llu rays, %llu cycles; refract "
+      "passes: %llu packets, %llu rays, %llu cycles\n",
       static_cast<unsigned long long>(r.shadow.packets),
       static_cast<unsigned long long>(r.frame.shadow_counters.rays),
       static_cast<unsigned long long>(r.shadow.cycles), static_cast<unsigned long long>(r.cycles),
       static_cast<unsigned long long>(sc.rays), static_cast<unsigned long long>(sc.culled_pops),
       static_cast<unsigned long long>(r.bounce.packets),
       static_cast<unsigned long long>(r.frame.bounce_counters.rays),
-      static_cast<unsigned long long>(r.bounce.cycles));
+      static_cast<unsigned long long>(r.bounce.cycles),
+      static_cast<unsigned long long>(r.refract.packets),
+      static_cast<unsigned long long>(r.frame.refract_counters.rays),
+      static_cast<unsigned long long>(r.refract.cycles));
   EXPECT_GT(sc.rays, 0u) << "shadow rays were traced";
   if (std::string(c.input) == "scenes/spheres.json" ||
       std::string(c.input) == "scenes/cornell-mirror.json") {
     EXPECT_GT(gold.bounce_counters.rays, 0u) << "the mirrors send mirror rays";
+  }
+  if (std::string(c.input) == "scenes/spheres.json" ||
+      std::string(c.input) == "scenes/cornell-glass.json") {
+    EXPECT_GT(gold.refract_counters.rays, 0u) << "the glass sends refraction rays";
   }
   // Light reaches some hits, and (where the view has occluders) is blocked at others.
   uint64_t lit_pairs = 0;
@@ -303,6 +317,7 @@ const SceneCase kLitScenes[] = {
     {"scenes/spheres.json", false, false, 64, 48},
     {"scenes/terrain.json", false, false, 64, 48},  // a directional light: t_hi = +inf
     {"scenes/conference.json", false, true, 48, 36},
+    {"scenes/cornell-glass.json", false, true, 64, 48},  // a mirror sphere and a glass sphere
 };
 
 std::string lit_case_name(const testing::TestParamInfo<std::tuple<SceneCase, int>>& info) {
