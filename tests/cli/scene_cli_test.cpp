@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "compiler.hpp"
@@ -29,8 +30,11 @@ TEST(Cli, BuildAndInfo) {
   EXPECT_TRUE(j["kdtree"].contains("mean_triangles_per_nonempty_leaf"));
   const RunResult i = run_raycore({"scene", "info", img});
   ASSERT_EQ(i.status, 0) << i.output;
-  for (const char* want : {"version      1.0", "verified", "fp24 (7/16)", "bounds",
-                           "triangles    32", "nodes", "well formed"})
+  const std::string version = "version      " + std::to_string(rc::spec::kImageVersionMajor) + "." +
+                              std::to_string(rc::spec::kImageVersionMinor);
+  for (const std::string& want :
+       {version, std::string("verified"), std::string("fp24 (7/16)"), std::string("bounds"),
+        std::string("triangles    32"), std::string("nodes"), std::string("well formed")})
     EXPECT_NE(i.output.find(want), std::string::npos) << want << "\n" << i.output;
   const RunResult f =
       run_raycore({"scene", "build", "builtin:cornell", "-o", img, "--format", "8/23", "-q"});
