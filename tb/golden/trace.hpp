@@ -441,27 +441,13 @@ struct LightSample {
   std::array<uint32_t, 3> term{0, 0, 0};  // fixed-point contribution per channel
 };
 
-// The hit point, the facing unit normal and the unit view direction of a primary hit.
+// The hit point, the facing unit normal and the unit view direction of a hit (hit_geometry below
+// computes them: P = org + t * d, N = -n if 0 < d'z else n, V = d * inv_len, per component).
 template <class T>
 struct SurfacePoint {
   std::array<T, 3> p, n, v;
   uint32_t material;
 };
-
-template <class T>
-SurfacePoint<T> surface_point(const Geometry<T>& g, const Ray<T>& r, const Hit<T>& h) {
-  SurfacePoint<T> sp;
-  // The ray travels along n when d'z > 0 (d'z = (d . n) / |n|^2): the facing normal is -n.
-  const bool back = lt(T::zero(), h.dz);
-  for (int a = 0; a < 3; ++a) {
-    sp.p[a] = r.org[a] + h.t * r.dir[a];
-    const T n = g.normal[h.tri][a];
-    sp.n[a] = back ? -n : n;
-    sp.v[a] = r.dir[a] * r.inv_len;
-  }
-  sp.material = g.material[h.tri];
-  return sp;
-}
 
 template <class T>
 T dot3(const std::array<T, 3>& a, const std::array<T, 3>& b) {
@@ -470,16 +456,16 @@ T dot3(const std::array<T, 3>& a, const std::array<T, 3>& b) {
 
 // The ambient term per channel, weighted: fix((Kd * ambient) * w).
 template <class T>
-std::array<uint32_t, 3> ambient_terms(const Geometry<T>& g, uint32_t material, T w) {
+std::array<uint32_t, 3> ambient_terms(const std::array<T, 3>& kd, T w) {
   const T ambient = shade_ambient<T>();
-  const auto& kd = g.kd[material];
   return {light_fixed((kd[0] * ambient) * w), light_fixed((kd[1] * ambient) * w),
           light_fixed((kd[2] * ambient) * w)};
 }
 
 template <class T>
-LightSample<T> light_sample(const Geometry<T>& g, const SurfacePoint<T>& sp,
-                            const typename Geometry<T>::Light& l, T w) {
+LightSample<T> light_sample(const SurfacePoint<T>& sp, const typename Geometry<T>::Light& l,
+                            const std::array<T, 3>& kd, const std::array<T, 3>& ks, uint32_t ns,
+                            T w) {
   LightSample<T> s;
   std::array<T, 3> lh;
   if (l.directional) {
@@ -502,9 +488,7 @@ LightSample<T> light_sample(const Geometry<T>& g, const SurfacePoint<T>& sp,
   std::array<T, 3> hv;
   for (int a = 0; a < 3; ++a) hv[a] = lh[a] - sp.v[a];
   const T nh = dot3(sp.n, hv) * (T::one() / sqrt(dot3(hv, hv)));
-  const T spec = lt(T::zero(), nh) ? pow_int(nh, g.ns[sp.material]) : T::zero();
-  const auto& kd = g.kd[sp.material];
-  const auto& ks = g.ks[sp.material];
+  const T spec = lt(T::zero(), nh) ? pow_int(nh, ns) : T::zero();
   for (int c = 0; c < 3; ++c)
     s.term[c] = light_fixed(((kd[c] * cos_l + ks[c] * spec) * l.color[c]) * w);
   return s;
@@ -535,6 +519,44 @@ std::array<T, 3> refract_dir(const SurfacePoint<T>& sp, T e) {
   std::array<T, 3> r;
   for (int a = 0; a < 3; ++a) r[a] = e * sp.v[a] - k * sp.n[a];
   return r;
+}
+
+// The geometry of a hit that the lighting needs (rc_hit_geom computes the same, bit for bit):
+// the hit point, the facing normal and the unit view direction (surface_point), the mirror and
+// refraction directions (mirror_dir, refract_dir with e = eta_leave when the ray leaves through
+// the triangle's back, 0 < d'z, else eta_enter), and the children's weights w * mirror and
+// w * transmit, each ray present when its factor and its weight are above 0.
+template <class T>
+struct HitGeometry {
+  bool back = false;  // 0 < d'z: the ray travels along n (leaves the medium)
+  std::array<T, 3> p, n, v;
+  std::array<T, 3> r, t;  // the mirror and the refraction direction
+  T w_mirror, w_refract;
+  bool mirror = false, refract = false;
+};
+
+template <class T>
+HitGeometry<T> hit_geometry(const Ray<T>& ray, T t, T dz, const std::array<T, 3>& n, T eta_enter,
+                            T eta_leave, T w, T mirror, T transmit) {
+  HitGeometry<T> h;
+  // The ray travels along n when d'z > 0 (d'z = (d . n) / |n|^2): the facing normal is -n.
+  h.back = lt(T::zero(), dz);
+  SurfacePoint<T> sp;
+  for (int a = 0; a < 3; ++a) {
+    sp.p[a] = ray.org[a] + t * ray.dir[a];
+    sp.n[a] = h.back ? -n[a] : n[a];
+    sp.v[a] = ray.dir[a] * ray.inv_len;
+  }
+  h.p = sp.p;
+  h.n = sp.n;
+  h.v = sp.v;
+  h.r = mirror_dir(sp);
+  h.t = refract_dir(sp, h.back ? eta_leave : eta_enter);
+  h.w_mirror = w * mirror;
+  h.w_refract = w * transmit;
+  h.mirror = lt(T::zero(), mirror) && lt(T::zero(), h.w_mirror);
+  h.refract = lt(T::zero(), transmit) && lt(T::zero(), h.w_refract);
+  return h;
 }
 
 // What a lit frame needs beyond the geometry: the bounce depth and the background as format
@@ -597,34 +619,24 @@ struct LitWork {
 // hit whose material's weight x (mirror or transmit) is above 0, while depth < max_bounces.
 template <class T>
 BouncePacket<T> bounce_packet(const Geometry<T>& g, TreeRay kind, uint32_t hit_mask,
-                              const std::array<SurfacePoint<T>, kPacketRays>& sp,
-                              const std::array<Hit<T>, kPacketRays>& hits,
-                              const std::array<T, kPacketRays>& wt, uint32_t depth,
+                              const std::array<HitGeometry<T>, kPacketRays>& hg,
+                              const std::array<Hit<T>, kPacketRays>& hits, uint32_t depth,
                               const LitParams<T>& lp) {
   BouncePacket<T> b;
   b.kind = kind;
   b.lim.t_lo = g.t_eps;
   b.lim.any_hit = false;
+  const bool mirror = kind == TreeRay::kMirror;
   for (int r = 0; r < kPacketRays; ++r) {
     b.lim.t_hi[r] = T::inf();
     b.weight[r] = T::zero();
     if (!(hit_mask >> r & 1) || depth >= lp.max_bounces) continue;
-    const uint32_t mat = sp[r].material;
-    const T x = kind == TreeRay::kMirror ? g.mirror[mat] : g.transmit[mat];
-    if (!lt(T::zero(), x)) continue;  // not a mirror (not transparent), or NaN
-    const T wx = wt[r] * x;
-    if (!lt(T::zero(), wx)) continue;  // the weight underflowed: nothing to see
-    b.rays[r].org = sp[r].p;
-    if (kind == TreeRay::kMirror) {
-      b.rays[r].dir = mirror_dir(sp[r]);
-    } else {
-      // The ray leaves the medium through the triangle's back (d'z > 0), else enters it.
-      const bool leaving = lt(T::zero(), hits[r].dz);
-      b.rays[r].dir = refract_dir(sp[r], leaving ? g.eta_leave[mat] : g.eta_enter[mat]);
-    }
+    if (!(mirror ? hg[r].mirror : hg[r].refract)) continue;  // no such ray, or a weight of 0
+    b.rays[r].org = hg[r].p;
+    b.rays[r].dir = mirror ? hg[r].r : hg[r].t;
     b.rays[r].inv_len = T::one();
     b.lim.exclude[r] = hits[r].tri;
-    b.weight[r] = wx;
+    b.weight[r] = mirror ? hg[r].w_mirror : hg[r].w_refract;
     b.mask |= 1u << r;
   }
   return b;
@@ -643,6 +655,7 @@ LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>&
   w.kind = kind;
   w.mask = mask;
   std::array<SurfacePoint<T>, kPacketRays> sp;
+  std::array<HitGeometry<T>, kPacketRays> hg;
   std::array<T, kPacketRays> wt;
   for (int r = 0; r < kPacketRays; ++r) {
     wt[r] = weight ? (*weight)[r] : T::one();
@@ -654,8 +667,11 @@ LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>&
     }
     w.hit_mask |= 1u << r;
     w.tri[r] = hits[r].tri;
-    sp[r] = surface_point(g, rays[r], hits[r]);
-    w.base[r] = ambient_terms(g, sp[r].material, wt[r]);
+    const uint32_t mat = g.material[hits[r].tri];
+    hg[r] = hit_geometry(rays[r], hits[r].t, hits[r].dz, g.normal[hits[r].tri], g.eta_enter[mat],
+                         g.eta_leave[mat], wt[r], g.mirror[mat], g.transmit[mat]);
+    sp[r] = {hg[r].p, hg[r].n, hg[r].v, mat};
+    w.base[r] = ambient_terms(g.kd[mat], wt[r]);
   }
   for (size_t li = 0; li < g.lights.size(); ++li) {
     ShadowPacket<T> p;
@@ -664,7 +680,9 @@ LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>&
     for (int r = 0; r < kPacketRays; ++r) {
       p.lim.t_hi[r] = T::inf();
       if (!(w.hit_mask >> r & 1)) continue;
-      const LightSample<T> ls = light_sample(g, sp[r], g.lights[li], wt[r]);
+      const uint32_t mat = sp[r].material;
+      const LightSample<T> ls =
+          light_sample(sp[r], g.lights[li], g.kd[mat], g.ks[mat], g.ns[mat], wt[r]);
       if (!ls.present) continue;
       p.rays[r] = ls.ray;
       p.lim.exclude[r] = hits[r].tri;
@@ -674,8 +692,8 @@ LitWork<T> lit_work(const Geometry<T>& g, const std::array<Ray<T>, kPacketRays>&
     }
     if (p.mask != 0) w.shadows.push_back(p);
   }
-  w.bounce = bounce_packet(g, TreeRay::kMirror, w.hit_mask, sp, hits, wt, depth, lp);
-  w.refract = bounce_packet(g, TreeRay::kRefract, w.hit_mask, sp, hits, wt, depth, lp);
+  w.bounce = bounce_packet(g, TreeRay::kMirror, w.hit_mask, hg, hits, depth, lp);
+  w.refract = bounce_packet(g, TreeRay::kRefract, w.hit_mask, hg, hits, depth, lp);
   return w;
 }
 

@@ -83,7 +83,11 @@ SurfacePoint<T> hit_point(const Geometry<T>& g, const Ray<T>& r, Hit<T>* hit) {
   EXPECT_EQ(trace_packet(g, {r, r, r, r}, 0x1u, hits, c), 0u);
   EXPECT_GE(hits[0].tri, 0);
   *hit = hits[0];
-  return surface_point(g, r, hits[0]);
+  const uint32_t mat = g.material[hits[0].tri];
+  const HitGeometry<T> h =
+      hit_geometry(r, hits[0].t, hits[0].dz, g.normal[hits[0].tri], g.eta_enter[mat],
+                   g.eta_leave[mat], T::one(), g.mirror[mat], g.transmit[mat]);
+  return {h.p, h.n, h.v, mat};
 }
 
 // Snell's law in double for a unit view v and the facing unit normal n, e = n1 / n2.
