@@ -13,6 +13,11 @@ rtl/core/rc_credit_fifo.sv
 rtl/core/rc_fp_to_u8.sv
 rtl/core/rc_trav_step.sv
 rtl/core/rc_ray_setup.sv
+rtl/core/rc_delay.sv
+rtl/core/rc_delay_ram.sv
+rtl/core/rc_fp_to_fix.sv
+rtl/core/rc_hit_geom.sv
+rtl/core/rc_light_term.sv
 rtl/core/rc_shade_unit.sv
 rtl/core/rc_xform_unit.sv
 rtl/core/rc_isect_unit.sv
@@ -37,7 +42,6 @@ rtl/core/rc_shade_seq.sv
 rtl/core/rc_core_status.sv
 rtl/core/rc_thread_mon.sv
 rtl/core/rc_core.sv
-rtl/board/rc_delay.sv
 rtl/board/rc_ray_gen.sv
 rtl/board/rc_board_rom.sv
 rtl/board/rc_board.sv

@@ -1,6 +1,7 @@
 // The core's datapath units (rtl/core/rc_trav_step.sv, rc_ray_setup.sv, rc_shade_unit.sv,
-// rc_fp_to_u8.sv), verilated at fp24, against the golden model functions they implement
-// (tb/golden/trace.hpp: trav_step, setup_ray, shade, to_u8), bit for bit.
+// rc_fp_to_u8.sv, rc_hit_geom.sv, rc_light_term.sv, rc_fp_to_fix.sv), verilated at fp24, against
+// the golden model functions they implement (tb/golden/trace.hpp: trav_step, setup_ray, shade,
+// to_u8, hit_geometry, light_sample with ambient_terms, light_fixed), bit for bit.
 //
 // The handshake units are driven through their valid/ready ports with seeded random valid_i gaps
 // and seeded random ready_i low periods. Every operation carries a sequence number as its tag;
@@ -18,7 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "Vrc_fp_to_fix.h"
 #include "Vrc_fp_to_u8.h"
+#include "Vrc_hit_geom.h"
+#include "Vrc_light_term.h"
 #include "Vrc_ray_setup.h"
 #include "Vrc_shade_unit.h"
 #include "Vrc_trav_step.h"
@@ -515,6 +519,315 @@ ShadeUnit::In shade_case(Gen& g) {
   return in;
 }
 
+////////////////////////
+// rc_hit_geom        //
+////////////////////////
+
+struct HitGeomUnit {
+  struct In {
+    Ray<T> ray;
+    T t, dz;
+    std::array<T, 3> n;
+    T eta_enter, eta_leave, w, mirror, transmit;
+  };
+  struct Out {
+    bool back = false, mirror = false, refract = false;
+    std::array<uint32_t, 3> p{}, n{}, v{}, r{}, refr{};
+    uint32_t w_mirror = 0, w_refract = 0;
+    bool operator==(const Out& o) const {
+      return back == o.back && mirror == o.mirror && refract == o.refract && p == o.p && n == o.n &&
+             v == o.v && r == o.r && refr == o.refr && w_mirror == o.w_mirror &&
+             w_refract == o.w_refract;
+    }
+  };
+  static void init(Vrc_hit_geom&) {}
+  static void drive(Vrc_hit_geom& d, const In& in) {
+    for (int a = 0; a < 3; ++a) {
+      put_field(d.org_i, a * kW, kW, in.ray.org[a].bits());
+      put_field(d.dir_i, a * kW, kW, in.ray.dir[a].bits());
+      put_field(d.n_i, a * kW, kW, in.n[a].bits());
+    }
+    d.inv_len_i = in.ray.inv_len.bits();
+    d.t_i = in.t.bits();
+    d.dz_i = in.dz.bits();
+    d.eta_enter_i = in.eta_enter.bits();
+    d.eta_leave_i = in.eta_leave.bits();
+    d.w_i = in.w.bits();
+    d.mirror_i = in.mirror.bits();
+    d.transmit_i = in.transmit.bits();
+  }
+  static Out read(const Vrc_hit_geom& d) {
+    Out o;
+    o.back = d.back_o;
+    o.mirror = d.mirror_o;
+    o.refract = d.refract_o;
+    for (int a = 0; a < 3; ++a) {
+      o.p[a] = static_cast<uint32_t>(get_field(d.p_o, a * kW, kW));
+      o.n[a] = static_cast<uint32_t>(get_field(d.n_o, a * kW, kW));
+      o.v[a] = static_cast<uint32_t>(get_field(d.v_o, a * kW, kW));
+      o.r[a] = static_cast<uint32_t>(get_field(d.r_o, a * kW, kW));
+      o.refr[a] = static_cast<uint32_t>(get_field(d.refr_o, a * kW, kW));
+    }
+    o.w_mirror = d.w_mirror_o;
+    o.w_refract = d.w_refract_o;
+    return o;
+  }
+  static Out golden(const In& in) {
+    const HitGeometry<T> h = hit_geometry(in.ray, in.t, in.dz, in.n, in.eta_enter, in.eta_leave,
+                                          in.w, in.mirror, in.transmit);
+    Out o;
+    o.back = h.back;
+    o.mirror = h.mirror;
+    o.refract = h.refract;
+    for (int a = 0; a < 3; ++a) {
+      o.p[a] = h.p[a].bits();
+      o.n[a] = h.n[a].bits();
+      o.v[a] = h.v[a].bits();
+      o.r[a] = h.r[a].bits();
+      o.refr[a] = h.t[a].bits();
+    }
+    o.w_mirror = h.w_mirror.bits();
+    o.w_refract = h.w_refract.bits();
+    return o;
+  }
+  static std::string show(const In& in, const Out& got, const Out& want) {
+    std::ostringstream s;
+    const auto vec = [&](const char* name, const std::array<T, 3>& v) {
+      s << " " << name << " " << v[0].hex() << " " << v[1].hex() << " " << v[2].hex();
+    };
+    s << "hit_geometry(";
+    vec("org", in.ray.org);
+    vec("dir", in.ray.dir);
+    vec("n", in.n);
+    s << " inv_len " << in.ray.inv_len.hex() << " t " << in.t.hex() << " dz " << in.dz.hex()
+      << " eta " << in.eta_enter.hex() << " " << in.eta_leave.hex() << " w " << in.w.hex()
+      << " mirror " << in.mirror.hex() << " transmit " << in.transmit.hex() << "):";
+    const auto out = [&](const char* who, const Out& o) {
+      s << "\n  " << who << ": back " << o.back << " mirror " << o.mirror << " refract "
+        << o.refract << " w " << fb(o.w_mirror).hex() << " " << fb(o.w_refract).hex();
+      const std::pair<const char*, const std::array<uint32_t, 3>*> vs[] = {
+          {"p", &o.p}, {"n", &o.n}, {"v", &o.v}, {"r", &o.r}, {"refr", &o.refr}};
+      for (const auto& [name, v] : vs)
+        s << " " << name << " " << fb((*v)[0]).hex() << " " << fb((*v)[1]).hex() << " "
+          << fb((*v)[2]).hex();
+    };
+    out("rtl", got);
+    out("golden", want);
+    return s.str();
+  }
+};
+
+// A random unit vector, rounded to the format per component.
+std::array<T, 3> unit_vector(Gen& g) {
+  double x, y, z, l2;
+  do {
+    x = 2.0 * g.unit() - 1.0;
+    y = 2.0 * g.unit() - 1.0;
+    z = 2.0 * g.unit() - 1.0;
+    l2 = x * x + y * y + z * z;
+  } while (l2 < 1e-6 || l2 > 1.0);
+  const double l = std::sqrt(l2);
+  return {T::from_double(x / l), T::from_double(y / l), T::from_double(z / l)};
+}
+
+// Hits as the core makes them (a unit normal, d'z = d.n for it, inv_len = 1 / |d|, weights and
+// factors in [0, 1], ratios of refraction from 1 to 2.5), with the encodings nudged, and now and
+// then special values, zeros, weights that underflow or random bit patterns in any field.
+HitGeomUnit::In hit_geom_case(Gen& g) {
+  HitGeomUnit::In in;
+  in.n = unit_vector(g);
+  const double scale = std::ldexp(1.0, static_cast<int>(g.u(9)) - 4);
+  std::array<T, 3> d = unit_vector(g);
+  for (int a = 0; a < 3; ++a) {
+    in.ray.org[a] = g.moderate(6);
+    in.ray.dir[a] = T::from_double(d[a].to_double() * scale);
+  }
+  double len2 = 0.0, dn = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    len2 += in.ray.dir[a].to_double() * in.ray.dir[a].to_double();
+    dn += in.ray.dir[a].to_double() * in.n[a].to_double();
+  }
+  in.ray.inv_len = g.near(T::from_double(1.0 / std::sqrt(len2)));
+  in.t = g.moderate(6, true);
+  in.dz = g.near(T::from_double(dn));
+  const double ior = g.chance(8) ? 1.0 : 1.0 + 1.5 * g.unit();
+  in.eta_leave = T::from_double(ior);
+  in.eta_enter = T::from_double(1.0 / in.eta_leave.to_double());
+  in.w = g.chance(4) ? T::one() : T::from_double(g.unit());
+  in.mirror = g.chance(2) ? T::zero() : T::from_double(g.unit());
+  in.transmit = g.chance(2) ? T::zero() : T::from_double(g.unit());
+  switch (g.u(16)) {
+    case 0: in.w = fb(0x010000u | (g.u(1u << 16))); break;  // tiny: w * factor underflows
+    case 1: in.mirror = g.special(); break;
+    case 2: in.transmit = g.special(); break;
+    case 3: in.dz = g.chance(2) ? g.zero_enc() : g.special(); break;
+    case 4: in.eta_leave = g.chance(2) ? g.special() : g.moderate(8); break;
+    case 5: in.t = g.special(); break;
+    case 6: in.n[g.u(3)] = g.special(); break;
+    case 7: in.ray.dir[g.u(3)] = g.zero_enc(); break;
+    case 8: {  // anything at all
+      for (int a = 0; a < 3; ++a) {
+        in.ray.org[a] = g.any();
+        in.ray.dir[a] = g.any();
+        in.n[a] = g.any();
+      }
+      in.ray.inv_len = g.any();
+      in.t = g.any();
+      in.dz = g.any();
+      in.eta_enter = g.any();
+      in.eta_leave = g.any();
+      in.w = g.any();
+      in.mirror = g.any();
+      in.transmit = g.any();
+      break;
+    }
+    default: break;
+  }
+  return in;
+}
+
+////////////////////////
+// rc_light_term      //
+////////////////////////
+
+constexpr int kFixW = static_cast<int>(spec::kLightFixedBits) + 1;
+
+struct LightTermUnit {
+  struct In {
+    SurfacePoint<T> sp;
+    Geometry<T>::Light light;
+    std::array<T, 3> kd, ks;
+    uint32_t ns = 0;
+    T w;
+  };
+  struct Out {
+    bool present = false;
+    std::array<uint32_t, 3> lh{};  // compared when present (the golden model has none else)
+    uint32_t t_hi = 0;
+    std::array<uint32_t, 3> term{}, amb{};
+    bool operator==(const Out& o) const {
+      return present == o.present && lh == o.lh && t_hi == o.t_hi && term == o.term && amb == o.amb;
+    }
+  };
+  static void init(Vrc_light_term& d) { d.ambient_i = kAmbient.bits(); }
+  static void drive(Vrc_light_term& d, const In& in) {
+    for (int a = 0; a < 3; ++a) {
+      put_field(d.p_i, a * kW, kW, in.sp.p[a].bits());
+      put_field(d.n_i, a * kW, kW, in.sp.n[a].bits());
+      put_field(d.v_i, a * kW, kW, in.sp.v[a].bits());
+      put_field(d.lpos_i, a * kW, kW, in.light.pos[a].bits());
+      put_field(d.lcol_i, a * kW, kW, in.light.color[a].bits());
+      put_field(d.kd_i, a * kW, kW, in.kd[a].bits());
+      put_field(d.ks_i, a * kW, kW, in.ks[a].bits());
+    }
+    d.dir_light_i = in.light.directional;
+    d.ns_i = static_cast<uint16_t>(in.ns);
+    d.w_i = in.w.bits();
+  }
+  static Out read(const Vrc_light_term& d) {
+    Out o;
+    o.present = d.present_o;
+    o.t_hi = d.t_hi_o;
+    for (int a = 0; a < 3; ++a) {
+      if (o.present) o.lh[a] = static_cast<uint32_t>(get_field(d.lh_o, a * kW, kW));
+      o.term[a] = static_cast<uint32_t>(get_field(d.term_o, a * kFixW, kFixW));
+      o.amb[a] = static_cast<uint32_t>(get_field(d.amb_o, a * kFixW, kFixW));
+    }
+    return o;
+  }
+  static Out golden(const In& in) {
+    const LightSample<T> ls = light_sample(in.sp, in.light, in.kd, in.ks, in.ns, in.w);
+    Out o;
+    o.present = ls.present;
+    o.t_hi = ls.t_hi.bits();
+    o.term = ls.term;
+    o.amb = ambient_terms(in.kd, in.w);
+    if (ls.present)
+      for (int a = 0; a < 3; ++a) o.lh[a] = ls.ray.dir[a].bits();
+    return o;
+  }
+  static std::string show(const In& in, const Out& got, const Out& want) {
+    std::ostringstream s;
+    const auto vec = [&](const char* name, const std::array<T, 3>& v) {
+      s << " " << name << " " << v[0].hex() << " " << v[1].hex() << " " << v[2].hex();
+    };
+    s << "light_sample(";
+    vec("p", in.sp.p);
+    vec("n", in.sp.n);
+    vec("v", in.sp.v);
+    s << (in.light.directional ? " directional" : " point");
+    vec("pos", in.light.pos);
+    vec("colour", in.light.color);
+    vec("kd", in.kd);
+    vec("ks", in.ks);
+    s << " ns " << in.ns << " w " << in.w.hex() << "):";
+    const auto out = [&](const char* who, const Out& o) {
+      s << "\n  " << who << ": present " << o.present << " t_hi " << fb(o.t_hi).hex() << " lh "
+        << fb(o.lh[0]).hex() << " " << fb(o.lh[1]).hex() << " " << fb(o.lh[2]).hex() << " term "
+        << o.term[0] << " " << o.term[1] << " " << o.term[2] << " ambient " << o.amb[0] << " "
+        << o.amb[1] << " " << o.amb[2];
+    };
+    out("rtl", got);
+    out("golden", want);
+    return s.str();
+  }
+};
+
+// Hits and lights as the lighting makes them: a unit normal facing the view (dot(N, V) < 0 mostly),
+// a point light at 0.01 to 100 units or a directional light, colours up to 2, Kd and Ks in [0, 1],
+// exponents over the whole range (small ones often); now and then a light at the hit point,
+// special values or random bit patterns.
+LightTermUnit::In light_term_case(Gen& g) {
+  LightTermUnit::In in;
+  in.sp.n = unit_vector(g);
+  in.sp.v = unit_vector(g);
+  if (dot3(in.sp.n, in.sp.v).to_double() > 0.0 && !g.chance(8))
+    for (T& x : in.sp.v) x = -x;
+  for (T& x : in.sp.p) x = g.moderate(5);
+  in.light.directional = g.chance(4);
+  const std::array<T, 3> toward = unit_vector(g);
+  if (in.light.directional) {
+    in.light.pos = toward;
+  } else {
+    const double dist = std::ldexp(1.0, static_cast<int>(g.u(14)) - 7) * (1.0 + g.unit());
+    for (int a = 0; a < 3; ++a)
+      in.light.pos[a] = T::from_double(in.sp.p[a].to_double() + dist * toward[a].to_double());
+  }
+  for (int c = 0; c < 3; ++c) {
+    in.light.color[c] = T::from_double(2.0 * g.unit());
+    in.kd[c] = T::from_double(g.unit());
+    in.ks[c] = g.chance(3) ? T::zero() : T::from_double(g.unit());
+  }
+  in.ns = g.chance(2) ? g.u(64) : g.u(1u << spec::kLightExponentBits);
+  in.w = g.chance(2) ? T::one() : T::from_double(g.unit());
+  switch (g.u(24)) {
+    case 0: in.light.pos = in.sp.p; break;  // dist2 = 0
+    case 1: in.sp.n[g.u(3)] = g.special(); break;
+    case 2: in.sp.v[g.u(3)] = g.special(); break;
+    case 3: in.light.pos[g.u(3)] = g.special(); break;
+    case 4: in.ks[g.u(3)] = g.special(); break;
+    case 5: in.w = g.chance(2) ? g.special() : fb(0x010000u | g.u(1u << 16)); break;
+    case 6: {  // anything at all
+      for (int a = 0; a < 3; ++a) {
+        in.sp.p[a] = g.any();
+        in.sp.n[a] = g.any();
+        in.sp.v[a] = g.any();
+        in.light.pos[a] = g.any();
+        in.light.color[a] = g.any();
+        in.kd[a] = g.any();
+        in.ks[a] = g.any();
+      }
+      in.w = g.any();
+      break;
+    }
+    case 7:  // the half vector's degenerate case: lh = v
+      if (in.light.directional) in.light.pos = in.sp.v;
+      break;
+    default: break;
+  }
+  return in;
+}
+
 /////////////////////////////
 // Runners                 //
 /////////////////////////////
@@ -669,6 +982,134 @@ TEST(CoreUnits, ShadeTiming) {
   constexpr int64_t lat = 4 * kMul + kCmp + kAdd + kToU8Latency + 1;
   run_timing<Vrc_shade_unit, ShadeUnit>("rc_shade_unit", lat, static_cast<uint64_t>(lat + 1),
                                         shade_case);
+}
+
+TEST(CoreUnits, HitGeomRandom) {
+  uint64_t back = 0, tir = 0, refracted = 0, mirrors = 0, refracts = 0, underflow = 0;
+  run_random<Vrc_hit_geom, HitGeomUnit>(
+      "rc_hit_geom", "hit_geometry<fp24>", 300'000, 505, hit_geom_case,
+      [&](const HitGeomUnit::In& in) {
+        const HitGeometry<T> h = hit_geometry(in.ray, in.t, in.dz, in.n, in.eta_enter, in.eta_leave,
+                                              in.w, in.mirror, in.transmit);
+        back += h.back ? 1 : 0;
+        bool same = true;
+        for (int a = 0; a < 3; ++a) same = same && h.t[a].bits() == h.r[a].bits();
+        tir += same && h.back ? 1 : 0;
+        refracted += same ? 0 : 1;
+        mirrors += h.mirror ? 1 : 0;
+        refracts += h.refract ? 1 : 0;
+        underflow += lt(T::zero(), in.w) && lt(T::zero(), in.mirror) && !h.mirror ? 1 : 0;
+      });
+  std::printf(
+      "[info] rc_hit_geom coverage: back %llu of 300000; total internal reflection (leaving) "
+      "%llu; refracted %llu; mirror rays %llu, refraction rays %llu; mirror weights that "
+      "underflow %llu\n",
+      static_cast<unsigned long long>(back), static_cast<unsigned long long>(tir),
+      static_cast<unsigned long long>(refracted), static_cast<unsigned long long>(mirrors),
+      static_cast<unsigned long long>(refracts), static_cast<unsigned long long>(underflow));
+  EXPECT_GT(back, 100'000u);
+  EXPECT_GT(tir, 10'000u);
+  EXPECT_GT(refracted, 150'000u);
+  EXPECT_GT(mirrors, 100'000u);
+  EXPECT_GT(refracts, 100'000u);
+  EXPECT_GT(underflow, 1'000u);
+}
+
+// rc_hit_geom runs a hit's components through one slice: one hit per 3 cycles.
+TEST(CoreUnits, HitGeomTiming) {
+  // Input register; V, N.V, the two sums of c, c * c, 1 - c^2, e^2 (1 - c^2), q, sqrt(q), g,
+  // g * N, e V - g N; y and z behind x; the output FIFO. The FIFO holds latency / 3 + 2 entries.
+  constexpr int64_t kSqrt = spec::kFpStagesSqrt;
+  constexpr int64_t lat = 1 + 2 * kMul + 1 + 2 * kAdd + 3 * kMul + 4 * kAdd + kSqrt + 2 + 1;
+  run_timing<Vrc_hit_geom, HitGeomUnit>("rc_hit_geom", lat, static_cast<uint64_t>(lat / 3 + 2),
+                                        hit_geom_case, 3);
+}
+
+TEST(CoreUnits, LightTermRandom) {
+  uint64_t present = 0, directional = 0, spec_on = 0, high_ns = 0, saturated = 0;
+  run_random<Vrc_light_term, LightTermUnit>(
+      "rc_light_term", "light_sample<fp24> and ambient_terms", 200'000, 606, light_term_case,
+      [&](const LightTermUnit::In& in) {
+        const LightSample<T> ls = light_sample(in.sp, in.light, in.kd, in.ks, in.ns, in.w);
+        present += ls.present ? 1 : 0;
+        directional += in.light.directional ? 1 : 0;
+        bool spec_seen = false;
+        for (int c = 0; c < 3; ++c) saturated += ls.term[c] == kLightOne ? 1 : 0;
+        if (ls.present) {
+          std::array<T, 3> hv;
+          for (int a = 0; a < 3; ++a) hv[a] = ls.ray.dir[a] - in.sp.v[a];
+          const T nh = dot3(in.sp.n, hv) * (T::one() / sqrt(dot3(hv, hv)));
+          spec_seen = lt(T::zero(), nh) && lt(T::zero(), pow_int(nh, in.ns));
+        }
+        spec_on += spec_seen ? 1 : 0;
+        high_ns += in.ns >= 512 ? 1 : 0;
+      });
+  std::printf(
+      "[info] rc_light_term coverage: present %llu of 200000, directional lights %llu, a "
+      "specular term above 0 %llu, exponents >= 512 %llu, saturated channels %llu\n",
+      static_cast<unsigned long long>(present), static_cast<unsigned long long>(directional),
+      static_cast<unsigned long long>(spec_on), static_cast<unsigned long long>(high_ns),
+      static_cast<unsigned long long>(saturated));
+  EXPECT_GT(present, 60'000u);
+  EXPECT_LT(present, 160'000u);
+  EXPECT_GT(directional, 30'000u);
+  EXPECT_GT(spec_on, 20'000u);
+  EXPECT_GT(high_ns, 30'000u);
+  EXPECT_GT(saturated, 1'000u);
+}
+
+// rc_light_term takes one job per 3 cycles.
+TEST(CoreUnits, LightTermTiming) {
+  // Input register; L, L.L, its two sums, sqrt, 1 / sqrt, lh, N.lh's product, H, H.H, its two
+  // sums, sqrt, 1 / sqrt, nh, the power (a multiply and a cycle per bit), ks * spec,
+  // kd cos + ks spec, * colour, * w, fix; y and z behind x; the output FIFO.
+  constexpr int64_t kSqrt = spec::kFpStagesSqrt;
+  constexpr int64_t kBits = spec::kLightExponentBits;
+  constexpr int64_t lat = 1 + kAdd + kMul + 1 + 2 * kAdd + kSqrt + kDiv + kMul + kAdd + kMul + 1 +
+                          2 * kAdd + kSqrt + kDiv + kMul + kBits * (kMul + 1) + kMul + kAdd +
+                          2 * kMul + 1 + 2 + 1;
+  run_timing<Vrc_light_term, LightTermUnit>("rc_light_term", lat,
+                                            static_cast<uint64_t>(lat / 3 + 2), light_term_case, 3);
+}
+
+// rc_fp_to_fix (valid-only, latency 1) against light_fixed<fp24>() for every fp24 encoding.
+TEST(CoreUnits, ToFixExhaustive) {
+  VerilatedTb<Vrc_fp_to_fix> tb;
+  tb->valid_i = 0;
+  tb.reset(2);
+  tb.tick();
+  uint64_t cases = 0, mismatches = 0, ties = 0;
+  uint32_t prev = 0;
+  bool prev_valid = false;
+  for (uint32_t x = 0; x <= T::kMask + 1; ++x) {
+    const bool last = x > T::kMask;
+    tb->valid_i = !last;
+    tb->x_i = last ? 0 : x;
+    tb.eval();
+    if (prev_valid) {
+      if (!tb->valid_o) {
+        if (++mismatches <= 10) ADD_FAILURE() << "valid_o missing for " << fb(prev).hex();
+      } else {
+        const uint32_t want = light_fixed<T>(fb(prev));
+        ++cases;
+        if (tb->fix_o != want && ++mismatches <= 10)
+          ADD_FAILURE() << "light_fixed(" << fb(prev).hex() << "): rtl " << tb->fix_o << ", golden "
+                        << want;
+        const double v = fb(prev).to_double() * kLightOne;
+        ties += v > 0.0 && v < kLightOne && v - std::floor(v) == 0.5 ? 1 : 0;
+      }
+    }
+    tb.tick();
+    prev = x;
+    prev_valid = !last;
+  }
+  report_cases("rtl rc_fp_to_fix vs golden light_fixed<fp24> (every fp24 encoding)", cases,
+               mismatches);
+  std::printf("[info] rc_fp_to_fix: %llu encodings at an exact x.5 tie\n",
+              static_cast<unsigned long long>(ties));
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_EQ(cases, uint64_t{T::kMask} + 1);
+  EXPECT_GT(ties, 1000u);
 }
 
 // rc_fp_to_u8 (valid-only, latency kToU8Latency) against to_u8<fp24>() for every fp24 encoding.

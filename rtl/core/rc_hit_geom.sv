@@ -1,0 +1,493 @@
+// rc_hit_geom: the geometry of one hit for the lighting (docs/architecture.md, "Lighting",
+// "Reflection", "Refraction"): the hit point, the facing normal, the view direction, the mirror
+// and refraction directions, and the children's weights.
+//
+// Contract
+// - Function: exactly rc::hit_geometry() (tb/golden/trace.hpp), bit for bit. Vector ports hold
+//   component a (0 = x, 1 = y, 2 = z) at [a*W +: W] (W = 1 + ExpW + FracW), flat as in
+//   rc_ray_setup (Yosys reads no multi-dimensional packed arrays).
+//     back_o   = lt(0, dz_i)                          (the ray leaves through the triangle's back)
+//     p_o[a]   = org_i[a] + t_i * dir_i[a]
+//     n_o[a]   = back_o ? -n_i[a] : n_i[a]           (a sign flip)
+//     v_o[a]   = dir_i[a] * inv_len_i
+//     c        = (n_o[0]*v_o[0] + n_o[1]*v_o[1]) + n_o[2]*v_o[2]
+//     r_o[a]   = v_o[a] - (c + c) * n_o[a]
+//     e        = back_o ? eta_leave_i : eta_enter_i
+//     q        = 1 - (e * e) * (1 - c * c)
+//     refr_o[a] = lt(0, q) ? e * v_o[a] - (e * c + sqrt(q)) * n_o[a] : r_o[a]
+//     w_mirror_o  = w_i * mirror_i,    mirror_o  = lt(0, mirror_i) && lt(0, w_mirror_o)
+//     w_refract_o = w_i * transmit_i,  refract_o = lt(0, transmit_i) && lt(0, w_refract_o)
+//   Every operation is the format's (rc_fp_mul, rc_fp_add, rc_fp_sqrt), in exactly this order
+//   and with these operands.
+// - Structure: component-serial. A taken hit waits in an input register for three cycles
+//   (slots 0, 1, 2) while its x, y and z enter the vector operations, one component a cycle;
+//   every vector value then travels as a stream of three consecutive components and every scalar
+//   as one value at a fixed cycle. A scalar that a vector operation needs (t, inv_len, the
+//   mirror term's c + c, the refraction term's g) is held for the three cycles of the stream by
+//   a register loaded in the stream's first cycle. One multiplier takes c * c, e * e and e * c in
+//   consecutive cycles, one the two weights. Each value reaches its operation through rc_delay
+//   lines (rc_delay_ram memories where they are long) of the lengths the fp units' latencies give
+//   (the times below, in cycles after slot 0),
+//   so a stream's timing never depends on its neighbours: a hit may follow another after three
+//   cycles or after any gap. The last stage collects each stream's three components into the
+//   output FIFO.
+// - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
+//   when valid_i & ready_o. ready_o is the AND of two flip-flops (rc_credit_fifo's credit
+//   register and the input register's free flag) and never depends on valid_i or ready_i;
+//   valid_o never depends on ready_i. Results leave in order; nothing is dropped or duplicated.
+//   tag_i travels with the operation to tag_o.
+// - Latency: TimeT + 4 cycles from the taking cycle to valid_o when the FIFO is empty and ready_i
+//   is 1 (71 at the default fp_stages: mul 4, add 6, sqrt 10): input register 1, then the chain
+//   V, N.V, the sum c, c * c, 1 - c * c, e^2 (1 - c^2), q, sqrt(q), g, g * N, e * V - g * N
+//   (TimeT = 67 after slot 0), two cycles for the stream's y and z, the FIFO's output register 1.
+// - Throughput: one hit per 3 cycles while ready_i is 1 (ready_o rises again in the hit's last
+//   cycle in the input register). The FIFO holds Latency / 3 + 2 entries, enough credits for
+//   every operation in flight at that rate.
+// - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1).
+// - Illegal input: none; every bit pattern of the data inputs is legal.
+// - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, the
+//   stream-start chain, the delay memories' pointers, the FIFO's pointers and credit count); data
+//   registers have no reset.
+module rc_hit_geom #(
+  parameter int unsigned ExpW  = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW = rc_pkg::Fp24FracW,
+  parameter int unsigned TagW  = 8
+) (
+  input  logic                        clk_i,
+  input  logic                        rst_ni,
+  // Input handshake.
+  input  logic                        valid_i,
+  output logic                        ready_o,
+  input  logic [TagW-1:0]             tag_i,
+  input  logic [3*(ExpW+FracW+1)-1:0] org_i,        // x, y, z
+  input  logic [3*(ExpW+FracW+1)-1:0] dir_i,        // x, y, z
+  input  logic [ExpW+FracW:0]         inv_len_i,
+  input  logic [ExpW+FracW:0]         t_i,          // the hit's distance
+  input  logic [ExpW+FracW:0]         dz_i,         // the hit's d'z
+  input  logic [3*(ExpW+FracW+1)-1:0] n_i,          // the triangle's unit normal
+  input  logic [ExpW+FracW:0]         eta_enter_i,  // the material's 1 / ior
+  input  logic [ExpW+FracW:0]         eta_leave_i,  // the material's ior
+  input  logic [ExpW+FracW:0]         w_i,          // the ray's weight
+  input  logic [ExpW+FracW:0]         mirror_i,     // the material's mirror weight
+  input  logic [ExpW+FracW:0]         transmit_i,   // the material's refraction weight
+  // Output handshake.
+  output logic                        valid_o,
+  input  logic                        ready_i,
+  output logic [TagW-1:0]             tag_o,
+  output logic                        back_o,
+  output logic [3*(ExpW+FracW+1)-1:0] p_o,
+  output logic [3*(ExpW+FracW+1)-1:0] n_o,
+  output logic [3*(ExpW+FracW+1)-1:0] v_o,
+  output logic [3*(ExpW+FracW+1)-1:0] r_o,
+  output logic [3*(ExpW+FracW+1)-1:0] refr_o,
+  output logic [ExpW+FracW:0]         w_mirror_o,
+  output logic [ExpW+FracW:0]         w_refract_o,
+  output logic                        mirror_o,
+  output logic                        refract_o
+);
+
+  localparam int unsigned W  = ExpW + FracW + 1;
+  localparam int unsigned Lm = rc_pkg::FpStagesMul;
+  localparam int unsigned La = rc_pkg::FpStagesAdd;
+  localparam int unsigned Ls = rc_pkg::FpStagesSqrt;
+
+  // The cycle (after slot 0) at which each value, or a stream's x, leaves its operation.
+  localparam int unsigned TimeV   = Lm;                // V = d * inv_len; also t * d
+  localparam int unsigned TimeP   = TimeV + La;        // P = o + t * d
+  localparam int unsigned TimeNv  = TimeV + Lm;        // N * V, per component
+  localparam int unsigned TimeS01 = TimeNv + 1 + La;   // N.x V.x + N.y V.y (issued with y)
+  localparam int unsigned TimeC   = TimeS01 + La;      // c
+  localparam int unsigned TimeK   = TimeC + La;        // c + c
+  localparam int unsigned TimeKn  = TimeK + Lm;        // (c + c) * N
+  localparam int unsigned TimeR   = TimeKn + La;       // R = V - (c + c) N
+  localparam int unsigned TimeS   = TimeC + Lm + La;   // 1 - c * c
+  localparam int unsigned TimeX   = TimeS + Lm;        // e^2 * (1 - c^2)
+  localparam int unsigned TimeQ   = TimeX + La;        // q
+  localparam int unsigned TimeSq  = TimeQ + Ls;        // sqrt(q)
+  localparam int unsigned TimeG   = TimeSq + La;       // g = e c + sqrt(q)
+  localparam int unsigned TimeGn  = TimeG + Lm;        // g * N and e * V
+  localparam int unsigned TimeT   = TimeGn + La;       // e V - g N
+  localparam int unsigned TimeOut = TimeT + 2;         // z of the last streams: the FIFO write
+  localparam int unsigned Latency = TimeT + 4;
+  localparam int unsigned FifoDepth = Latency / 3 + 2;
+  localparam int unsigned OutW = TagW + 1 + 15 * W + 2 * W + 2;
+
+  localparam logic [W-1:0] One = {1'b0, 1'b0, {(ExpW - 1) {1'b1}}, {FracW{1'b0}}};
+  localparam logic [W-1:0] SignBit = {1'b1, {(W - 1) {1'b0}}};
+
+  if (TagW < 1) begin : g_param_check
+    $error("rc_hit_geom: TagW must be at least 1");
+  end
+
+  // lt(+0, x): x is positive, not zero (an exponent field of 0 reads as zero) and not NaN.
+  function automatic logic pos(input logic [W-1:0] x);
+    pos = ~x[W-1] & (|x[W-2 -: ExpW]) & ~((&x[W-2 -: ExpW]) & (|x[FracW-1:0]));
+  endfunction
+
+  ////////////////////////////////////////////
+  // Input register, slots, stream starts   //
+  ////////////////////////////////////////////
+
+  // slot_q: one-hot, bit k = cycle k of the hit held in the input register (all zero: empty).
+  // in_free_q: the register is free (empty, or in its hit's last cycle), registered from slot_q's
+  // next value so ready_o is the AND of two flip-flops.
+  logic [2:0] slot_q, slot_d;
+  logic       in_free_q, take, credit;
+
+  assign ready_o = credit & in_free_q;
+  assign take    = valid_i & ready_o;
+  assign slot_d  = take ? 3'b001 : slot_q << 1;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      slot_q    <= '0;
+      in_free_q <= 1'b1;
+    end else begin
+      slot_q    <= slot_d;
+      in_free_q <= ~|slot_d | slot_d[2];
+    end
+  end
+
+  // The input register (loaded when taken; no reset: slot_q says when it holds a hit).
+  logic [TagW-1:0] tag_q;
+  logic [3*W-1:0]  org_q, dir_q, n_q;
+  logic [W-1:0]    ilen_q, t_q, eta_q, w_q, mirror_q, transmit_q;
+  logic            back_q;
+
+  always_ff @(posedge clk_i) begin
+    if (take) begin
+      tag_q      <= tag_i;
+      org_q      <= org_i;
+      dir_q      <= dir_i;
+      n_q        <= n_i;
+      ilen_q     <= inv_len_i;
+      t_q        <= t_i;
+      back_q     <= pos(dz_i);
+      eta_q      <= pos(dz_i) ? eta_leave_i : eta_enter_i;
+      w_q        <= w_i;
+      mirror_q   <= mirror_i;
+      transmit_q <= transmit_i;
+    end
+  end
+
+  // first_q[k]: a hit's slot 0 was k + 1 cycles ago. at[T]: a hit is at time T (cycles after its
+  // slot 0) in this cycle; a vector operation issued at time T (its x; y and z follow) is busy
+  // when at[T] | at[T + 1] | at[T + 2] = strm[T].
+  logic [TimeOut-1:0] first_q;
+  logic [TimeOut:0]   at;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) first_q <= '0;
+    else first_q <= {first_q[TimeOut-2:0], slot_q[0]};
+  end
+  assign at = {first_q, slot_q[0]};
+
+  logic [TimeOut-2:0] strm;
+  for (genvar t = 0; t <= TimeOut - 2; t++) begin : g_strm
+    assign strm[t] = at[t] | at[t+1] | at[t+2];
+  end
+
+  // The components entering in this slot (slot 0: x, 1: y, 2: z).
+  logic [W-1:0] o_s, d_s, nf_s;
+  always_comb begin
+    o_s  = org_q[0 +: W];
+    d_s  = dir_q[0 +: W];
+    nf_s = n_q[0 +: W];
+    if (slot_q[1]) begin
+      o_s  = org_q[W +: W];
+      d_s  = dir_q[W +: W];
+      nf_s = n_q[W +: W];
+    end else if (slot_q[2]) begin
+      o_s  = org_q[2*W +: W];
+      d_s  = dir_q[2*W +: W];
+      nf_s = n_q[2*W +: W];
+    end
+    if (back_q) nf_s = nf_s ^ SignBit;
+  end
+
+  // A scalar held for its stream's three cycles: the value in the first, then a register's.
+  // (Three instances below: c + c, c and g.)
+  logic [W-1:0] k_res, k_hold_q, k_b;
+  logic [W-1:0] c_res, c_hold_q, c_b;
+  logic [W-1:0] g_res, g_hold_q, g_b;
+
+  assign k_b = at[TimeK] ? k_res : k_hold_q;
+  assign c_b = at[TimeC] ? c_res : c_hold_q;
+  assign g_b = at[TimeG] ? g_res : g_hold_q;
+
+  always_ff @(posedge clk_i) begin
+    if (at[TimeK]) k_hold_q <= k_res;
+    if (at[TimeC]) c_hold_q <= c_res;
+    if (at[TimeG]) g_hold_q <= g_res;
+  end
+
+  //////////////////////////////////////////////////
+  // P = o + t d, V = d inv_len, c = N.V           //
+  //////////////////////////////////////////////////
+
+  logic [W-1:0] td, v_s, p_s, o_d, n_dv, nv, nv_d1, nv_dz, s01;
+  logic         td_vld, v_vld, p_vld, nv_vld, s01_vld, c_vld;
+
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_td (
+    .clk_i, .rst_ni, .valid_i(strm[0]), .a_i(t_q), .b_i(d_s), .valid_o(td_vld), .res_o(td)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_v (
+    .clk_i, .rst_ni, .valid_i(strm[0]), .a_i(d_s), .b_i(ilen_q), .valid_o(v_vld), .res_o(v_s)
+  );
+  rc_delay #(.Width(W), .Cycles(TimeV)) u_dly_o (.clk_i, .data_i(o_s), .data_o(o_d));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_p (
+    .clk_i, .rst_ni, .valid_i(strm[TimeV]), .sub_i(1'b0), .a_i(o_d), .b_i(td),
+    .valid_o(p_vld), .res_o(p_s)
+  );
+
+  // The facing normal's stream, tapped where the operations need it.
+  logic [W-1:0] n_at_v, n_at_k, n_at_g, n_at_t;
+  rc_delay #(.Width(W), .Cycles(TimeV)) u_dly_n0 (.clk_i, .data_i(nf_s), .data_o(n_at_v));
+  rc_delay_ram #(.Width(W), .Cycles(TimeK - TimeV)) u_dly_n1 (
+    .clk_i, .rst_ni, .data_i(n_at_v), .data_o(n_at_k)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeK)) u_dly_n2 (
+    .clk_i, .rst_ni, .data_i(n_at_k), .data_o(n_at_g)
+  );
+  rc_delay #(.Width(W), .Cycles(TimeT - TimeG)) u_dly_n3 (
+    .clk_i, .data_i(n_at_g), .data_o(n_at_t)
+  );
+  assign n_dv = n_at_v;
+
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_nv (
+    .clk_i, .rst_ni, .valid_i(strm[TimeV]), .a_i(n_dv), .b_i(v_s), .valid_o(nv_vld),
+    .res_o(nv)
+  );
+  // N.x V.x + N.y V.y as y's product leaves; then + N.z V.z.
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_nvx (.clk_i, .data_i(nv), .data_o(nv_d1));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_s01 (
+    .clk_i, .rst_ni, .valid_i(at[TimeNv + 1]), .sub_i(1'b0), .a_i(nv_d1), .b_i(nv),
+    .valid_o(s01_vld), .res_o(s01)
+  );
+  rc_delay #(.Width(W), .Cycles(TimeS01 - TimeNv - 2)) u_dly_nvz (
+    .clk_i, .data_i(nv), .data_o(nv_dz)
+  );
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_c (
+    .clk_i, .rst_ni, .valid_i(at[TimeS01]), .sub_i(1'b0), .a_i(s01), .b_i(nv_dz),
+    .valid_o(c_vld), .res_o(c_res)
+  );
+
+  //////////////////////////////////////
+  // R = V - (c + c) N                //
+  //////////////////////////////////////
+
+  logic [W-1:0] kn, v_at_kn, r_s, v_at_g;
+  logic         k_vld, kn_vld, r_vld;
+
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_k (
+    .clk_i, .rst_ni, .valid_i(at[TimeC]), .sub_i(1'b0), .a_i(c_res), .b_i(c_res),
+    .valid_o(k_vld), .res_o(k_res)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_kn (
+    .clk_i, .rst_ni, .valid_i(strm[TimeK]), .a_i(k_b), .b_i(n_at_k), .valid_o(kn_vld),
+    .res_o(kn)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeKn - TimeV)) u_dly_v0 (
+    .clk_i, .rst_ni, .data_i(v_s), .data_o(v_at_kn)
+  );
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_r (
+    .clk_i, .rst_ni, .valid_i(strm[TimeKn]), .sub_i(1'b1), .a_i(v_at_kn), .b_i(kn),
+    .valid_o(r_vld), .res_o(r_s)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeKn)) u_dly_v1 (
+    .clk_i, .rst_ni, .data_i(v_at_kn), .data_o(v_at_g)
+  );
+
+  ////////////////////////////////////////////////////////////
+  // Refraction: q = 1 - e^2 (1 - c^2), T = e V - g N       //
+  ////////////////////////////////////////////////////////////
+
+  // e (the input register's, one of the two ratios) as a stream: at slot k the register holds it,
+  // so a delay line of T gives it at T, T + 1, T + 2.
+  logic [W-1:0] e_at_c, e_at_g;
+  rc_delay_ram #(.Width(W), .Cycles(TimeC)) u_dly_e0 (
+    .clk_i, .rst_ni, .data_i(eta_q), .data_o(e_at_c));
+  rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeC)) u_dly_e1 (
+    .clk_i, .rst_ni, .data_i(e_at_c), .data_o(e_at_g)
+  );
+
+  // One multiplier: c * c at TimeC, e * e at TimeC + 1, e * c at TimeC + 2.
+  logic [W-1:0] m5_a, m5_b, m5, e2_d, ec_d, s_res, x_res, q_res, sq_res;
+  logic         m5_vld, s_vld, x_vld, q_vld, sq_vld, g_vld;
+  assign m5_a = at[TimeC] ? c_b : e_at_c;
+  assign m5_b = at[TimeC + 1] ? e_at_c : c_b;
+
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_m5 (
+    .clk_i, .rst_ni, .valid_i(strm[TimeC]), .a_i(m5_a), .b_i(m5_b), .valid_o(m5_vld),
+    .res_o(m5)
+  );
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_s (
+    .clk_i, .rst_ni, .valid_i(at[TimeC + Lm]), .sub_i(1'b1), .a_i(One), .b_i(m5),
+    .valid_o(s_vld), .res_o(s_res)
+  );
+  rc_delay #(.Width(W), .Cycles(TimeS - (TimeC + 1 + Lm))) u_dly_e2 (
+    .clk_i, .data_i(m5), .data_o(e2_d)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_x (
+    .clk_i, .rst_ni, .valid_i(at[TimeS]), .a_i(e2_d), .b_i(s_res), .valid_o(x_vld),
+    .res_o(x_res)
+  );
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_q (
+    .clk_i, .rst_ni, .valid_i(at[TimeX]), .sub_i(1'b1), .a_i(One), .b_i(x_res),
+    .valid_o(q_vld), .res_o(q_res)
+  );
+  rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
+    .clk_i, .rst_ni, .valid_i(at[TimeQ]), .a_i(q_res), .valid_o(sq_vld), .res_o(sq_res)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeSq - (TimeC + 2 + Lm))) u_dly_ec (
+    .clk_i, .rst_ni, .data_i(m5), .data_o(ec_d)
+  );
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_g (
+    .clk_i, .rst_ni, .valid_i(at[TimeSq]), .sub_i(1'b0), .a_i(ec_d), .b_i(sq_res),
+    .valid_o(g_vld), .res_o(g_res)
+  );
+
+  // Total internal reflection (not lt(0, q), NaN too), held for the stream and carried to T.
+  logic tir_hold_q, tir_b, tir_at_t;
+  assign tir_b = at[TimeQ] ? !pos(q_res) : tir_hold_q;
+  always_ff @(posedge clk_i) begin
+    if (at[TimeQ]) tir_hold_q <= !pos(q_res);
+  end
+  rc_delay_ram #(.Width(1), .Cycles(TimeT - TimeQ)) u_dly_tir (
+    .clk_i, .rst_ni, .data_i(tir_b), .data_o(tir_at_t)
+  );
+
+  logic [W-1:0] gn, ev, t_s;
+  logic         gn_vld, ev_vld, t_vld;
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_gn (
+    .clk_i, .rst_ni, .valid_i(strm[TimeG]), .a_i(g_b), .b_i(n_at_g), .valid_o(gn_vld),
+    .res_o(gn)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ev (
+    .clk_i, .rst_ni, .valid_i(strm[TimeG]), .a_i(e_at_g), .b_i(v_at_g), .valid_o(ev_vld),
+    .res_o(ev)
+  );
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_t (
+    .clk_i, .rst_ni, .valid_i(strm[TimeGn]), .sub_i(1'b1), .a_i(ev), .b_i(gn),
+    .valid_o(t_vld), .res_o(t_s)
+  );
+
+  //////////////////////////////////////
+  // Weights                          //
+  //////////////////////////////////////
+
+  // w * mirror at slot 0, w * transmit at slot 1; each with lt(0, factor) beside it.
+  logic [W-1:0] wf_s, wx, wx_at_t;
+  logic         fpos_s, fpos_d, wok, wok_at_t, wx_vld;
+  assign wf_s   = slot_q[1] ? transmit_q : mirror_q;
+  assign fpos_s = pos(wf_s);
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_w (
+    .clk_i, .rst_ni, .valid_i(slot_q[0] | slot_q[1]), .a_i(w_q), .b_i(wf_s), .valid_o(wx_vld),
+    .res_o(wx)
+  );
+  rc_delay #(.Width(1), .Cycles(Lm)) u_dly_fpos (.clk_i, .data_i(fpos_s), .data_o(fpos_d));
+  assign wok = fpos_d & pos(wx);
+  rc_delay_ram #(.Width(W + 1), .Cycles(TimeT - Lm)) u_dly_w (
+    .clk_i, .rst_ni, .data_i({wok, wx}), .data_o({wok_at_t, wx_at_t})
+  );
+
+  //////////////////////////////////////
+  // Collect the streams at TimeT     //
+  //////////////////////////////////////
+
+  logic [W-1:0] p_at_t, v_at_t, r_at_t, refr_s;
+  rc_delay_ram #(.Width(W), .Cycles(TimeT - TimeP)) u_dly_p (
+    .clk_i, .rst_ni, .data_i(p_s), .data_o(p_at_t)
+  );
+  rc_delay #(.Width(W), .Cycles(TimeT - TimeG)) u_dly_v2 (
+    .clk_i, .data_i(v_at_g), .data_o(v_at_t)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeT - TimeR)) u_dly_r (
+    .clk_i, .rst_ni, .data_i(r_s), .data_o(r_at_t)
+  );
+  assign refr_s = tir_at_t ? r_at_t : t_s;
+
+  // The tag and back travel from the input register (held for slots 0..2: the delay to TimeOut
+  // gives slot 2's copy).
+  logic [TagW-1:0] tag_at_out;
+  logic            back_at_out;
+  rc_delay_ram #(.Width(TagW + 1), .Cycles(TimeOut - 2)) u_dly_tag (
+    .clk_i, .rst_ni, .data_i({tag_q, back_q}), .data_o({tag_at_out, back_at_out})
+  );
+
+  // Two cycles of each stream: x two cycles back, y one, z now.
+  localparam int unsigned SerW = 5 * W + W + 1;
+  logic [SerW-1:0] ser, ser_d1_q, ser_d2_q;
+  assign ser = {p_at_t, n_at_t, v_at_t, r_at_t, refr_s, wx_at_t, wok_at_t};
+  always_ff @(posedge clk_i) begin
+    ser_d1_q <= ser;
+    ser_d2_q <= ser_d1_q;
+  end
+
+  // Each stream's three components (x two cycles back) in a vector port's layout, k = 0 .. 4: p,
+  // n, v, r, refr.
+  logic [5*3*W-1:0] vecs;
+  for (genvar k = 0; k < 5; k++) begin : g_vec
+    assign vecs[(4-k)*3*W +: 3*W] = {ser[SerW-1-k*W -: W], ser_d1_q[SerW-1-k*W -: W],
+                                     ser_d2_q[SerW-1-k*W -: W]};
+  end
+
+  logic [OutW-1:0] out_d;
+  assign out_d = {tag_at_out, back_at_out, vecs, ser_d2_q[W:1], ser_d1_q[W:1], ser_d2_q[0],
+                  ser_d1_q[0]};
+
+  rc_credit_fifo #(
+    .Width   (OutW),
+    .Depth   (FifoDepth),
+    .MemArray(1'b1)
+  ) u_fifo (
+    .clk_i,
+    .rst_ni,
+    .take_i    (take),
+    .credit_o  (credit),
+    .wr_valid_i(at[TimeOut]),
+    .wr_data_i (out_d),
+    .valid_o,
+    .ready_i,
+    .data_o    ({tag_o, back_o, p_o, n_o, v_o, r_o, refr_o, w_mirror_o, w_refract_o, mirror_o,
+                 refract_o})
+  );
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  // Simulation-only: 1 from the first clock edge after a reset (rc_checks_on).
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+
+  // Each operation's result leaves at the time the schedule above gives it: the valid chains of
+  // the fp units agree with the stream starts, so no value is read at the wrong cycle.
+  Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               td_vld == strm[TimeV] && v_vld == strm[TimeV] &&
+                               p_vld == strm[TimeP] && nv_vld == strm[TimeNv] &&
+                               s01_vld == at[TimeS01] && c_vld == at[TimeC] &&
+                               k_vld == at[TimeK] && kn_vld == strm[TimeKn] &&
+                               r_vld == strm[TimeR] && m5_vld == strm[TimeC + Lm] &&
+                               s_vld == at[TimeS] && x_vld == at[TimeX] && q_vld == at[TimeQ] &&
+                               sq_vld == at[TimeSq] && g_vld == at[TimeG] &&
+                               gn_vld == strm[TimeGn] && ev_vld == strm[TimeGn] &&
+                               t_vld == strm[TimeT] && wx_vld == (at[Lm] | at[Lm + 1]));
+  // Stream starts are at least three cycles apart (one hit per three cycles at most), so a held
+  // scalar is never overwritten within its stream.
+  StartsApart_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  slot_q[0] |-> !first_q[0] && !first_q[1]);
+  // in_free_q is the input register's freedom as its slot counter says.
+  InFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             in_free_q == (~|slot_q | slot_q[2]));
+  // ready_o must be known once out of reset (upstream acts on it).
+  ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 !$isunknown(ready_o));
+`endif
+
+endmodule

@@ -1,0 +1,564 @@
+// rc_light_term: one light as seen from one hit (docs/architecture.md, "Lighting"): the shadow
+// ray's direction and limit, whether the light is in front of the surface, the light's terms
+// and the hit's ambient terms, in the lighting's fixed point.
+//
+// Contract
+// - Function: exactly rc::light_sample() and rc::ambient_terms() (tb/golden/trace.hpp), bit for
+//   bit. Vector ports hold component or channel a at [a*W +: W] (W = 1 + ExpW + FracW), the
+//   fixed-point ports channel c at [c*(F+1) +: F+1] (F = FixBits).
+//     point light (dir_light_i = 0), L = lpos_i - p_i:
+//       dist2 = (L.x*L.x + L.y*L.y) + L.z*L.z,  inv = 1 / sqrt(dist2)
+//       lh_o[a] = L[a] * inv,  t_hi_o = dist2 * inv
+//     directional light: lh_o = lpos_i (the unit vector toward it), t_hi_o = +inf
+//     cos = (n.x*lh.x + n.y*lh.y) + n.z*lh.z,  present_o = lt(0, cos)
+//     H[a] = lh[a] - v_i[a],  nh = ((n.H sums as for cos)) * (1 / sqrt(H.H))
+//     spec = lt(0, nh) ? pow(nh, ns_i) : +0     (square and multiply, low bit first, ExpBits
+//                                                 bits: r = 1, b = nh; per bit: r = r * b if
+//                                                 set, then b = b * b)
+//     term_o[c] = present_o ? fix(((kd_i[c] * cos + ks_i[c] * spec) * lcol_i[c]) * w_i) : 0
+//     amb_o[c]  = fix((kd_i[c] * ambient_i) * w_i)
+//   with fix() of rc_fp_to_fix. Every operation is the format's (rc_fp_mul, rc_fp_add,
+//   rc_fp_sqrt, rc_fp_div), in this order and with these operands.
+// - Structure: component-serial, as rc_hit_geom: a taken job waits three cycles in an input
+//   register while its x, y and z (or red, green and blue) enter the vector operations one a
+//   cycle; every vector value then travels as a stream of three consecutive components, every
+//   scalar as one value at a fixed cycle after the job's first (the Time* constants below). A
+//   scalar that a vector operation needs (inv, cos, spec) is held for its stream's three cycles by
+//   a register loaded in the first. The power is ExpBits multipliers, one per bit, each taking
+//   b * b and then r * b in consecutive cycles. Values wait for their operations in rc_delay lines
+//   (short) and rc_delay_ram memories (long), so a job may follow another after three cycles or
+//   after any gap. The last stage collects each stream's three components into the output FIFO.
+// - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure, as rc_hit_geom (ready_o
+//   is the AND of two flip-flops; valid_o never depends on ready_i; results leave in order;
+//   tag_i travels with the operation to tag_o).
+// - Latency: TimeOut + 2 cycles from the taking cycle to valid_o when the FIFO is empty and
+//   ready_i is 1 (169 at the default fp_stages: mul 4, add 6, sqrt 10, div 11, and ExpBits 10).
+// - Throughput: one job per 3 cycles while ready_i is 1. The FIFO holds Latency / 3 + 2 entries.
+// - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1); FixBits:
+//   the fixed point's fraction bits (docs/spec.toml [light] fixed_bits); ExpBits: the exponent's
+//   bits ([light] exponent_bits).
+// - Illegal input: none; every bit pattern of the data inputs is legal.
+// - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, the
+//   stream-start chain, the delay memories' pointers, the FIFO's pointers and credit count).
+module rc_light_term #(
+  parameter int unsigned ExpW    = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW   = rc_pkg::Fp24FracW,
+  parameter int unsigned TagW    = 8,
+  parameter int unsigned FixBits = rc_pkg::LightFixedBits,
+  parameter int unsigned ExpBits = rc_pkg::LightExponentBits
+) (
+  input  logic                        clk_i,
+  input  logic                        rst_ni,
+  input  logic [ExpW+FracW:0]         ambient_i,    // ambient as a format value (a constant)
+  // Input handshake.
+  input  logic                        valid_i,
+  output logic                        ready_o,
+  input  logic [TagW-1:0]             tag_i,
+  input  logic [3*(ExpW+FracW+1)-1:0] p_i,          // the hit point
+  input  logic [3*(ExpW+FracW+1)-1:0] n_i,          // the facing unit normal
+  input  logic [3*(ExpW+FracW+1)-1:0] v_i,          // the unit view direction
+  input  logic                        dir_light_i,  // a directional light
+  input  logic [3*(ExpW+FracW+1)-1:0] lpos_i,       // its position, or the vector toward it
+  input  logic [3*(ExpW+FracW+1)-1:0] lcol_i,       // its colour x intensity
+  input  logic [3*(ExpW+FracW+1)-1:0] kd_i,
+  input  logic [3*(ExpW+FracW+1)-1:0] ks_i,
+  input  logic [ExpBits-1:0]          ns_i,         // the material's integer exponent
+  input  logic [ExpW+FracW:0]         w_i,          // the ray's weight
+  // Output handshake.
+  output logic                        valid_o,
+  input  logic                        ready_i,
+  output logic [TagW-1:0]             tag_o,
+  output logic                        present_o,
+  output logic [3*(ExpW+FracW+1)-1:0] lh_o,
+  output logic [ExpW+FracW:0]         t_hi_o,
+  output logic [3*(FixBits+1)-1:0]    term_o,
+  output logic [3*(FixBits+1)-1:0]    amb_o
+);
+
+  localparam int unsigned W  = ExpW + FracW + 1;
+  localparam int unsigned FW = FixBits + 1;
+  localparam int unsigned Lm = rc_pkg::FpStagesMul;
+  localparam int unsigned La = rc_pkg::FpStagesAdd;
+  localparam int unsigned Ls = rc_pkg::FpStagesSqrt;
+  localparam int unsigned Ld = rc_pkg::FpStagesDiv;
+
+  // The cycle (after slot 0) at which each value, or a stream's x, leaves its operation.
+  localparam int unsigned TimeL    = La;                      // L = lpos - p
+  localparam int unsigned TimeLl   = TimeL + Lm;              // L * L
+  localparam int unsigned TimeD01  = TimeLl + 1 + La;         // L.x^2 + L.y^2
+  localparam int unsigned TimeD2   = TimeD01 + La;            // dist2
+  localparam int unsigned TimeSq1  = TimeD2 + Ls;             // sqrt(dist2)
+  localparam int unsigned TimeInv  = TimeSq1 + Ld;            // 1 / sqrt(dist2)
+  localparam int unsigned TimeLh   = TimeInv + Lm;            // lh, dist
+  localparam int unsigned TimeCos  = TimeLh + Lm + 1 + 2 * La;
+  localparam int unsigned TimeH    = TimeLh + La;             // H = lh - v
+  localparam int unsigned TimeHh   = TimeH + Lm + 1 + 2 * La; // H.H and N.H
+  localparam int unsigned TimeIh   = TimeHh + Ls + Ld;        // 1 / sqrt(H.H)
+  localparam int unsigned TimeNh   = TimeIh + Lm;             // nh
+  localparam int unsigned PowStep  = Lm + 1;
+  localparam int unsigned TimeSpec = TimeNh + ExpBits * PowStep;
+  localparam int unsigned TimeSum  = TimeSpec + Lm + La;      // kd cos + ks spec
+  localparam int unsigned TimeX    = TimeSum + 2 * Lm;        // (...) * lcol * w
+  localparam int unsigned TimeFix  = TimeX + 1;
+  localparam int unsigned TimeOut  = TimeFix + 2;
+  localparam int unsigned Latency  = TimeOut + 2;
+  localparam int unsigned FifoDepth = Latency / 3 + 2;
+  localparam int unsigned OutW = TagW + 1 + 3 * W + W + 6 * FW;
+
+  localparam logic [W-1:0] One     = {1'b0, 1'b0, {(ExpW - 1) {1'b1}}, {FracW{1'b0}}};
+  localparam logic [W-1:0] PosInf  = {1'b0, {ExpW{1'b1}}, {FracW{1'b0}}};
+  localparam logic [W-1:0] PosZero = '0;
+
+  if (TagW < 1 || ExpBits < 1) begin : g_param_check
+    $error("rc_light_term: TagW and ExpBits must be at least 1");
+  end
+
+  // lt(+0, x): x is positive, not zero (an exponent field of 0 reads as zero) and not NaN.
+  function automatic logic pos(input logic [W-1:0] x);
+    pos = ~x[W-1] & (|x[W-2 -: ExpW]) & ~((&x[W-2 -: ExpW]) & (|x[FracW-1:0]));
+  endfunction
+
+  ////////////////////////////////////////////
+  // Input register, slots, stream starts   //
+  ////////////////////////////////////////////
+
+  logic [2:0] slot_q, slot_d;
+  logic       in_free_q, take, credit;
+
+  assign ready_o = credit & in_free_q;
+  assign take    = valid_i & ready_o;
+  assign slot_d  = take ? 3'b001 : slot_q << 1;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      slot_q    <= '0;
+      in_free_q <= 1'b1;
+    end else begin
+      slot_q    <= slot_d;
+      in_free_q <= ~|slot_d | slot_d[2];
+    end
+  end
+
+  logic [TagW-1:0]    tag_q;
+  logic [3*W-1:0]     p_q, n_q, v_q, lpos_q, lcol_q, kd_q, ks_q;
+  logic [ExpBits-1:0] ns_q;
+  logic [W-1:0]       w_q;
+  logic               dirl_q;
+
+  always_ff @(posedge clk_i) begin
+    if (take) begin
+      tag_q  <= tag_i;
+      p_q    <= p_i;
+      n_q    <= n_i;
+      v_q    <= v_i;
+      lpos_q <= lpos_i;
+      lcol_q <= lcol_i;
+      kd_q   <= kd_i;
+      ks_q   <= ks_i;
+      ns_q   <= ns_i;
+      w_q    <= w_i;
+      dirl_q <= dir_light_i;
+    end
+  end
+
+  // at[T]: a job is at time T (cycles after its slot 0); strm[T]: a stream issued at T is busy.
+  logic [TimeOut-1:0] first_q;
+  logic [TimeOut:0]   at;
+  logic [TimeOut-2:0] strm;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) first_q <= '0;
+    else first_q <= {first_q[TimeOut-2:0], slot_q[0]};
+  end
+  assign at = {first_q, slot_q[0]};
+  for (genvar t = 0; t <= TimeOut - 2; t++) begin : g_strm
+    assign strm[t] = at[t] | at[t+1] | at[t+2];
+  end
+
+  // The components (channels) entering in this slot.
+  logic [W-1:0] p_s, n_s, v_s, lp_s, lc_s, kd_s, ks_s;
+  always_comb begin
+    p_s  = p_q[0 +: W];
+    n_s  = n_q[0 +: W];
+    v_s  = v_q[0 +: W];
+    lp_s = lpos_q[0 +: W];
+    lc_s = lcol_q[0 +: W];
+    kd_s = kd_q[0 +: W];
+    ks_s = ks_q[0 +: W];
+    for (int unsigned k = 1; k < 3; k++) begin
+      if (slot_q[k]) begin
+        p_s  = p_q[k*W +: W];
+        n_s  = n_q[k*W +: W];
+        v_s  = v_q[k*W +: W];
+        lp_s = lpos_q[k*W +: W];
+        lc_s = lcol_q[k*W +: W];
+        kd_s = kd_q[k*W +: W];
+        ks_s = ks_q[k*W +: W];
+      end
+    end
+  end
+
+  // Scalars held for their stream's three cycles.
+  logic [W-1:0] inv_res, inv_hold_q, inv_b;
+  logic [W-1:0] cos_res, cos_hold_q, cos_b;
+  logic [W-1:0] spec_v, spec_hold_q, spec_b;
+  logic         pres_hold_q, pres_b;
+
+  assign inv_b  = at[TimeInv] ? inv_res : inv_hold_q;
+  assign cos_b  = at[TimeCos] ? cos_res : cos_hold_q;
+  assign spec_b = at[TimeSpec] ? spec_v : spec_hold_q;
+  assign pres_b = at[TimeCos] ? pos(cos_res) : pres_hold_q;
+
+  always_ff @(posedge clk_i) begin
+    if (at[TimeInv]) inv_hold_q <= inv_res;
+    if (at[TimeCos]) cos_hold_q <= cos_res;
+    if (at[TimeSpec]) spec_hold_q <= spec_v;
+    if (at[TimeCos]) pres_hold_q <= pos(cos_res);
+  end
+
+  //////////////////////////////////////////////////////////
+  // Toward the light: L, dist2, inv, lh, dist                //
+  //////////////////////////////////////////////////////////
+
+  logic [W-1:0] l_s, ll, ll_d1, ll_dz, d01, dist2, sq1, l_at_inv, d2_at_inv, lh_pt, dist_res;
+  logic         l_vld, ll_vld, d01_vld, d2_vld, sq1_vld, inv_vld, lh_vld, dist_vld;
+
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_l (
+    .clk_i, .rst_ni, .valid_i(strm[0]), .sub_i(1'b1), .a_i(lp_s), .b_i(p_s), .valid_o(l_vld),
+    .res_o(l_s)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ll (
+    .clk_i, .rst_ni, .valid_i(strm[TimeL]), .a_i(l_s), .b_i(l_s), .valid_o(ll_vld), .res_o(ll)
+  );
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_llx (.clk_i, .data_i(ll), .data_o(ll_d1));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_d01 (
+    .clk_i, .rst_ni, .valid_i(at[TimeLl + 1]), .sub_i(1'b0), .a_i(ll_d1), .b_i(ll),
+    .valid_o(d01_vld), .res_o(d01)
+  );
+  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_llz (.clk_i, .data_i(ll), .data_o(ll_dz));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_d2 (
+    .clk_i, .rst_ni, .valid_i(at[TimeD01]), .sub_i(1'b0), .a_i(d01), .b_i(ll_dz),
+    .valid_o(d2_vld), .res_o(dist2)
+  );
+  rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt_d (
+    .clk_i, .rst_ni, .valid_i(at[TimeD2]), .a_i(dist2), .valid_o(sq1_vld), .res_o(sq1)
+  );
+  rc_fp_div #(.ExpW(ExpW), .FracW(FracW), .Stages(Ld)) u_div_inv (
+    .clk_i, .rst_ni, .valid_i(at[TimeSq1]), .a_i(One), .b_i(sq1), .valid_o(inv_vld),
+    .res_o(inv_res)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeInv - TimeL)) u_dly_l (
+    .clk_i, .rst_ni, .data_i(l_s), .data_o(l_at_inv)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_lh (
+    .clk_i, .rst_ni, .valid_i(strm[TimeInv]), .a_i(l_at_inv), .b_i(inv_b), .valid_o(lh_vld),
+    .res_o(lh_pt)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeInv - TimeD2)) u_dly_d2 (
+    .clk_i, .rst_ni, .data_i(dist2), .data_o(d2_at_inv)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_dist (
+    .clk_i, .rst_ni, .valid_i(at[TimeInv]), .a_i(d2_at_inv), .b_i(inv_res), .valid_o(dist_vld),
+    .res_o(dist_res)
+  );
+
+  // A directional light: its vector and +inf instead (the light's kind and vector wait here).
+  logic [W-1:0] lp_at_lh, lh_s, thi_s;
+  logic         dirl_at_lh;
+  rc_delay_ram #(.Width(W + 1), .Cycles(TimeLh)) u_dly_lp (
+    .clk_i, .rst_ni, .data_i({dirl_q, lp_s}), .data_o({dirl_at_lh, lp_at_lh})
+  );
+  assign lh_s  = dirl_at_lh ? lp_at_lh : lh_pt;
+  assign thi_s = dirl_at_lh ? PosInf : dist_res;
+
+  //////////////////////////////////////////////////////////
+  // cos = N.lh, H = lh - V, N.H, H.H, nh                 //
+  //////////////////////////////////////////////////////////
+
+  logic [W-1:0] n_at_lh, v_at_lh, n_at_h, nl, nl_d1, nl_dz, c01;
+  logic         nl_vld, c01_vld, cos_vld;
+  rc_delay_ram #(.Width(2 * W), .Cycles(TimeLh)) u_dly_nv (
+    .clk_i, .rst_ni, .data_i({n_s, v_s}), .data_o({n_at_lh, v_at_lh})
+  );
+  rc_delay #(.Width(W), .Cycles(TimeH - TimeLh)) u_dly_nh (
+    .clk_i, .data_i(n_at_lh), .data_o(n_at_h)
+  );
+
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_nl (
+    .clk_i, .rst_ni, .valid_i(strm[TimeLh]), .a_i(n_at_lh), .b_i(lh_s), .valid_o(nl_vld),
+    .res_o(nl)
+  );
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_nlx (.clk_i, .data_i(nl), .data_o(nl_d1));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_c01 (
+    .clk_i, .rst_ni, .valid_i(at[TimeLh + Lm + 1]), .sub_i(1'b0), .a_i(nl_d1), .b_i(nl),
+    .valid_o(c01_vld), .res_o(c01)
+  );
+  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_nlz (.clk_i, .data_i(nl), .data_o(nl_dz));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_c2 (
+    .clk_i, .rst_ni, .valid_i(at[TimeLh + Lm + 1 + La]), .sub_i(1'b0), .a_i(c01), .b_i(nl_dz),
+    .valid_o(cos_vld), .res_o(cos_res)
+  );
+
+  logic [W-1:0] h_s, hh, hh_d1, hh_dz, h01, hsum, nhp, nhp_d1, nhp_dz, n01, nhd, sq2, ih, nhd_d;
+  logic [W-1:0] nh;
+  logic         h_vld, hh_vld, h01_vld, hsum_vld, nhp_vld, n01_vld, nhd_vld, sq2_vld, ih_vld;
+  logic         nh_vld;
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_h (
+    .clk_i, .rst_ni, .valid_i(strm[TimeLh]), .sub_i(1'b1), .a_i(lh_s), .b_i(v_at_lh),
+    .valid_o(h_vld), .res_o(h_s)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_hh (
+    .clk_i, .rst_ni, .valid_i(strm[TimeH]), .a_i(h_s), .b_i(h_s), .valid_o(hh_vld), .res_o(hh)
+  );
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_hhx (.clk_i, .data_i(hh), .data_o(hh_d1));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_h01 (
+    .clk_i, .rst_ni, .valid_i(at[TimeH + Lm + 1]), .sub_i(1'b0), .a_i(hh_d1), .b_i(hh),
+    .valid_o(h01_vld), .res_o(h01)
+  );
+  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_hhz (.clk_i, .data_i(hh), .data_o(hh_dz));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_h2 (
+    .clk_i, .rst_ni, .valid_i(at[TimeH + Lm + 1 + La]), .sub_i(1'b0), .a_i(h01), .b_i(hh_dz),
+    .valid_o(hsum_vld), .res_o(hsum)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_nhp (
+    .clk_i, .rst_ni, .valid_i(strm[TimeH]), .a_i(n_at_h), .b_i(h_s), .valid_o(nhp_vld),
+    .res_o(nhp)
+  );
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_nhx (.clk_i, .data_i(nhp), .data_o(nhp_d1));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_n01 (
+    .clk_i, .rst_ni, .valid_i(at[TimeH + Lm + 1]), .sub_i(1'b0), .a_i(nhp_d1), .b_i(nhp),
+    .valid_o(n01_vld), .res_o(n01)
+  );
+  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_nhz (.clk_i, .data_i(nhp), .data_o(nhp_dz));
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_n2 (
+    .clk_i, .rst_ni, .valid_i(at[TimeH + Lm + 1 + La]), .sub_i(1'b0), .a_i(n01), .b_i(nhp_dz),
+    .valid_o(nhd_vld), .res_o(nhd)
+  );
+  rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt_h (
+    .clk_i, .rst_ni, .valid_i(at[TimeHh]), .a_i(hsum), .valid_o(sq2_vld), .res_o(sq2)
+  );
+  rc_fp_div #(.ExpW(ExpW), .FracW(FracW), .Stages(Ld)) u_div_ih (
+    .clk_i, .rst_ni, .valid_i(at[TimeHh + Ls]), .a_i(One), .b_i(sq2), .valid_o(ih_vld),
+    .res_o(ih)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeIh - TimeHh)) u_dly_nhd (
+    .clk_i, .rst_ni, .data_i(nhd), .data_o(nhd_d)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_nh (
+    .clk_i, .rst_ni, .valid_i(at[TimeIh]), .a_i(nhd_d), .b_i(ih), .valid_o(nh_vld), .res_o(nh)
+  );
+
+  //////////////////////////////////////////////////////////
+  // spec = lt(0, nh) ? pow(nh, ns) : +0                  //
+  //////////////////////////////////////////////////////////
+
+  // Step i at T_i = TimeNh + i * PowStep: b * b at T_i, r * b at T_i + 1 in the step's
+  // multiplier. Word i of b_src and r_src holds b_i and r_i at T_i (flat: Yosys 0.23 reads no
+  // multi-dimensional packed arrays); r_src's word ExpBits is the power at TimeSpec.
+  logic [ExpBits*W-1:0]     b_src;
+  logic [(ExpBits+1)*W-1:0] r_src;
+  logic [ExpBits-1:0]       pow_vld_ok;
+  logic [ExpBits-1:0]       ns_at_nh;
+
+  rc_delay_ram #(.Width(ExpBits), .Cycles(TimeNh)) u_dly_ns (
+    .clk_i, .rst_ni, .data_i(ns_q), .data_o(ns_at_nh)
+  );
+
+  assign b_src[0 +: W] = nh;
+  assign r_src[0 +: W] = One;
+
+  for (genvar i = 0; i < ExpBits; i++) begin : g_pow
+    logic [W-1:0] b_d1_q, r_d1_q, ma, mb, prod, r_keep;
+    logic         mvld, bit_i;
+    always_ff @(posedge clk_i) begin
+      b_d1_q <= b_src[i*W +: W];
+      r_d1_q <= r_src[i*W +: W];
+    end
+    assign ma = at[TimeNh + i*PowStep + 1] ? r_d1_q : b_src[i*W +: W];
+    assign mb = at[TimeNh + i*PowStep + 1] ? b_d1_q : b_src[i*W +: W];
+    rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_pow (
+      .clk_i, .rst_ni, .valid_i(at[TimeNh + i*PowStep] | at[TimeNh + i*PowStep + 1]),
+      .a_i(ma), .b_i(mb), .valid_o(mvld), .res_o(prod)
+    );
+    assign pow_vld_ok[i] = mvld == (at[TimeNh + i*PowStep + Lm] |
+                                    at[TimeNh + i*PowStep + Lm + 1]);
+    // r_i waits from T_i + 1 to T_{i+1}; bit i of ns arrives at T_{i+1}.
+    rc_delay #(.Width(W), .Cycles(Lm)) u_dly_r (.clk_i, .data_i(r_d1_q), .data_o(r_keep));
+    rc_delay #(.Width(1), .Cycles((i + 1) * PowStep)) u_dly_bit (
+      .clk_i, .data_i(ns_at_nh[i]), .data_o(bit_i)
+    );
+    assign r_src[(i+1)*W +: W] = bit_i ? prod : r_keep;
+    // b_{i+1} leaves at T_i + Lm, one cycle before T_{i+1} (the last step's is not needed).
+    if (i + 1 < ExpBits) begin : g_next_b
+      rc_delay #(.Width(W), .Cycles(1)) u_dly_b (
+        .clk_i, .data_i(prod), .data_o(b_src[(i+1)*W +: W])
+      );
+    end
+  end
+
+  logic nh_pos_at_spec;
+  rc_delay #(.Width(1), .Cycles(ExpBits * PowStep)) u_dly_nhpos (
+    .clk_i, .data_i(pos(nh)), .data_o(nh_pos_at_spec)
+  );
+  assign spec_v = nh_pos_at_spec ? r_src[ExpBits*W +: W] : PosZero;
+
+  //////////////////////////////////////////////////////////
+  // Terms: fix(((kd cos + ks spec) * lcol) * w)           //
+  //////////////////////////////////////////////////////////
+
+  logic [W-1:0] kd_at_cos, kdcos, kdcos_d, ks_at_spec, ksspec, sum, lc_at_sum, sl, w_at_sl, x_s;
+  logic         kdcos_vld, ksspec_vld, sum_vld, sl_vld, x_vld;
+  rc_delay_ram #(.Width(W), .Cycles(TimeCos)) u_dly_kd (
+    .clk_i, .rst_ni, .data_i(kd_s), .data_o(kd_at_cos)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_kc (
+    .clk_i, .rst_ni, .valid_i(strm[TimeCos]), .a_i(kd_at_cos), .b_i(cos_b), .valid_o(kdcos_vld),
+    .res_o(kdcos)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeSpec - TimeCos)) u_dly_kdcos (
+    .clk_i, .rst_ni, .data_i(kdcos), .data_o(kdcos_d)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeSpec)) u_dly_ks (
+    .clk_i, .rst_ni, .data_i(ks_s), .data_o(ks_at_spec)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ks (
+    .clk_i, .rst_ni, .valid_i(strm[TimeSpec]), .a_i(ks_at_spec), .b_i(spec_b),
+    .valid_o(ksspec_vld), .res_o(ksspec)
+  );
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_sum (
+    .clk_i, .rst_ni, .valid_i(strm[TimeSpec + Lm]), .sub_i(1'b0), .a_i(kdcos_d), .b_i(ksspec),
+    .valid_o(sum_vld), .res_o(sum)
+  );
+  rc_delay_ram #(.Width(W), .Cycles(TimeSum)) u_dly_lc (
+    .clk_i, .rst_ni, .data_i(lc_s), .data_o(lc_at_sum)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_lc (
+    .clk_i, .rst_ni, .valid_i(strm[TimeSum]), .a_i(sum), .b_i(lc_at_sum), .valid_o(sl_vld),
+    .res_o(sl)
+  );
+  // w is the input register's: a delay of T gives it at T, T + 1, T + 2.
+  rc_delay_ram #(.Width(W), .Cycles(TimeSum + Lm)) u_dly_w (
+    .clk_i, .rst_ni, .data_i(w_q), .data_o(w_at_sl)
+  );
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_w (
+    .clk_i, .rst_ni, .valid_i(strm[TimeSum + Lm]), .a_i(sl), .b_i(w_at_sl), .valid_o(x_vld),
+    .res_o(x_s)
+  );
+  logic [FW-1:0] term_s;
+  logic          term_vld;
+  rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_t (
+    .clk_i, .rst_ni, .valid_i(strm[TimeX]), .x_i(x_s), .valid_o(term_vld), .fix_o(term_s)
+  );
+  logic pres_at_fix;
+  rc_delay_ram #(.Width(1), .Cycles(TimeFix - TimeCos)) u_dly_pres (
+    .clk_i, .rst_ni, .data_i(pres_b), .data_o(pres_at_fix)
+  );
+
+  //////////////////////////////////////////////////////////
+  // Ambient: fix((kd * ambient) * w)                      //
+  //////////////////////////////////////////////////////////
+
+  logic [W-1:0]  ka, w_at_ka, aw;
+  logic [FW-1:0] amb_s, amb_at_fix;
+  logic          ka_vld, aw_vld, amb_vld;
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ka (
+    .clk_i, .rst_ni, .valid_i(strm[0]), .a_i(kd_s), .b_i(ambient_i), .valid_o(ka_vld),
+    .res_o(ka)
+  );
+  rc_delay #(.Width(W), .Cycles(Lm)) u_dly_wa (.clk_i, .data_i(w_q), .data_o(w_at_ka));
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_aw (
+    .clk_i, .rst_ni, .valid_i(strm[Lm]), .a_i(ka), .b_i(w_at_ka), .valid_o(aw_vld), .res_o(aw)
+  );
+  rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_a (
+    .clk_i, .rst_ni, .valid_i(strm[2 * Lm]), .x_i(aw), .valid_o(amb_vld), .fix_o(amb_s)
+  );
+  rc_delay_ram #(.Width(FW), .Cycles(TimeFix - (2 * Lm + 1))) u_dly_amb (
+    .clk_i, .rst_ni, .data_i(amb_s), .data_o(amb_at_fix)
+  );
+
+  //////////////////////////////////////
+  // Collect the streams at TimeFix   //
+  //////////////////////////////////////
+
+  logic [W-1:0]    lh_at_fix, thi_at_fix;
+  logic [TagW-1:0] tag_at_out;
+  rc_delay_ram #(.Width(2 * W), .Cycles(TimeFix - TimeLh)) u_dly_lh (
+    .clk_i, .rst_ni, .data_i({lh_s, thi_s}), .data_o({lh_at_fix, thi_at_fix})
+  );
+  rc_delay_ram #(.Width(TagW), .Cycles(TimeOut - 2)) u_dly_tag (
+    .clk_i, .rst_ni, .data_i(tag_q), .data_o(tag_at_out)
+  );
+
+  // Per cycle: lh, the term (0 unless the light is in front), the ambient term, t_hi and present
+  // (scalars: meaningful in the x position).
+  localparam int unsigned SerW = 2 * W + 2 * FW + 1;
+  logic [SerW-1:0] ser, ser_d1_q, ser_d2_q;
+  assign ser = {lh_at_fix, pres_at_fix ? term_s : FW'(0), amb_at_fix, thi_at_fix, pres_at_fix};
+  always_ff @(posedge clk_i) begin
+    ser_d1_q <= ser;
+    ser_d2_q <= ser_d1_q;
+  end
+
+  logic [3*W-1:0]  lh_v;
+  logic [3*FW-1:0] term_v, amb_v;
+  assign lh_v   = {ser[SerW-1 -: W], ser_d1_q[SerW-1 -: W], ser_d2_q[SerW-1 -: W]};
+  assign term_v = {ser[SerW-W-1 -: FW], ser_d1_q[SerW-W-1 -: FW], ser_d2_q[SerW-W-1 -: FW]};
+  assign amb_v  = {ser[SerW-W-FW-1 -: FW], ser_d1_q[SerW-W-FW-1 -: FW],
+                   ser_d2_q[SerW-W-FW-1 -: FW]};
+
+  rc_credit_fifo #(
+    .Width   (OutW),
+    .Depth   (FifoDepth),
+    .MemArray(1'b1)
+  ) u_fifo (
+    .clk_i,
+    .rst_ni,
+    .take_i    (take),
+    .credit_o  (credit),
+    .wr_valid_i(at[TimeOut]),
+    .wr_data_i ({tag_at_out, ser_d2_q[0], lh_v, ser_d2_q[W:1], term_v, amb_v}),
+    .valid_o,
+    .ready_i,
+    .data_o    ({tag_o, present_o, lh_o, t_hi_o, term_o, amb_o})
+  );
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+
+  // Each operation's result leaves at the time the schedule above gives it: the fp units' valid
+  // chains agree with the stream starts, so no value is read at the wrong cycle.
+  Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+      l_vld == strm[TimeL] && ll_vld == strm[TimeLl] && d01_vld == at[TimeD01] &&
+      d2_vld == at[TimeD2] && sq1_vld == at[TimeSq1] && inv_vld == at[TimeInv] &&
+      lh_vld == strm[TimeLh] && dist_vld == at[TimeLh] && nl_vld == strm[TimeLh + Lm] &&
+      c01_vld == at[TimeLh + Lm + 1 + La] && cos_vld == at[TimeCos] && h_vld == strm[TimeH] &&
+      hh_vld == strm[TimeH + Lm] && h01_vld == at[TimeH + Lm + 1 + La] &&
+      hsum_vld == at[TimeHh] && nhp_vld == strm[TimeH + Lm] &&
+      n01_vld == at[TimeH + Lm + 1 + La] && nhd_vld == at[TimeHh] &&
+      sq2_vld == at[TimeHh + Ls] && ih_vld == at[TimeIh] && nh_vld == at[TimeNh] &&
+      (&pow_vld_ok) && kdcos_vld == strm[TimeCos + Lm] && ksspec_vld == strm[TimeSpec + Lm] &&
+      sum_vld == strm[TimeSum] && sl_vld == strm[TimeSum + Lm] && x_vld == strm[TimeX] &&
+      term_vld == strm[TimeFix] && ka_vld == strm[Lm] && aw_vld == strm[2 * Lm] &&
+      amb_vld == strm[2 * Lm + 1]);
+  // Job starts are at least three cycles apart, so a held scalar is never overwritten within its
+  // stream.
+  StartsApart_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  slot_q[0] |-> !first_q[0] && !first_q[1]);
+  // in_free_q is the input register's freedom as its slot counter says.
+  InFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             in_free_q == (~|slot_q | slot_q[2]));
+  // ready_o must be known once out of reset (upstream acts on it).
+  ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 !$isunknown(ready_o));
+`endif
+
+endmodule
