@@ -29,8 +29,8 @@
 //   lines (rc_delay_ram memories where they are long) of the lengths the fp units' latencies give
 //   (the times below, in cycles after slot 0),
 //   so a stream's timing never depends on its neighbours: a hit may follow another after three
-//   cycles or after any gap. The last stage collects each stream's three components into the
-//   output FIFO.
+//   cycles or after any gap (rc_serial_sched keeps the slots and says which job time is now).
+//   The last stage collects each stream's three components into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
 //   when valid_i & ready_o. ready_o is the AND of two flip-flops (rc_credit_fifo's credit
 //   register and the input register's free flag) and never depends on valid_i or ready_i;
@@ -128,25 +128,13 @@ module rc_hit_geom #(
   // Input register, slots, stream starts   //
   ////////////////////////////////////////////
 
-  // slot_q: one-hot, bit k = cycle k of the hit held in the input register (all zero: empty).
-  // in_free_q: the register is free (empty, or in its hit's last cycle), registered from slot_q's
-  // next value so ready_o is the AND of two flip-flops.
-  logic [2:0] slot_q, slot_d;
+  // slot_q: one-hot, bit k = cycle k of the hit held in the input register (all zero: empty);
+  // in_free_q: the register is free, a flip-flop, so ready_o is the AND of two (rc_serial_sched).
+  logic [2:0] slot_q;
   logic       in_free_q, take, credit;
 
   assign ready_o = credit & in_free_q;
   assign take    = valid_i & ready_o;
-  assign slot_d  = take ? 3'b001 : slot_q << 1;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      slot_q    <= '0;
-      in_free_q <= 1'b1;
-    end else begin
-      slot_q    <= slot_d;
-      in_free_q <= ~|slot_d | slot_d[2];
-    end
-  end
 
   // The input register (loaded when taken; no reset: slot_q says when it holds a hit).
   logic [TagW-1:0] tag_q;
@@ -170,22 +158,14 @@ module rc_hit_geom #(
     end
   end
 
-  // first_q[k]: a hit's slot 0 was k + 1 cycles ago. at[T]: a hit is at time T (cycles after its
-  // slot 0) in this cycle; a vector operation issued at time T (its x; y and z follow) is busy
-  // when at[T] | at[T + 1] | at[T + 2] = strm[T].
-  logic [TimeOut-1:0] first_q;
+  // at[T]: a hit is at time T (cycles after its slot 0) in this cycle; strm[T]: a vector
+  // operation issued at time T (its x; y and z follow) is busy (rc_serial_sched).
   logic [TimeOut:0]   at;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) first_q <= '0;
-    else first_q <= {first_q[TimeOut-2:0], slot_q[0]};
-  end
-  assign at = {first_q, slot_q[0]};
-
   logic [TimeOut-2:0] strm;
-  for (genvar t = 0; t <= TimeOut - 2; t++) begin : g_strm
-    assign strm[t] = at[t] | at[t+1] | at[t+2];
-  end
+  rc_serial_sched #(.Time(TimeOut)) u_sched (
+    .clk_i, .rst_ni, .take_i(take), .slot_o(slot_q), .in_free_o(in_free_q), .at_o(at),
+    .strm_o(strm)
+  );
 
   // The components entering in this slot (slot 0: x, 1: y, 2: z).
   logic [W-1:0] o_s, d_s, nf_s;
@@ -478,13 +458,6 @@ module rc_hit_geom #(
                                sq_vld == at[TimeSq] && g_vld == at[TimeG] &&
                                gn_vld == strm[TimeGn] && ev_vld == strm[TimeGn] &&
                                t_vld == strm[TimeT] && wx_vld == (at[Lm] | at[Lm + 1]));
-  // Stream starts are at least three cycles apart (one hit per three cycles at most), so a held
-  // scalar is never overwritten within its stream.
-  StartsApart_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                  slot_q[0] |-> !first_q[0] && !first_q[1]);
-  // in_free_q is the input register's freedom as its slot counter says.
-  InFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                             in_free_q == (~|slot_q | slot_q[2]));
   // ready_o must be known once out of reset (upstream acts on it).
   ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));

@@ -27,7 +27,8 @@
 //   a register loaded in the first. The power is ExpBits multipliers, one per bit, each taking
 //   b * b and then r * b in consecutive cycles. Values wait for their operations in rc_delay lines
 //   (short) and rc_delay_ram memories (long), so a job may follow another after three cycles or
-//   after any gap. The last stage collects each stream's three components into the output FIFO.
+//   after any gap (rc_serial_sched keeps the slots and the job times). The last stage collects
+//   each stream's three components into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure, as rc_hit_geom (ready_o
 //   is the AND of two flip-flops; valid_o never depends on ready_i; results leave in order;
 //   tag_i travels with the operation to tag_o).
@@ -122,22 +123,11 @@ module rc_light_term #(
   // Input register, slots, stream starts   //
   ////////////////////////////////////////////
 
-  logic [2:0] slot_q, slot_d;
+  logic [2:0] slot_q;
   logic       in_free_q, take, credit;
 
   assign ready_o = credit & in_free_q;
   assign take    = valid_i & ready_o;
-  assign slot_d  = take ? 3'b001 : slot_q << 1;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      slot_q    <= '0;
-      in_free_q <= 1'b1;
-    end else begin
-      slot_q    <= slot_d;
-      in_free_q <= ~|slot_d | slot_d[2];
-    end
-  end
 
   logic [TagW-1:0]    tag_q;
   logic [3*W-1:0]     p_q, n_q, v_q, lpos_q, lcol_q, kd_q, ks_q;
@@ -161,19 +151,14 @@ module rc_light_term #(
     end
   end
 
-  // at[T]: a job is at time T (cycles after its slot 0); strm[T]: a stream issued at T is busy.
-  logic [TimeOut-1:0] first_q;
+  // at[T]: a job is at time T (cycles after its slot 0); strm[T]: a stream issued at T is busy
+  // (rc_serial_sched).
   logic [TimeOut:0]   at;
   logic [TimeOut-2:0] strm;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) first_q <= '0;
-    else first_q <= {first_q[TimeOut-2:0], slot_q[0]};
-  end
-  assign at = {first_q, slot_q[0]};
-  for (genvar t = 0; t <= TimeOut - 2; t++) begin : g_strm
-    assign strm[t] = at[t] | at[t+1] | at[t+2];
-  end
+  rc_serial_sched #(.Time(TimeOut)) u_sched (
+    .clk_i, .rst_ni, .take_i(take), .slot_o(slot_q), .in_free_o(in_free_q), .at_o(at),
+    .strm_o(strm)
+  );
 
   // The components (channels) entering in this slot.
   logic [W-1:0] p_s, n_s, v_s, lp_s, lc_s, kd_s, ks_s;
@@ -549,13 +534,6 @@ module rc_light_term #(
       sum_vld == strm[TimeSum] && sl_vld == strm[TimeSum + Lm] && x_vld == strm[TimeX] &&
       term_vld == strm[TimeFix] && ka_vld == strm[Lm] && aw_vld == strm[2 * Lm] &&
       amb_vld == strm[2 * Lm + 1]);
-  // Job starts are at least three cycles apart, so a held scalar is never overwritten within its
-  // stream.
-  StartsApart_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                  slot_q[0] |-> !first_q[0] && !first_q[1]);
-  // in_free_q is the input register's freedom as its slot counter says.
-  InFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                             in_free_q == (~|slot_q | slot_q[2]));
   // ready_o must be known once out of reset (upstream acts on it).
   ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));
