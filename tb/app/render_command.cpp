@@ -297,8 +297,10 @@ void print_rtl_summary(const nlohmann::json& j) {
   }
   std::printf("\n  simulation: %.0f cycles/s, %.2f s wall\n",
               j["simulated_cycles_per_second"].get<double>(), j["wall_seconds"].get<double>());
-  for (const char* kind : {"shadow", "bounce", "refract"}) {
-    const auto& s = j[std::string(kind) + "_pass"];
+  const std::pair<const char*, const char*> kinds[] = {
+      {"shadow", "shadow"}, {"bounce", "mirror"}, {"refract", "refraction"}};
+  for (const auto& [key, kind] : kinds) {
+    const auto& s = j[std::string(key) + "_pass"];
     if (s.is_null() || s["passes"].get<uint64_t>() == 0) continue;
     std::printf(
         "  rtl %s passes (%llu; packets from the core's hits, light terms on the host): %llu "
@@ -676,26 +678,22 @@ int run_render(const RenderArgs& a) {
             a.reference.c_str(), 100.0 * la.share(), static_cast<unsigned long long>(la.tests),
             static_cast<unsigned long long>(la.only_a_lit), a.engine.c_str(),
             static_cast<unsigned long long>(la.only_b_lit), a.reference.c_str());
-      const BounceAgreement ba = compare_bounces(f, ref);
-      js["reference"]["bounce_agreement"] = ba.share();
-      js["reference"]["bounce_rays"] = ba.rays;
-      js["reference"]["bounce_only_one"] = ba.only_one;
-      if (!a.quiet && ba.rays > 0)
-        std::printf(
-            "  first mirror ray against %s: %.4f%% of %llu agree on the triangle hit (%llu "
-            "traced by one engine only)\n",
-            a.reference.c_str(), 100.0 * ba.share(), static_cast<unsigned long long>(ba.rays),
-            static_cast<unsigned long long>(ba.only_one));
-      const BounceAgreement ra = compare_refractions(f, ref);
-      js["reference"]["refract_agreement"] = ra.share();
-      js["reference"]["refract_rays"] = ra.rays;
-      js["reference"]["refract_only_one"] = ra.only_one;
-      if (!a.quiet && ra.rays > 0)
-        std::printf(
-            "  first refraction ray against %s: %.4f%% of %llu agree on the triangle hit (%llu "
-            "traced by one engine only)\n",
-            a.reference.c_str(), 100.0 * ra.share(), static_cast<unsigned long long>(ra.rays),
-            static_cast<unsigned long long>(ra.only_one));
+      // The first mirror and refraction rays' hits.
+      const auto child_agreement = [&](const char* key, const char* what,
+                                       const BounceAgreement& ba) {
+        js["reference"][std::string(key) + "_agreement"] = ba.share();
+        js["reference"][std::string(key) + "_rays"] = ba.rays;
+        js["reference"][std::string(key) + "_only_one"] = ba.only_one;
+        if (!a.quiet && ba.rays > 0)
+          std::printf(
+              "  first %s ray against %s: %.4f%% of %llu agree on the triangle hit (%llu traced "
+              "by one engine only)\n",
+              what, a.reference.c_str(), 100.0 * ba.share(),
+              static_cast<unsigned long long>(ba.rays),
+              static_cast<unsigned long long>(ba.only_one));
+      };
+      child_agreement("bounce", "mirror", compare_bounces(f, ref));
+      child_agreement("refract", "refraction", compare_refractions(f, ref));
     }
   }
   if (!a.stats.empty()) {

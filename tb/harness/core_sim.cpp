@@ -61,13 +61,15 @@ const char* model_module(CoreModel model) {
   }
 }
 
-// One pass of secondary packets through the core: packet j's ray r writes slot 4j + r of a
-// 4-wide frame. Adds its figures to `sum` and returns the run.
+// One pass of secondary packets of `kind` through the core: packet j's ray r writes slot 4j + r
+// of a 4-wide frame. Adds its figures to `sum` and returns the run.
 CoreSimResult secondary_pass(const scene::SceneImage& image, const std::vector<CorePacket>& packets,
                              fp24 t_eps, const CoreSimOptions& options, CoreModel model,
-                             SecondaryPasses& sum) {
+                             const char* kind, SecondaryPasses& sum) {
   CoreSimOptions so = options;
   so.trace_path.clear();  // a waveform covers the primary pass
+  so.progress_label =
+      std::string("rtl ") + kind + " pass " + std::to_string(sum.passes + 1) + ": rays";
   CoreSimResult s =
       trace_rtl(image, packets, 4, static_cast<uint32_t>(packets.size()), t_eps, so, model);
   ++sum.passes;
@@ -141,7 +143,7 @@ void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
 
   for (uint32_t depth = 0; !level.empty(); ++depth) {
     // The level's shadow packets: a ray reached the light when it has no hit and its packet no
-    // error (colour 1, rc_core).
+    // error (colour 1, rc_core), the golden model's shadow_reached().
     std::vector<CorePacket> packets;
     for (const Open& o : level)
       for (const ShadowPacket<fp24>& sp : o.work.shadows)
@@ -149,13 +151,17 @@ void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
             secondary_packet(RayKind::kShadow, sp.mask, sp.rays, sp.lim, packets.size()));
     std::vector<uint32_t> reached(packets.size(), 0);
     if (!packets.empty()) {
-      const CoreSimResult s = secondary_pass(image, packets, g.t_eps, options, model, r.shadow);
+      const CoreSimResult s =
+          secondary_pass(image, packets, g.t_eps, options, model, "shadow", r.shadow);
       f.shadow_counters.add(s.frame.counters);
-      for (size_t j = 0; j < packets.size(); ++j)
+      for (size_t j = 0; j < packets.size(); ++j) {
+        std::array<Hit<fp24>, kPacketRays> hits;
         for (uint32_t k = 0; k < kPacketRays; ++k)
-          if ((packets[j].mask >> k & 1u) && s.frame.hits[4 * j + k].tri < 0 &&
-              s.frame.rgb[3 * (4 * j + k)] == 0)
-            reached[j] |= 1u << k;
+          if (packets[j].mask >> k & 1u)
+            hits[k] = hit_from_record(g, packets[j].rays[k], s.frame.hits[4 * j + k]);
+        const bool failed = secondary_failed(s.frame, j, packets[j].mask);
+        reached[j] = shadow_reached(packets[j].mask, failed ? 1u : 0u, hits);
+      }
     }
     size_t next = 0;  // the packet's first shadow packet
     for (const Open& o : level) {
@@ -182,7 +188,8 @@ void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
       }
       if (bpackets.empty()) continue;
       const CoreSimResult s =
-          secondary_pass(image, bpackets, g.t_eps, options, model, mirror ? r.bounce : r.refract);
+          secondary_pass(image, bpackets, g.t_eps, options, model, mirror ? "mirror" : "refraction",
+                         mirror ? r.bounce : r.refract);
       (mirror ? f.bounce_counters : f.refract_counters).add(s.frame.counters);
       for (size_t j = 0; j < bpackets.size(); ++j) {
         const BouncePacket<fp24>& b = mirror ? parent[j]->work.bounce : parent[j]->work.refract;

@@ -45,6 +45,8 @@ struct CoreSimOptions {
   uint64_t trace_first = 0;
   uint64_t trace_last = std::numeric_limits<uint64_t>::max();
   bool progress = false;  // progress line on stderr
+  // What the progress line counts: a camera frame's pixels, or a secondary pass's rays.
+  std::string progress_label = "rtl: pixels";
 };
 
 // splitmix64's finaliser: per-port seeds from one seed.

@@ -413,7 +413,7 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last_progress > std::chrono::seconds(1)) {
         last_progress = now;
-        std::fprintf(stderr, "\rrtl: %llu of %llu pixels, %llu cycles",
+        std::fprintf(stderr, "\r%s: %llu of %llu, %llu cycles", s.opt.progress_label.c_str(),
                      static_cast<unsigned long long>(s.written),
                      static_cast<unsigned long long>(s.pixels_total),
                      static_cast<unsigned long long>(s.cycle));
