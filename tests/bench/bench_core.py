@@ -33,9 +33,11 @@ SCENES = [
 # The lit scenes (their own lights, shadow, mirror and refraction rays traced by the core), at
 # latency 16.
 LIT_SCENES = ["default", "spheres", "sponza", "conference"]
-# Lit only: the box with a mirror block, and the shared box with a mirror and a glass sphere.
+# Lit only: the box with a mirror block, the shared box with a mirror and a glass sphere, and the
+# conference room with one light (the target).
 LIT_EXTRA = [("cornell-mirror", "scenes/cornell-mirror.json", "256x192", []),
-             ("cornell-glass", "scenes/cornell-glass.json", "256x192", [])]
+             ("cornell-glass", "scenes/cornell-glass.json", "256x192", []),
+             ("conference-one-light", "scenes/conference-one-light.json", "256x192", [])]
 LATENCIES = [1, 16, 64]
 THREADS = ["16", "64", "default"]
 # The cores with fewer ray set-up units than the default (docs/spec.toml [core] setup_units), at
