@@ -4,9 +4,10 @@
 // Contract
 // - Function: data_o = data_i as it was Cycles rising edges earlier, as rc_delay (every cycle
 //   shifts; no enable, no handshake: it runs beside a valid-only pipeline).
-// - Structure: a memory of Depth = 2^ceil(log2(Cycles)) words (distributed RAM, ram_style; e.g.
-//   ECP5 DPR16X4): each cycle data_i is written at the write pointer and the word written
-//   Cycles - 1 cycles earlier is read into the output register, so data_o is Cycles cycles late.
+// - Structure: a memory of Depth = 2^ceil(log2(Cycles)) words (ram_style: distributed RAM, e.g.
+//   ECP5 DPR16X4, up to 64 words; block RAM beyond): each cycle data_i is written at the write
+//   pointer and the word written Cycles - 1 cycles earlier is read into the output register, so
+//   data_o is Cycles cycles late.
 //   The read address is never the one being written (Cycles - 1 < Depth).
 // - Latency: Cycles (>= 2).
 // - Parameters: Width data bits (>= 1), Cycles (>= 2).
@@ -28,8 +29,10 @@ module rc_delay_ram #(
 
   localparam int unsigned AddrW = $clog2(Cycles);
   localparam int unsigned Depth = 1 << AddrW;
+  // Deeper than this, the memory goes to block RAM (ECP5 DP16KD: 512 x 36), where a LUT RAM's
+  // read multiplexer would cost more than its storage (Yosys: 923 LUT4 sites for 256 x 24).
+  localparam int unsigned BlockDepth = 64;
 
-  (* ram_style = "distributed" *) logic [Width-1:0] mem_q [Depth];
   logic [AddrW-1:0] wp_q, rp;
   logic [Width-1:0] rd_q;
 
@@ -40,9 +43,19 @@ module rc_delay_ram #(
 
   assign rp = wp_q - AddrW'(Cycles - 1);
 
-  always_ff @(posedge clk_i) begin
-    mem_q[wp_q] <= data_i;
-    rd_q        <= mem_q[rp];
+  // The same memory either way; only where it goes differs (a read register behind it in both).
+  if (Depth > BlockDepth) begin : g_block
+    (* ram_style = "block" *) logic [Width-1:0] mem_q [Depth];
+    always_ff @(posedge clk_i) begin
+      mem_q[wp_q] <= data_i;
+      rd_q        <= mem_q[rp];
+    end
+  end else begin : g_lut
+    (* ram_style = "distributed" *) logic [Width-1:0] mem_q [Depth];
+    always_ff @(posedge clk_i) begin
+      mem_q[wp_q] <= data_i;
+      rd_q        <= mem_q[rp];
+    end
   end
 
   assign data_o = rd_q;
