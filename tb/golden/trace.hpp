@@ -439,6 +439,7 @@ struct LightSample {
   Ray<T> ray;                             // from the hit point toward the light (unit direction)
   T t_hi;                                 // the light's distance (+inf for a directional light)
   std::array<uint32_t, 3> term{0, 0, 0};  // fixed-point contribution per channel
+  T spec = T::zero();                     // the specular factor (present samples only)
 };
 
 // The hit point, the facing unit normal and the unit view direction of a hit (hit_geometry below
@@ -488,9 +489,9 @@ LightSample<T> light_sample(const SurfacePoint<T>& sp, const typename Geometry<T
   std::array<T, 3> hv;
   for (int a = 0; a < 3; ++a) hv[a] = lh[a] - sp.v[a];
   const T nh = dot3(sp.n, hv) * (T::one() / sqrt(dot3(hv, hv)));
-  const T spec = lt(T::zero(), nh) ? pow_int(nh, ns) : T::zero();
+  s.spec = lt(T::zero(), nh) ? pow_int(nh, ns) : T::zero();
   for (int c = 0; c < 3; ++c)
-    s.term[c] = light_fixed(((kd[c] * cos_l + ks[c] * spec) * l.color[c]) * w);
+    s.term[c] = light_fixed(((kd[c] * cos_l + ks[c] * s.spec) * l.color[c]) * w);
   return s;
 }
 
