@@ -40,6 +40,7 @@ rtl/core/rc_list_unit.sv
 rtl/core/rc_isect_issue.sv
 rtl/core/rc_hit_store.sv
 rtl/core/rc_shade_seq.sv
+rtl/core/rc_kind_perf.sv
 rtl/core/rc_core_status.sv
 rtl/core/rc_thread_mon.sv
 rtl/core/rc_core.sv

@@ -44,7 +44,9 @@
 //   from a clock edge on, perf_o shows the counter numbered by perf_sel_i at that edge, as it
 //   was before the edge (rc_core_status); numbers >= CorePerfCount read 0. The counters count an
 //   event one cycle after it (registered increments): set perf_sel_i from the cycle after idle_o
-//   rises on, and read perf_o after the next edge.
+//   rises on, and read perf_o after the next edge. Rays, traversal steps and triangle tests are
+//   also counted per ray kind, under their packet's pkt_kind_i (rc_kind_perf; with Secondary = 0
+//   the primary ones read the totals and the others 0).
 // - Debug: dbg_thread_state_o, every thread's state (rc_pkg::thread_state_e, ThreadStateBits per
 //   thread), kept from the units' events in simulation (zero in synthesis); no logic depends on
 //   it.
@@ -201,6 +203,7 @@ module rc_core #(
   logic [ThrW-1:0]    acc_thr, raywr_thr, axwr_thr, invwr_thr;
   logic [3:0]         acc_vmask;
   logic               acc_anyhit, acc_sec;
+  logic [rc_pkg::RayKindBits-1:0] acc_kind;
   logic [Threads-1:0] acc_hot;
   logic [1:0]         raywr_ray, axwr_axis, invwr_axis;
   logic [6*W-1:0]     raywr_orgdir;
@@ -245,6 +248,7 @@ module rc_core #(
     .acc_vmask_o   (acc_vmask),
     .acc_anyhit_o  (acc_anyhit),
     .acc_sec_o     (acc_sec),
+    .acc_kind_o    (acc_kind),
     .raywr_valid_o (raywr_valid),
     .raywr_thr_o   (raywr_thr),
     .raywr_ray_o   (raywr_ray),
@@ -782,8 +786,34 @@ module rc_core #(
   assign hs_shd_req  = shd_req_valid_o & shd_req_ready_i;
   assign hs_mat_req  = mat_req_valid_o & mat_req_ready_i;
 
+  // The per-kind counters (a core with secondary packets only; rc_core_status aliases them
+  // otherwise).
+  logic [35:0] kind_inc;
+  if (Secondary) begin : g_kind_perf
+    rc_kind_perf #(
+      .Threads(Threads)
+    ) u_kind_perf (
+      .clk_i,
+      .rst_ni,
+      .acc_valid_i(acc_valid),
+      .acc_hot_i  (acc_hot),
+      .acc_vmask_i(acc_vmask),
+      .acc_kind_i (acc_kind),
+      .steps_i    (perf_steps),
+      .step_thr_i (trav_step_thr),
+      .test_i     (perf_test),
+      .test_thr_i (isect_ray_thr),
+      .inc_o      (kind_inc)
+    );
+  end else begin : g_no_kind_perf
+    logic unused_kind;
+    assign unused_kind = ^acc_kind;  // every packet is a primary one
+    assign kind_inc    = '0;
+  end
+
   always_comb begin
     perf_inc = '0;
+    perf_inc[3*rc_pkg::CorePerfPrimaryRays +: 36]     = kind_inc;
     perf_inc[3*rc_pkg::CorePerfCycles +: 3]           = 3'd1;
     perf_inc[3*rc_pkg::CorePerfBusyCycles +: 3]       = 3'(!idle);
     perf_inc[3*rc_pkg::CorePerfPackets +: 3]          = 3'(perf_packet);
@@ -814,7 +844,8 @@ module rc_core #(
 
   rc_core_status #(
     .WatchdogCycles(WatchdogCycles),
-    .EvW           (12)
+    .EvW           (12),
+    .KindCounters  (Secondary)
   ) u_status (
     .clk_i,
     .rst_ni,

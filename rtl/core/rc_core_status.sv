@@ -12,6 +12,9 @@
 //   its events by a cycle, and its bits 63..PerfLoW (32) by two: the low half's carry is
 //   registered, so no 64-bit carry chain ends at a counter); counter CorePerfMaxStack instead
 //   keeps the largest perf_depth_i seen with perf_inc_i's CorePerfStackPushes field non-zero.
+//   With KindCounters = 0 the per-kind counters (CorePerfPrimaryRays .. CorePerfRefractTriangleTests)
+//   are not built: the primary ones read CorePerfRays, CorePerfTraversalSteps and
+//   CorePerfTriangleTests, the others 0 (their increments are not read).
 //   perf_o = counter perf_sel_i (64 bits, zero for numbers >= CorePerfCount) one cycle late: the
 //   number is sampled at a clock edge and perf_o shows, from that edge on, the counter as it was
 //   before the edge (a multiplexer level between two register levels, see "The read"). So a
@@ -19,12 +22,14 @@
 //   two or more cycles after the last event.
 // - Parameters: WatchdogCycles (>= 2), EvW (watchdog events, >= 4), PerfLoW (the counters' low
 //   half, 3 .. 61; 32 in the core, small in tests/core/units/core_status_test.cpp so the carry
-//   into the high half is exercised).
+//   into the high half is exercised); KindCounters: 1 = the per-kind counters (a core with
+//   secondary packets), 0 = none, as above.
 // - Reset: rst_ni (active low, asynchronous) clears the counters, the count and the status.
 module rc_core_status #(
   parameter int unsigned WatchdogCycles = rc_pkg::CoreWatchdogCycles,
   parameter int unsigned EvW            = 16,
   parameter int unsigned PerfLoW        = 32,   // the counters' low half (tests make it small)
+  parameter bit          KindCounters   = 1'b1,
   // Derived (do not override).
   parameter int unsigned NPerf          = rc_pkg::CorePerfCount,
   parameter int unsigned StatusW        = rc_pkg::CoreStatusBits,
@@ -45,6 +50,11 @@ module rc_core_status #(
   if (WatchdogCycles < 2 || EvW < 4 || StatusW != 4 || PerfLoW < 3 ||
       PerfLoW > 61) begin : g_param_check
     $error("rc_core_status: need WatchdogCycles >= 2, EvW >= 4, 4 status bits, PerfLoW 3..61");
+  end
+
+  if (rc_pkg::CorePerfRefractTriangleTests != rc_pkg::CorePerfPrimaryRays + 11 ||
+      rc_pkg::CorePerfPrimaryRays <= rc_pkg::CorePerfTriangleTests) begin : g_kind_check
+    $error("rc_core_status: the per-kind counters must be 12 numbers after the totals");
   end
 
   localparam int unsigned G = (EvW + 3) / 4;   // events per group
@@ -128,11 +138,23 @@ module rc_core_status #(
       end
     end
   end
+  // Without per-kind counters, kind counter 3 * kind + e reads the total of event e for the
+  // primary kind and 0 for the others (their registers have no reader and are removed).
+  localparam int unsigned KindLo = rc_pkg::CorePerfPrimaryRays;
+  localparam int unsigned KindHi = rc_pkg::CorePerfRefractTriangleTests;
   always_comb begin
     perf_q = '0;
     for (int unsigned k = 0; k < NPerf; k++) begin
       if (k == rc_pkg::CorePerfMaxStack) begin
         perf_q[k*64 +: 64] = 64'(max_sp_q);
+      end else if (!KindCounters && k >= KindLo && k <= KindHi) begin
+        if (k < KindLo + 3) begin
+          // The primary kind's counter of event k - KindLo: the total of that event.
+          int unsigned tot;
+          tot = (k == KindLo) ? rc_pkg::CorePerfRays :
+                (k == KindLo + 1) ? rc_pkg::CorePerfTraversalSteps : rc_pkg::CorePerfTriangleTests;
+          perf_q[k*64 +: 64] = {perf_hi_q[tot*HiW +: HiW], perf_lo_q[tot*PerfLoW +: PerfLoW]};
+        end
       end else begin
         perf_q[k*64 +: 64] = {perf_hi_q[k*HiW +: HiW], perf_lo_q[k*PerfLoW +: PerfLoW]};
       end

@@ -11,7 +11,8 @@
 //   is empty (pkt_ready_o: its empty flag, a flip-flop), and is taken from there into a thread
 //   when a thread is free (the free-thread choice, rc_rr_pick) and the feeder is idle.
 //   acc_valid_o/acc_thr_o/acc_vmask_o and the kind bits acc_anyhit_o (a shadow packet) and
-//   acc_sec_o (a secondary packet) announce the take in the cycle after it, and
+//   acc_sec_o (a secondary packet), and the packet's kind acc_kind_o (rc_pkg::ray_kind_e;
+//   RayPrimary when Secondary = 0) announce the take in the cycle after it, and
 //   acc_hot_o the same as a one-hot vector (the free pick's grant registered: each bit drives
 //   one thread's state in rc_thread_ctrl and rc_isect_issue, so no unit decodes the thread
 //   number).
@@ -81,6 +82,7 @@ module rc_setup_unit #(
   output logic [3:0]            acc_vmask_o,
   output logic                  acc_anyhit_o,   // a shadow packet: any hit ends a ray
   output logic                  acc_sec_o,      // a secondary packet (shadow or bounce)
+  output logic [rc_pkg::RayKindBits-1:0] acc_kind_o,
 
   // Ray store writes.
   output logic                  raywr_valid_o,   // per ray: {thread, ray}
@@ -214,7 +216,9 @@ module rc_setup_unit #(
   logic [127:0]    pin_pix_q, pin_stri_q;
   logic [4*W-1:0]  pin_tlim_q;
   logic            pin_sec_q, pin_any_q;
+  logic [rc_pkg::RayKindBits-1:0] pin_kind_q, pkt_kind;
   logic            pin_v_d, pkt_sec, pkt_any;
+  assign pkt_kind = Secondary ? pkt_kind_i : rc_pkg::RayPrimary;
   assign pkt_sec = Secondary & (pkt_kind_i != rc_pkg::RayPrimary);
   assign pkt_any = Secondary & (pkt_kind_i == rc_pkg::RayShadow);
   assign pin_v_d = pin_v_q ? ~acc_take_f : pkt_valid_i;
@@ -234,6 +238,7 @@ module rc_setup_unit #(
       pin_pix_q  <= pkt_pixel_i;
       pin_sec_q  <= pkt_sec;
       pin_any_q  <= pkt_any;
+      pin_kind_q <= pkt_kind;
       pin_tlim_q <= pkt_sec ? pkt_t_hi_i : {4{rc_pkg::CoreFpPosInf}};
       pin_stri_q <= pkt_start_tri_i;
     end
@@ -267,6 +272,7 @@ module rc_setup_unit #(
   logic [127:0]    feed_pix_q, feed_stri_q;
   logic [4*W-1:0]  feed_tlim_q;
   logic            feed_sec_q, feed_any_q;
+  logic [rc_pkg::RayKindBits-1:0] feed_kind_q;
   logic [3:0]      feed_vmask_q;
   logic [NU-1:0]   su_ready_all, su_valid_all;
   logic [UW-1:0]   out_u_q;
@@ -366,6 +372,7 @@ module rc_setup_unit #(
       feed_vmask_q <= pin_mask_q;
       feed_sec_q   <= pin_sec_q;
       feed_any_q   <= pin_any_q;
+      feed_kind_q  <= pin_kind_q;
       feed_tlim_q  <= pin_tlim_q;
       feed_stri_q  <= pin_stri_q;
     end
@@ -377,6 +384,7 @@ module rc_setup_unit #(
   assign acc_vmask_o  = feed_vmask_q;
   assign acc_anyhit_o = feed_any_q;
   assign acc_sec_o    = feed_sec_q;
+  assign acc_kind_o   = feed_kind_q;
 
   // The ray store's words of the ray being taken.
   logic [3*W-1:0] feed_org_r, feed_dir_r;

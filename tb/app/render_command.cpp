@@ -245,6 +245,24 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
             {"error_bits", p.error_bits},
             {"perf", pass_perf}};
   };
+  // The core's own counters per ray kind, over every run of the frame (the primary run and the
+  // secondary passes).
+  std::array<harness::KindCounters, harness::kRayKinds> kc{};
+  for (const auto* p : {&r.perf, &r.shadow.perf, &r.bounce.perf, &r.refract.perf}) {
+    const auto k = harness::kind_counters(*p);
+    for (size_t i = 0; i < kc.size(); ++i) {
+      kc[i].rays += k[i].rays;
+      kc[i].traversal_steps += k[i].traversal_steps;
+      kc[i].triangle_tests += k[i].triangle_tests;
+    }
+  }
+  nlohmann::json kinds = nlohmann::json::object();
+  for (size_t i = 0; i < kc.size(); ++i) {
+    kinds[harness::ray_kind_name(static_cast<int>(i))] = {
+        {"rays", kc[i].rays},
+        {"traversal_steps", kc[i].traversal_steps},
+        {"triangle_tests", kc[i].triangle_tests}};
+  }
   return {{"cycles", r.cycles},
           {"core_cycles_counter", perf(spec::kCorePerfCycles)},
           {"rays", c.rays},
@@ -265,6 +283,7 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
           {"latency", a.latency},
           {"stall_seed", a.stall_seed},
           {"perf", perf_all},
+          {"kinds", kinds},
           {"shadow_pass", passes_json(r.shadow, r.frame.shadow_counters)},
           {"bounce_pass", passes_json(r.bounce, r.frame.bounce_counters)},
           {"refract_pass", passes_json(r.refract, r.frame.refract_counters)}};
@@ -297,6 +316,22 @@ void print_rtl_summary(const nlohmann::json& j) {
   }
   std::printf("\n  simulation: %.0f cycles/s, %.2f s wall\n",
               j["simulated_cycles_per_second"].get<double>(), j["wall_seconds"].get<double>());
+  // The core's own counters per kind, once secondary rays were traced.
+  const auto& jk = j["kinds"];
+  if (jk["shadow"]["rays"].get<uint64_t>() + jk["bounce"]["rays"].get<uint64_t>() +
+          jk["refract"]["rays"].get<uint64_t>() >
+      0) {
+    std::printf("  the core's counters per ray kind (rays, traversal steps, triangle tests):");
+    for (int i = 0; i < harness::kRayKinds; ++i) {
+      const std::string name = harness::ray_kind_name(i);
+      const auto& k = jk[name];
+      std::printf("%s %s %llu, %llu, %llu", i ? ";" : "", name.c_str(),
+                  k["rays"].get<unsigned long long>(),
+                  k["traversal_steps"].get<unsigned long long>(),
+                  k["triangle_tests"].get<unsigned long long>());
+    }
+    std::printf("\n");
+  }
   const std::pair<const char*, const char*> kinds[] = {
       {"shadow", "shadow"}, {"bounce", "mirror"}, {"refract", "refraction"}};
   for (const auto& [key, kind] : kinds) {
@@ -631,6 +666,12 @@ int run_render(const RenderArgs& a) {
           b["simulated_cycles_per_second"].get<double>());
     if (board->fb_readback_differ || board->register_readback_differ) {
       std::printf("  board: MISMATCH between the monitored writes and the ports' read-back\n");
+      check_ok = false;
+    }
+    // Every ray the board makes is a primary one.
+    for (const std::string& p :
+         harness::kind_problems(board->perf, {board->frame.counters.rays, 0, 0, 0})) {
+      std::printf("  board: per-kind counters: %s\n", p.c_str());
       check_ok = false;
     }
     if (a.check && !check_rtl(a, in, opt, f, nullptr, js)) check_ok = false;

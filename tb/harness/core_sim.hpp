@@ -71,6 +71,23 @@ uint64_t root_node_record(const scene::SceneImage& image);
 // The golden model's counters from the core's performance counters (by number) and error_o.
 Counters counters_from_perf(const std::array<uint64_t, kCorePerfCount>& perf, uint32_t error_bits);
 
+// The core's counters of one ray kind (docs/spec.toml [core_perf] primary_rays ..).
+struct KindCounters {
+  uint64_t rays = 0, traversal_steps = 0, triangle_tests = 0;
+};
+constexpr int kRayKinds = static_cast<int>(spec::kRayKindCount);
+// A kind's name in the statistics: its [ray_kind] key (primary, shadow, bounce, refract).
+std::string ray_kind_name(int kind);
+// Per kind, by its [ray_kind] value.
+std::array<KindCounters, kRayKinds> kind_counters(const std::array<uint64_t, kCorePerfCount>& perf);
+
+// What is wrong with a run's per-kind counters, one line per problem: each kind's rays must be
+// the rays of the packets of that kind fed to the core (`rays_fed`, by kind), a kind without rays
+// must have no traversal steps or triangle tests, and each event's kinds must sum to the core's
+// total of it.
+std::vector<std::string> kind_problems(const std::array<uint64_t, kCorePerfCount>& perf,
+                                       const std::array<uint64_t, kRayKinds>& rays_fed);
+
 // The fewest cycles a core needs for a frame with these counters, the ideal of the efficiency
 // figure (efficiency = ideal_cycles / cycles): its four traversal sub-units take one step each
 // per cycle, its intersection unit one ray-triangle test every isect_interval cycles.
@@ -99,6 +116,7 @@ struct CoreSimResult {
   std::array<uint64_t, kCorePerfCount> perf{};  // every perf counter, by number
   std::array<MemoryStats, kCorePorts> memory{};
   uint64_t packets_fed = 0;
+  std::array<uint64_t, kRayKinds> rays_fed{};  // the rays of the packets fed, by kind
   uint64_t fb_writes = 0;
   uint64_t writes_due = 0;  // one per existing ray (a camera frame: its pixels)
   // Per packet (row by row) the cycle the core took it; per pixel the cycle of its framebuffer
@@ -122,7 +140,8 @@ struct CoreSimResult {
 
 // What a run must show besides a frame and counters equal to the golden model's: the core idle at
 // the end, no miss carrying a hit record, the core's own count of framebuffer writes equal to the
-// frame's pixels, no error bit the golden model does not have (the watchdog, unknown bits). One
+// frame's pixels, no error bit the golden model does not have (the watchdog, unknown bits), the
+// per-kind counters right for the packets fed (kind_problems(), every pass's). One
 // line per problem, empty for a clean run. `raycore render --check` and the regression tests both
 // judge a run by it.
 std::vector<std::string> run_problems(const CoreSimResult& r);

@@ -1,5 +1,6 @@
 // The parts of the core harness that do not depend on a verilated model (core_sim.hpp).
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -135,6 +136,7 @@ std::vector<std::string> run_problems(const CoreSimResult& r) {
     out.push_back("framebuffer writes: the core counted " + std::to_string(counted) +
                   ", the harness saw " + std::to_string(r.fb_writes) + ", the frame's rays " +
                   std::to_string(r.writes_due));
+  for (const std::string& p : kind_problems(r.perf, r.rays_fed)) out.push_back(p);
   for (const std::string& p : r.shadow.problems) out.push_back("shadow pass: " + p);
   for (const std::string& p : r.bounce.problems) out.push_back("bounce pass: " + p);
   for (const std::string& p : r.refract.problems) out.push_back("refract pass: " + p);
@@ -150,6 +152,57 @@ Hit<fp24> hit_from_record(const Geometry<fp24>& g, const Ray<fp24>& ray, const H
   h.dz = rec.tri >= 0 ? transformed_dz(g.tris.at(static_cast<size_t>(rec.tri)), ray.dir)
                       : fp24::zero();
   return h;
+}
+
+std::string ray_kind_name(int kind) {
+  std::string name = spec::kRayKindNames[kind];
+  name[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(name[0])));
+  return name;
+}
+
+std::array<KindCounters, kRayKinds> kind_counters(
+    const std::array<uint64_t, kCorePerfCount>& perf) {
+  static_assert(spec::kCorePerfRefractTriangleTests == spec::kCorePerfPrimaryRays + 11,
+                "the per-kind counters: 3 per kind, in [ray_kind] order");
+  std::array<KindCounters, kRayKinds> out{};
+  for (int k = 0; k < kRayKinds; ++k) {
+    const auto at = [&](int e) {
+      return perf[static_cast<size_t>(spec::kCorePerfPrimaryRays + 3 * k + e)];
+    };
+    out[static_cast<size_t>(k)] = {at(0), at(1), at(2)};
+  }
+  return out;
+}
+
+std::vector<std::string> kind_problems(const std::array<uint64_t, kCorePerfCount>& perf,
+                                       const std::array<uint64_t, kRayKinds>& rays_fed) {
+  std::vector<std::string> out;
+  const std::array<KindCounters, kRayKinds> kc = kind_counters(perf);
+  KindCounters sum;
+  for (int k = 0; k < kRayKinds; ++k) {
+    const KindCounters& c = kc[static_cast<size_t>(k)];
+    const std::string name = ray_kind_name(k);
+    if (c.rays != rays_fed[static_cast<size_t>(k)])
+      out.push_back(name + " rays: the core counted " + std::to_string(c.rays) + ", " +
+                    std::to_string(rays_fed[static_cast<size_t>(k)]) + " were fed");
+    if (c.rays == 0 && (c.traversal_steps != 0 || c.triangle_tests != 0))
+      out.push_back(name + ": " + std::to_string(c.traversal_steps) + " traversal steps and " +
+                    std::to_string(c.triangle_tests) + " triangle tests without rays");
+    sum.rays += c.rays;
+    sum.traversal_steps += c.traversal_steps;
+    sum.triangle_tests += c.triangle_tests;
+  }
+  const std::pair<const char*, std::pair<uint64_t, int64_t>> totals[] = {
+      {"rays", {sum.rays, spec::kCorePerfRays}},
+      {"traversal steps", {sum.traversal_steps, spec::kCorePerfTraversalSteps}},
+      {"triangle tests", {sum.triangle_tests, spec::kCorePerfTriangleTests}}};
+  for (const auto& [what, v] : totals) {
+    const uint64_t total = perf[static_cast<size_t>(v.second)];
+    if (v.first != total)
+      out.push_back(std::string(what) + ": the kinds' counters sum to " + std::to_string(v.first) +
+                    ", the total is " + std::to_string(total));
+  }
+  return out;
 }
 
 uint64_t ideal_cycles(const Counters& c, uint32_t isect_interval) {

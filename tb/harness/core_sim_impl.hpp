@@ -227,9 +227,12 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
   s.owner.assign(slots, kNoOwner);
   std::vector<CorePacket> packets(feed.packets);
   s.pixels_total = 0;  // the writes due: one per existing ray
+  std::array<uint64_t, kRayKinds> rays_fed{};
   for (uint64_t k = 0; k < feed.packets; ++k) {
     CorePacket& p = packets[k];
     feed.packet(k, p);
+    rays_fed.at(static_cast<size_t>(p.kind)) +=
+        static_cast<uint64_t>(__builtin_popcount(p.mask & 0xfu));
     for (unsigned r = 0; r < kPacketRays; ++r) {
       if (!(p.mask >> r & 1u)) continue;
       if (p.slot[r] >= slots || s.owner[p.slot[r]] != kNoOwner)
@@ -455,6 +458,7 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
   res.idle = m.idle_o;
   res.cycles = s.cycle;
   res.packets_fed = s.packets_fed;
+  res.rays_fed = rays_fed;
   res.fb_writes = s.written;
   res.writes_due = s.pixels_total;
   res.misses_with_payload = s.miss_payload;

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <ostream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -379,6 +380,132 @@ TEST(CoreRtlLitDirected, QuadBeyondTheLightInTheSameLeafDoesNotShadow) {
   EXPECT_EQ(lit_pairs, floor + ceiling) << "every hit sees the light";
   EXPECT_EQ(r.frame.shadow_counters.rays, floor + ceiling);
 }
+
+//////////////////////////////////////////////
+// Every ray kind at once: per-kind counters //
+//////////////////////////////////////////////
+
+// Primary, shadow, mirror and refraction packets in one run, shuffled (seed 26), so that packets
+// of every kind are in flight together, as the light unit's tree controller will feed them: the
+// spheres' primary packets and the children of their hits (lit_work()). Every ray's hit record
+// and colour (a primary ray's headlight shade, 0 for a secondary ray), the counters, and the
+// core's own counters per kind (rays, traversal steps, triangle tests) must be the golden
+// model's.
+class CoreRtlKinds : public testing::TestWithParam<int> {};
+
+TEST_P(CoreRtlKinds, MixedKindsMatchGoldenPerKind) {
+  const Mode& mode = kModes[GetParam()];
+  const RenderInput in = load_render_input(kRoot + "/scenes/spheres.json", scene::LoadOptions{},
+                                           scene::NumberFormat::fp24());
+  RenderOptions opt = input_options(in);
+  opt.width = 48;
+  opt.height = 36;
+  const Geometry<fp24> g = load_geometry<fp24>(in.image);
+  const LitParams<fp24> lp = lit_params<fp24>(opt.max_bounces, opt.background);
+  const PacketSource<fp24> gen(opt.camera, opt.width, opt.height, opt.ray_source);
+
+  // The packets, with the golden model's hits and counters per kind.
+  struct Want {
+    harness::CorePacket p;
+    std::array<Hit<fp24>, kPacketRays> hits;
+  };
+  std::vector<Want> want;
+  std::array<Counters, harness::kRayKinds> gold_kind{};
+  Counters gold_total;
+  const auto add = [&](harness::CorePacket p, const SecondaryLimits<fp24>* lim) {
+    Want w{p, {}};
+    Counters c;
+    trace_packet(g, p.rays, p.mask, w.hits, c, lim);
+    gold_kind[static_cast<size_t>(p.kind)].add(c);
+    gold_total.add(c);
+    want.push_back(w);
+    return w.hits;
+  };
+  const auto secondary = [&](harness::RayKind kind, uint32_t mask,
+                             const std::array<Ray<fp24>, kPacketRays>& rays,
+                             const SecondaryLimits<fp24>& lim) {
+    harness::CorePacket p;
+    p.kind = kind;
+    p.mask = mask;
+    p.rays = rays;
+    p.t_hi = lim.t_hi;
+    p.start_tri = lim.exclude;
+    add(p, &lim);
+  };
+  for (uint32_t py = 0; py < (opt.height + 1) / 2; ++py)
+    for (uint32_t px = 0; px < (opt.width + 1) / 2; ++px) {
+      harness::CorePacket p;
+      p.mask = gen.packet(px, py, p.rays);
+      const std::array<Hit<fp24>, kPacketRays> hits = add(p, nullptr);
+      const LitWork<fp24> w = lit_work(g, p.rays, p.mask, hits, lp);
+      for (const ShadowPacket<fp24>& sp : w.shadows)
+        secondary(harness::RayKind::kShadow, sp.mask, sp.rays, sp.lim);
+      if (w.bounce.mask)
+        secondary(harness::RayKind::kBounce, w.bounce.mask, w.bounce.rays, w.bounce.lim);
+      if (w.refract.mask)
+        secondary(harness::RayKind::kRefract, w.refract.mask, w.refract.rays, w.refract.lim);
+    }
+  std::shuffle(want.begin(), want.end(), std::mt19937(26));
+  std::vector<harness::CorePacket> packets;
+  for (size_t j = 0; j < want.size(); ++j) {
+    for (uint32_t r = 0; r < kPacketRays; ++r) want[j].p.slot[r] = static_cast<uint32_t>(4 * j + r);
+    packets.push_back(want[j].p);
+  }
+  for (int k = 0; k < harness::kRayKinds; ++k)
+    ASSERT_GT(gold_kind[static_cast<size_t>(k)].rays, 0u) << harness::ray_kind_name(k);
+
+  CoreSimOptions so;
+  so.stall_seed = mode.stall_seed;
+  const CoreSimResult r = harness::trace_rtl(
+      in.image, packets, 4, static_cast<uint32_t>(packets.size()), g.t_eps, so, mode.model);
+  for (const std::string& p : harness::run_problems(r)) ADD_FAILURE() << p;
+  uint64_t rays = 0, bad = 0;
+  for (size_t j = 0; j < want.size(); ++j)
+    for (uint32_t k = 0; k < kPacketRays; ++k) {
+      if (!(want[j].p.mask >> k & 1u)) continue;
+      ++rays;
+      const size_t slot = 4 * j + k;
+      const Hit<fp24>& h = want[j].hits[k];
+      const HitRecord gh =
+          h.tri >= 0 ? HitRecord{h.tri, h.t.bits(), h.u.bits(), h.v.bits()} : HitRecord{};
+      std::array<uint8_t, 3> rgb{0, 0, 0};
+      if (want[j].p.kind == harness::RayKind::kPrimary && h.tri >= 0)
+        rgb = shade(g, want[j].p.rays[k], h);
+      const HitRecord& rh = r.frame.hits[slot];
+      const bool same = rh.tri == gh.tri && rh.t == gh.t && rh.u == gh.u && rh.v == gh.v &&
+                        std::equal(rgb.begin(), rgb.end(), &r.frame.rgb[3 * slot]);
+      if (!same && bad++ < 5)
+        ADD_FAILURE() << harness::ray_kind_name(static_cast<int>(want[j].p.kind)) << " packet " << j
+                      << " ray " << k << ": rtl " << hit_text(rh) << ", golden " << hit_text(gh);
+    }
+  for (const CounterDifference& d : counter_differences(gold_total, r.frame.counters))
+    ADD_FAILURE() << "counter " << d.text();
+  const auto kc = harness::kind_counters(r.perf);
+  for (int k = 0; k < harness::kRayKinds; ++k) {
+    const Counters& gk = gold_kind[static_cast<size_t>(k)];
+    const harness::KindCounters& c = kc[static_cast<size_t>(k)];
+    std::printf(
+        "  %s: %llu rays, %llu traversal steps, %llu triangle tests (golden %llu, %llu, %llu)\n",
+        harness::ray_kind_name(k).c_str(), static_cast<unsigned long long>(c.rays),
+        static_cast<unsigned long long>(c.traversal_steps),
+        static_cast<unsigned long long>(c.triangle_tests), static_cast<unsigned long long>(gk.rays),
+        static_cast<unsigned long long>(gk.traversal_steps),
+        static_cast<unsigned long long>(gk.triangle_tests));
+    EXPECT_EQ(c.rays, gk.rays) << harness::ray_kind_name(k);
+    EXPECT_EQ(c.traversal_steps, gk.traversal_steps) << harness::ray_kind_name(k);
+    EXPECT_EQ(c.triangle_tests, gk.triangle_tests) << harness::ray_kind_name(k);
+  }
+  std::printf(
+      "[cases] rtl mixed kinds %s: %llu cases, %llu mismatches (%llu packets, %llu cycles)\n",
+      mode.name, static_cast<unsigned long long>(rays), static_cast<unsigned long long>(bad),
+      static_cast<unsigned long long>(packets.size()), static_cast<unsigned long long>(r.cycles));
+  EXPECT_EQ(bad, 0u);
+}
+
+// lat16, stall1, t1, t1_stall3 (kModes 0, 1, 3, 4).
+std::string mode_name(const testing::TestParamInfo<int>& i) { return kModes[i.param].name; }
+
+INSTANTIATE_TEST_SUITE_P(Modes, CoreRtlKinds, testing::Values(0, 1, 3, 4), mode_name);
 
 //////////////////////////////////
 // Corrupted images (errors)    //
