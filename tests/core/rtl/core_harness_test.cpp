@@ -170,6 +170,8 @@ TEST(CoreHarness, RunProblems) {
       {"a write short (core's count)", [](CoreSimResult& r) { --r.perf[spec::kCorePerfFbWrites]; },
        "the core counted 23"},
       {"a write extra (harness)", [](CoreSimResult& r) { ++r.fb_writes; }, "the harness saw 25"},
+      {"a kind's rays not counted", [](CoreSimResult& r) { r.rays_fed[1] = 4; },
+       "shadow rays: the core counted 0, 4 were fed"},
   };
   size_t mismatches = 0;
   for (const Bad& c : cases) {

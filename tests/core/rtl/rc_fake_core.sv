@@ -8,7 +8,8 @@
 //       v = node[63:40] ^ node[127:104] ^ root_node_i[63:40] (both records and the root),
 //       rgb = kd slot 0, 1, 2 low bytes.
 // An error response sets error_o bit 1. Hang = 1: it never takes a node response (the harness's
-// watchdog test). perf_o: 0 cycles, 2 packets, 3 rays, 26 fb writes, else 0.
+// watchdog test). perf_o: cycles, packets, rays, fb writes, and the rays again as primary rays
+// (every packet is counted as a primary one); every other counter 0.
 module rc_fake_core #(
   parameter int unsigned ExpW = 7,
   parameter int unsigned FracW = 16,
@@ -145,11 +146,12 @@ module rc_fake_core #(
   assign fb_v_o = v_q;
   always_comb begin
     unique case (perf_sel_i)
-      8'd0: perf_o = cycles_q;
-      8'd2: perf_o = packets_q;
-      8'd3: perf_o = rays_q;
-      8'd26: perf_o = writes_q;
-      default: perf_o = '0;
+      8'(rc_pkg::CorePerfCycles):      perf_o = cycles_q;
+      8'(rc_pkg::CorePerfPackets):     perf_o = packets_q;
+      8'(rc_pkg::CorePerfRays):        perf_o = rays_q;
+      8'(rc_pkg::CorePerfFbWrites):    perf_o = writes_q;
+      8'(rc_pkg::CorePerfPrimaryRays): perf_o = rays_q;
+      default:                         perf_o = '0;
     endcase
   end
 
