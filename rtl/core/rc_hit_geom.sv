@@ -205,7 +205,7 @@ module rc_hit_geom #(
   // P = o + t d, V = d inv_len, c = N.V           //
   //////////////////////////////////////////////////
 
-  logic [W-1:0] td, v_s, p_s, o_d, n_dv, nv, nv_d1, nv_dz, s01;
+  logic [W-1:0] td, v_s, p_s, o_d, n_dv;
   logic         td_vld, v_vld, p_vld, nv_vld, s01_vld, c_vld;
 
   rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_td (
@@ -234,22 +234,10 @@ module rc_hit_geom #(
   );
   assign n_dv = n_at_v;
 
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_nv (
-    .clk_i, .rst_ni, .valid_i(strm[TimeV]), .a_i(n_dv), .b_i(v_s), .valid_o(nv_vld),
-    .res_o(nv)
-  );
-  // N.x V.x + N.y V.y as y's product leaves; then + N.z V.z.
-  rc_delay #(.Width(W), .Cycles(1)) u_dly_nvx (.clk_i, .data_i(nv), .data_o(nv_d1));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_s01 (
-    .clk_i, .rst_ni, .valid_i(at[TimeNv + 1]), .sub_i(1'b0), .a_i(nv_d1), .b_i(nv),
-    .valid_o(s01_vld), .res_o(s01)
-  );
-  rc_delay #(.Width(W), .Cycles(TimeS01 - TimeNv - 2)) u_dly_nvz (
-    .clk_i, .data_i(nv), .data_o(nv_dz)
-  );
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_c (
-    .clk_i, .rst_ni, .valid_i(at[TimeS01]), .sub_i(1'b0), .a_i(s01), .b_i(nv_dz),
-    .valid_o(c_vld), .res_o(c_res)
+  // c = (N.x V.x + N.y V.y) + N.z V.z: x + y as y's product leaves, then + z.
+  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_c (
+    .clk_i, .rst_ni, .strm_i(strm[TimeV]), .xy_i(at[TimeNv + 1]), .z_i(at[TimeS01]), .a_i(n_dv),
+    .b_i(v_s), .prod_valid_o(nv_vld), .xy_valid_o(s01_vld), .valid_o(c_vld), .res_o(c_res)
   );
 
   //////////////////////////////////////

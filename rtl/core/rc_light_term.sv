@@ -24,7 +24,9 @@
 //   cycle; every vector value then travels as a stream of three consecutive components, every
 //   scalar as one value at a fixed cycle after the job's first (the Time* constants below). A
 //   scalar that a vector operation needs (inv, cos, spec) is held for its stream's three cycles by
-//   a register loaded in the first. The power is ExpBits multipliers, one per bit, each taking
+//   a register loaded in the first. The dot products (dist2, cos, H.H, N.H) are rc_serial_dot3:
+//   a stream's products, x + y as y's leaves, then + z. The power is ExpBits multipliers, one
+//   per bit, each taking
 //   b * b and then r * b in consecutive cycles. Values wait for their operations in rc_delay lines
 //   (short) and rc_delay_ram memories (long), so a job may follow another after three cycles or
 //   after any gap (rc_serial_sched keeps the slots and the job times). The last stage collects
@@ -205,25 +207,17 @@ module rc_light_term #(
   // Toward the light: L, dist2, inv, lh, dist                //
   //////////////////////////////////////////////////////////
 
-  logic [W-1:0] l_s, ll, ll_d1, ll_dz, d01, dist2, sq1, l_at_inv, d2_at_inv, lh_pt, dist_res;
+  logic [W-1:0] l_s, dist2, sq1, l_at_inv, d2_at_inv, lh_pt, dist_res;
   logic         l_vld, ll_vld, d01_vld, d2_vld, sq1_vld, inv_vld, lh_vld, dist_vld;
 
   rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_l (
     .clk_i, .rst_ni, .valid_i(strm[0]), .sub_i(1'b1), .a_i(lp_s), .b_i(p_s), .valid_o(l_vld),
     .res_o(l_s)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ll (
-    .clk_i, .rst_ni, .valid_i(strm[TimeL]), .a_i(l_s), .b_i(l_s), .valid_o(ll_vld), .res_o(ll)
-  );
-  rc_delay #(.Width(W), .Cycles(1)) u_dly_llx (.clk_i, .data_i(ll), .data_o(ll_d1));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_d01 (
-    .clk_i, .rst_ni, .valid_i(at[TimeLl + 1]), .sub_i(1'b0), .a_i(ll_d1), .b_i(ll),
-    .valid_o(d01_vld), .res_o(d01)
-  );
-  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_llz (.clk_i, .data_i(ll), .data_o(ll_dz));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_d2 (
-    .clk_i, .rst_ni, .valid_i(at[TimeD01]), .sub_i(1'b0), .a_i(d01), .b_i(ll_dz),
-    .valid_o(d2_vld), .res_o(dist2)
+  // dist2 = (L.x L.x + L.y L.y) + L.z L.z.
+  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_d2 (
+    .clk_i, .rst_ni, .strm_i(strm[TimeL]), .xy_i(at[TimeLl + 1]), .z_i(at[TimeD01]), .a_i(l_s),
+    .b_i(l_s), .prod_valid_o(ll_vld), .xy_valid_o(d01_vld), .valid_o(d2_vld), .res_o(dist2)
   );
   rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt_d (
     .clk_i, .rst_ni, .valid_i(at[TimeD2]), .a_i(dist2), .valid_o(sq1_vld), .res_o(sq1)
@@ -260,7 +254,7 @@ module rc_light_term #(
   // cos = N.lh, H = lh - V, N.H, H.H, nh                 //
   //////////////////////////////////////////////////////////
 
-  logic [W-1:0] n_at_lh, v_at_lh, n_at_h, nl, nl_d1, nl_dz, c01;
+  logic [W-1:0] n_at_lh, v_at_lh, n_at_h;
   logic         nl_vld, c01_vld, cos_vld;
   rc_delay_ram #(.Width(2 * W), .Cycles(TimeLh)) u_dly_nv (
     .clk_i, .rst_ni, .data_i({n_s, v_s}), .data_o({n_at_lh, v_at_lh})
@@ -269,22 +263,14 @@ module rc_light_term #(
     .clk_i, .data_i(n_at_lh), .data_o(n_at_h)
   );
 
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_nl (
-    .clk_i, .rst_ni, .valid_i(strm[TimeLh]), .a_i(n_at_lh), .b_i(lh_s), .valid_o(nl_vld),
-    .res_o(nl)
-  );
-  rc_delay #(.Width(W), .Cycles(1)) u_dly_nlx (.clk_i, .data_i(nl), .data_o(nl_d1));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_c01 (
-    .clk_i, .rst_ni, .valid_i(at[TimeLh + Lm + 1]), .sub_i(1'b0), .a_i(nl_d1), .b_i(nl),
-    .valid_o(c01_vld), .res_o(c01)
-  );
-  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_nlz (.clk_i, .data_i(nl), .data_o(nl_dz));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_c2 (
-    .clk_i, .rst_ni, .valid_i(at[TimeLh + Lm + 1 + La]), .sub_i(1'b0), .a_i(c01), .b_i(nl_dz),
-    .valid_o(cos_vld), .res_o(cos_res)
+  // cos = (N.x lh.x + N.y lh.y) + N.z lh.z.
+  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_cos (
+    .clk_i, .rst_ni, .strm_i(strm[TimeLh]), .xy_i(at[TimeLh + Lm + 1]),
+    .z_i(at[TimeLh + Lm + 1 + La]), .a_i(n_at_lh), .b_i(lh_s), .prod_valid_o(nl_vld),
+    .xy_valid_o(c01_vld), .valid_o(cos_vld), .res_o(cos_res)
   );
 
-  logic [W-1:0] h_s, hh, hh_d1, hh_dz, h01, hsum, nhp, nhp_d1, nhp_dz, n01, nhd, sq2, ih, nhd_d;
+  logic [W-1:0] h_s, hsum, nhd, sq2, ih, nhd_d;
   logic [W-1:0] nh;
   logic         h_vld, hh_vld, h01_vld, hsum_vld, nhp_vld, n01_vld, nhd_vld, sq2_vld, ih_vld;
   logic         nh_vld;
@@ -292,32 +278,16 @@ module rc_light_term #(
     .clk_i, .rst_ni, .valid_i(strm[TimeLh]), .sub_i(1'b1), .a_i(lh_s), .b_i(v_at_lh),
     .valid_o(h_vld), .res_o(h_s)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_hh (
-    .clk_i, .rst_ni, .valid_i(strm[TimeH]), .a_i(h_s), .b_i(h_s), .valid_o(hh_vld), .res_o(hh)
+  // H.H and N.H, each (x + y) + z.
+  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_hh (
+    .clk_i, .rst_ni, .strm_i(strm[TimeH]), .xy_i(at[TimeH + Lm + 1]),
+    .z_i(at[TimeH + Lm + 1 + La]), .a_i(h_s), .b_i(h_s), .prod_valid_o(hh_vld),
+    .xy_valid_o(h01_vld), .valid_o(hsum_vld), .res_o(hsum)
   );
-  rc_delay #(.Width(W), .Cycles(1)) u_dly_hhx (.clk_i, .data_i(hh), .data_o(hh_d1));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_h01 (
-    .clk_i, .rst_ni, .valid_i(at[TimeH + Lm + 1]), .sub_i(1'b0), .a_i(hh_d1), .b_i(hh),
-    .valid_o(h01_vld), .res_o(h01)
-  );
-  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_hhz (.clk_i, .data_i(hh), .data_o(hh_dz));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_h2 (
-    .clk_i, .rst_ni, .valid_i(at[TimeH + Lm + 1 + La]), .sub_i(1'b0), .a_i(h01), .b_i(hh_dz),
-    .valid_o(hsum_vld), .res_o(hsum)
-  );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_nhp (
-    .clk_i, .rst_ni, .valid_i(strm[TimeH]), .a_i(n_at_h), .b_i(h_s), .valid_o(nhp_vld),
-    .res_o(nhp)
-  );
-  rc_delay #(.Width(W), .Cycles(1)) u_dly_nhx (.clk_i, .data_i(nhp), .data_o(nhp_d1));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_n01 (
-    .clk_i, .rst_ni, .valid_i(at[TimeH + Lm + 1]), .sub_i(1'b0), .a_i(nhp_d1), .b_i(nhp),
-    .valid_o(n01_vld), .res_o(n01)
-  );
-  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_nhz (.clk_i, .data_i(nhp), .data_o(nhp_dz));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_n2 (
-    .clk_i, .rst_ni, .valid_i(at[TimeH + Lm + 1 + La]), .sub_i(1'b0), .a_i(n01), .b_i(nhp_dz),
-    .valid_o(nhd_vld), .res_o(nhd)
+  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_nh (
+    .clk_i, .rst_ni, .strm_i(strm[TimeH]), .xy_i(at[TimeH + Lm + 1]),
+    .z_i(at[TimeH + Lm + 1 + La]), .a_i(n_at_h), .b_i(h_s), .prod_valid_o(nhp_vld),
+    .xy_valid_o(n01_vld), .valid_o(nhd_vld), .res_o(nhd)
   );
   rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt_h (
     .clk_i, .rst_ni, .valid_i(at[TimeHh]), .a_i(hsum), .valid_o(sq2_vld), .res_o(sq2)
