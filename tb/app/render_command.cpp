@@ -256,12 +256,18 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
       kc[i].triangle_tests += k[i].triangle_tests;
     }
   }
+  // Each kind's share of the frame's cycles (every run's) in the traversal sub-units and the
+  // intersection unit: its work over what the units could have done in those cycles.
+  const uint64_t frame_cycles = r.cycles + r.shadow.cycles + r.bounce.cycles + r.refract.cycles;
+  const uint32_t interval = harness::isect_interval(rtl_model(a));
   nlohmann::json kinds = nlohmann::json::object();
   for (size_t i = 0; i < kc.size(); ++i) {
     kinds[harness::ray_kind_name(static_cast<int>(i))] = {
         {"rays", kc[i].rays},
         {"traversal_steps", kc[i].traversal_steps},
-        {"triangle_tests", kc[i].triangle_tests}};
+        {"triangle_tests", kc[i].triangle_tests},
+        {"trav_utilisation", share(kc[i].traversal_steps, 4 * frame_cycles)},
+        {"isect_utilisation", share(kc[i].triangle_tests * interval, frame_cycles)}};
   }
   return {{"cycles", r.cycles},
           {"core_cycles_counter", perf(spec::kCorePerfCycles)},
@@ -321,16 +327,18 @@ void print_rtl_summary(const nlohmann::json& j) {
   if (jk["shadow"]["rays"].get<uint64_t>() + jk["bounce"]["rays"].get<uint64_t>() +
           jk["refract"]["rays"].get<uint64_t>() >
       0) {
-    std::printf("  the core's counters per ray kind (rays, traversal steps, triangle tests):");
+    std::printf(
+        "  the core's counters per ray kind (rays, traversal steps, triangle tests; share of "
+        "the frame's traversal and intersection capacity):\n");
     for (int i = 0; i < harness::kRayKinds; ++i) {
       const std::string name = harness::ray_kind_name(i);
       const auto& k = jk[name];
-      std::printf("%s %s %llu, %llu, %llu", i ? ";" : "", name.c_str(),
+      std::printf("    %-8s %llu, %llu, %llu; trav %.3f, isect %.3f\n", name.c_str(),
                   k["rays"].get<unsigned long long>(),
                   k["traversal_steps"].get<unsigned long long>(),
-                  k["triangle_tests"].get<unsigned long long>());
+                  k["triangle_tests"].get<unsigned long long>(),
+                  k["trav_utilisation"].get<double>(), k["isect_utilisation"].get<double>());
     }
-    std::printf("\n");
   }
   const std::pair<const char*, const char*> kinds[] = {
       {"shadow", "shadow"}, {"bounce", "mirror"}, {"refract", "refraction"}};
