@@ -1065,87 +1065,47 @@ TEST(CoreUnits, LightTermTiming) {
                                             static_cast<uint64_t>(lat / 3 + 2), light_term_case, 3);
 }
 
-// rc_fp_to_fix (valid-only, latency 1) against light_fixed<fp24>() for every fp24 encoding.
-TEST(CoreUnits, ToFixExhaustive) {
-  VerilatedTb<Vrc_fp_to_fix> tb;
-  tb->valid_i = 0;
-  tb.reset(2);
-  tb.tick();
-  uint64_t cases = 0, mismatches = 0, ties = 0;
-  uint32_t prev = 0;
-  bool prev_valid = false;
-  for (uint32_t x = 0; x <= T::kMask + 1; ++x) {
-    const bool last = x > T::kMask;
-    tb->valid_i = !last;
-    tb->x_i = last ? 0 : x;
-    tb.eval();
-    if (prev_valid) {
-      if (!tb->valid_o) {
-        if (++mismatches <= 10) ADD_FAILURE() << "valid_o missing for " << fb(prev).hex();
-      } else {
-        const uint32_t want = light_fixed<T>(fb(prev));
-        ++cases;
-        if (tb->fix_o != want && ++mismatches <= 10)
-          ADD_FAILURE() << "light_fixed(" << fb(prev).hex() << "): rtl " << tb->fix_o << ", golden "
-                        << want;
-        const double v = fb(prev).to_double() * kLightOne;
-        ties += v > 0.0 && v < kLightOne && v - std::floor(v) == 0.5 ? 1 : 0;
-      }
-    }
-    tb.tick();
-    prev = x;
-    prev_valid = !last;
-  }
-  report_cases("rtl rc_fp_to_fix vs golden light_fixed<fp24> (every fp24 encoding)", cases,
-               mismatches);
-  std::printf("[info] rc_fp_to_fix: %llu encodings at an exact x.5 tie\n",
-              static_cast<unsigned long long>(ties));
-  EXPECT_EQ(mismatches, 0u);
-  EXPECT_EQ(cases, uint64_t{T::kMask} + 1);
-  EXPECT_GT(ties, 1000u);
-}
-
-// rc_fp_to_u8 (valid-only, latency kToU8Latency) against to_u8<fp24>() for every fp24 encoding.
-TEST(CoreUnits, ToU8Exhaustive) {
-  VerilatedTb<Vrc_fp_to_u8> tb;
-  std::mt19937_64 rng(404);
+// Every fp24 encoding through a valid-only converter (x_i, valid_i -> out, valid_o `latency`
+// cycles later), with seeded random idle cycles (1 in 16): each result must come exactly
+// `latency` cycles after its input and equal want(x). Returns the mismatches (the first ten are
+// reported as failures).
+template <class V, class Want, class Got>
+uint64_t run_every_encoding(const char* what, uint64_t latency, uint64_t seed, Want want, Got got) {
+  VerilatedTb<V> tb;
+  std::mt19937_64 rng(seed);
   tb->valid_i = 0;
   tb.reset(2);
   tb.tick();
   struct Expect {
     uint32_t x;
-    uint8_t want;
+    uint32_t want;
     uint64_t due;
   };
   std::deque<Expect> q;
   uint64_t cases = 0, mismatches = 0;
-  const auto fail = [&](const std::string& what) {
-    if (++mismatches <= 10) ADD_FAILURE() << what;
+  const auto fail = [&](const std::string& m) {
+    if (++mismatches <= 10) ADD_FAILURE() << what << ": " << m;
   };
   const auto check = [&] {
     tb.eval();
-    if (tb->valid_o) {
-      if (q.empty()) {
-        fail("valid_o with nothing pending");
-      } else {
-        const Expect e = q.front();
-        q.pop_front();
-        if (e.due != tb.cycles()) {
-          fail("latency: result of " + fb(e.x).hex() + " not " + std::to_string(kToU8Latency) +
-               " cycles late");
-        }
-        if (tb->byte_o != e.want)
-          fail("to_u8(" + fb(e.x).hex() + "): rtl " + std::to_string(tb->byte_o) + ", golden " +
-               std::to_string(e.want));
-      }
-    }
+    if (!tb->valid_o) return;
+    if (q.empty()) return fail("valid_o with nothing pending");
+    const Expect e = q.front();
+    q.pop_front();
+    if (e.due != tb.cycles())
+      fail("latency: the result of " + fb(e.x).hex() + " not " + std::to_string(latency) +
+           " cycles late");
+    const uint32_t out = got(tb.m());
+    if (out != e.want)
+      fail("x = " + fb(e.x).hex() + ": rtl " + std::to_string(out) + ", golden " +
+           std::to_string(e.want));
   };
   for (uint32_t x = 0; x <= T::kMask;) {
     const bool idle = (rng() & 15) == 0;
     tb->valid_i = !idle;
     tb->x_i = x;
     if (!idle) {
-      q.push_back({x, to_u8<T>(fb(x)), tb.cycles() + kToU8Latency});
+      q.push_back({x, want(x), tb.cycles() + latency});
       ++cases;
       ++x;
     }
@@ -1153,13 +1113,41 @@ TEST(CoreUnits, ToU8Exhaustive) {
     tb.tick();
   }
   tb->valid_i = 0;
-  for (int i = 0; i < 20; ++i) {
+  for (uint64_t i = 0; i < latency + 20; ++i) {
     check();
     tb.tick();
   }
-  if (!q.empty()) fail("results missing");
-  report_cases("rtl rc_fp_to_u8 vs golden to_u8<fp24>: every fp24 encoding", cases, mismatches);
-  EXPECT_EQ(mismatches, 0u);
+  if (!q.empty()) fail(std::to_string(q.size()) + " results missing");
+  report_cases((std::string("rtl ") + what + ": every fp24 encoding").c_str(), cases, mismatches);
+  EXPECT_EQ(cases, uint64_t{T::kMask} + 1);
+  return mismatches;
+}
+
+// rc_fp_to_fix (valid-only, latency 1) against light_fixed<fp24>() for every fp24 encoding.
+TEST(CoreUnits, ToFixExhaustive) {
+  const uint64_t bad = run_every_encoding<Vrc_fp_to_fix>(
+      "rc_fp_to_fix vs golden light_fixed<fp24>", 1, 505,
+      [](uint32_t x) { return light_fixed<T>(fb(x)); },
+      [](const Vrc_fp_to_fix& m) { return static_cast<uint32_t>(m.fix_o); });
+  EXPECT_EQ(bad, 0u);
+  // The inputs cover the rounding's ties: encodings whose value x 2^fixed_bits is an exact x.5.
+  uint64_t ties = 0;
+  for (uint32_t x = 0; x <= T::kMask; ++x) {
+    const double v = fb(x).to_double() * kLightOne;
+    ties += v > 0.0 && v < kLightOne && v - std::floor(v) == 0.5 ? 1 : 0;
+  }
+  std::printf("[info] rc_fp_to_fix: %llu encodings at an exact x.5 tie\n",
+              static_cast<unsigned long long>(ties));
+  EXPECT_GT(ties, 1000u);
+}
+
+// rc_fp_to_u8 (valid-only, latency kToU8Latency) against to_u8<fp24>() for every fp24 encoding.
+TEST(CoreUnits, ToU8Exhaustive) {
+  const uint64_t bad = run_every_encoding<Vrc_fp_to_u8>(
+      "rc_fp_to_u8 vs golden to_u8<fp24>", kToU8Latency, 404,
+      [](uint32_t x) { return static_cast<uint32_t>(to_u8<T>(fb(x))); },
+      [](const Vrc_fp_to_u8& m) { return static_cast<uint32_t>(m.byte_o); });
+  EXPECT_EQ(bad, 0u);
 }
 
 }  // namespace
