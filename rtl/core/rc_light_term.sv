@@ -26,17 +26,21 @@
 //   scalar that a vector operation needs (inv, cos, spec) is held for its stream's three cycles by
 //   a register loaded in the first. The dot products (dist2, cos, H.H, N.H) are rc_serial_dot3:
 //   a stream's products, x + y as y's leaves, then + z. The power is ExpBits multipliers, one
-//   per bit, each taking
-//   b * b and then r * b in consecutive cycles. Values wait for their operations in rc_delay lines
-//   (short) and rc_delay_ram memories (long), so a job may follow another after three cycles or
-//   after any gap (rc_serial_sched keeps the slots and the job times). The last stage collects
-//   each stream's three components into the output FIFO.
+//   per bit, each taking b * b and then r * b in consecutive cycles. One square root and one
+//   divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H): jobs are taken at a fixed phase modulo
+//   3 (rc_serial_sched, Phased), and the two enter the root at times that differ modulo 3 (H.H a
+//   cycle after its sum), so no two jobs meet there. Values wait for their operations in rc_delay
+//   lines (short) and rc_delay_ram memories (long), so a job may follow another after three
+//   cycles or after any gap (rc_serial_sched keeps the slots and the job times). The last stage
+//   collects each stream's three components into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure, as rc_hit_geom (ready_o
 //   is the AND of two flip-flops; valid_o never depends on ready_i; results leave in order;
 //   tag_i travels with the operation to tag_o).
 // - Latency: TimeOut + 2 cycles from the taking cycle to valid_o when the FIFO is empty and
-//   ready_i is 1 (169 at the default fp_stages: mul 4, add 6, sqrt 10, div 11, and ExpBits 10).
-// - Throughput: one job per 3 cycles while ready_i is 1. The FIFO holds Latency / 3 + 2 entries.
+//   ready_i is 1 (170 at the default fp_stages: mul 4, add 6, sqrt 10, div 11, and ExpBits 10).
+// - Throughput: one job per 3 cycles while ready_i is 1; ready_o is high only in cycles whose
+//   phase modulo 3 lets a job start at phase 0, so a job offered after a gap may wait up to 2
+//   cycles. The FIFO holds Latency / 3 + 2 entries.
 // - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1); FixBits:
 //   the fixed point's fraction bits (docs/spec.toml [light] fixed_bits); ExpBits: the exponent's
 //   bits ([light] exponent_bits).
@@ -96,7 +100,8 @@ module rc_light_term #(
   localparam int unsigned TimeCos  = TimeLh + Lm + 1 + 2 * La;
   localparam int unsigned TimeH    = TimeLh + La;             // H = lh - v
   localparam int unsigned TimeHh   = TimeH + Lm + 1 + 2 * La; // H.H and N.H
-  localparam int unsigned TimeIh   = TimeHh + Ls + Ld;        // 1 / sqrt(H.H)
+  localparam int unsigned TimeHs   = TimeHh + 1;              // H.H into the shared root
+  localparam int unsigned TimeIh   = TimeHs + Ls + Ld;        // 1 / sqrt(H.H)
   localparam int unsigned TimeNh   = TimeIh + Lm;             // nh
   localparam int unsigned PowStep  = Lm + 1;
   localparam int unsigned TimeSpec = TimeNh + ExpBits * PowStep;
@@ -114,6 +119,10 @@ module rc_light_term #(
 
   if (TagW < 1 || ExpBits < 1) begin : g_param_check
     $error("rc_light_term: TagW and ExpBits must be at least 1");
+  end
+  // The shared root and divider's two users must come at different phases (see "cos = N.lh").
+  if (TimeD2 % 3 == TimeHs % 3) begin : g_phase_check
+    $error("rc_light_term: the two square roots' times must differ modulo 3");
   end
 
   // lt(+0, x): x is positive, not zero (an exponent field of 0 reads as zero) and not NaN.
@@ -157,7 +166,7 @@ module rc_light_term #(
   // (rc_serial_sched).
   logic [TimeOut:0]   at;
   logic [TimeOut-2:0] strm;
-  rc_serial_sched #(.Time(TimeOut)) u_sched (
+  rc_serial_sched #(.Time(TimeOut), .Phased(1'b1)) u_sched (
     .clk_i, .rst_ni, .take_i(take), .slot_o(slot_q), .in_free_o(in_free_q), .at_o(at),
     .strm_o(strm)
   );
@@ -207,8 +216,8 @@ module rc_light_term #(
   // Toward the light: L, dist2, inv, lh, dist                //
   //////////////////////////////////////////////////////////
 
-  logic [W-1:0] l_s, dist2, sq1, l_at_inv, d2_at_inv, lh_pt, dist_res;
-  logic         l_vld, ll_vld, d01_vld, d2_vld, sq1_vld, inv_vld, lh_vld, dist_vld;
+  logic [W-1:0] l_s, dist2, l_at_inv, d2_at_inv, lh_pt, dist_res;
+  logic         l_vld, ll_vld, d01_vld, d2_vld, lh_vld, dist_vld;
 
   rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_l (
     .clk_i, .rst_ni, .valid_i(strm[0]), .sub_i(1'b1), .a_i(lp_s), .b_i(p_s), .valid_o(l_vld),
@@ -218,13 +227,6 @@ module rc_light_term #(
   rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_d2 (
     .clk_i, .rst_ni, .strm_i(strm[TimeL]), .xy_i(at[TimeLl + 1]), .z_i(at[TimeD01]), .a_i(l_s),
     .b_i(l_s), .prod_valid_o(ll_vld), .xy_valid_o(d01_vld), .valid_o(d2_vld), .res_o(dist2)
-  );
-  rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt_d (
-    .clk_i, .rst_ni, .valid_i(at[TimeD2]), .a_i(dist2), .valid_o(sq1_vld), .res_o(sq1)
-  );
-  rc_fp_div #(.ExpW(ExpW), .FracW(FracW), .Stages(Ld)) u_div_inv (
-    .clk_i, .rst_ni, .valid_i(at[TimeSq1]), .a_i(One), .b_i(sq1), .valid_o(inv_vld),
-    .res_o(inv_res)
   );
   rc_delay_ram #(.Width(W), .Cycles(TimeInv - TimeL)) u_dly_l (
     .clk_i, .rst_ni, .data_i(l_s), .data_o(l_at_inv)
@@ -270,9 +272,9 @@ module rc_light_term #(
     .xy_valid_o(c01_vld), .valid_o(cos_vld), .res_o(cos_res)
   );
 
-  logic [W-1:0] h_s, hsum, nhd, sq2, ih, nhd_d;
+  logic [W-1:0] h_s, hsum, nhd, ih, nhd_d;
   logic [W-1:0] nh;
-  logic         h_vld, hh_vld, h01_vld, hsum_vld, nhp_vld, n01_vld, nhd_vld, sq2_vld, ih_vld;
+  logic         h_vld, hh_vld, h01_vld, hsum_vld, nhp_vld, n01_vld, nhd_vld;
   logic         nh_vld;
   rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_h (
     .clk_i, .rst_ni, .valid_i(strm[TimeLh]), .sub_i(1'b1), .a_i(lh_s), .b_i(v_at_lh),
@@ -289,13 +291,24 @@ module rc_light_term #(
     .z_i(at[TimeH + Lm + 1 + La]), .a_i(n_at_h), .b_i(h_s), .prod_valid_o(nhp_vld),
     .xy_valid_o(n01_vld), .valid_o(nhd_vld), .res_o(nhd)
   );
-  rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt_h (
-    .clk_i, .rst_ni, .valid_i(at[TimeHh]), .a_i(hsum), .valid_o(sq2_vld), .res_o(sq2)
+  // One square root and one divider make both 1 / sqrt(dist2) (into the root at TimeD2) and
+  // 1 / sqrt(H.H) (at TimeHs, a cycle after the sum): the two times differ modulo 3 and every
+  // job's slot 0 is at phase 0 (rc_serial_sched, Phased), so no two jobs bring them to the
+  // root, or their roots to the divider, in one cycle. Each user reads the shared result at its
+  // own time (TimeInv, TimeIh).
+  logic [W-1:0] hsum_d1, rt_a, rt, rinv;
+  logic         rt_vld, rinv_vld;
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_hs (.clk_i, .data_i(hsum), .data_o(hsum_d1));
+  assign rt_a = at[TimeD2] ? dist2 : hsum_d1;
+  rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
+    .clk_i, .rst_ni, .valid_i(at[TimeD2] | at[TimeHs]), .a_i(rt_a), .valid_o(rt_vld), .res_o(rt)
   );
-  rc_fp_div #(.ExpW(ExpW), .FracW(FracW), .Stages(Ld)) u_div_ih (
-    .clk_i, .rst_ni, .valid_i(at[TimeHh + Ls]), .a_i(One), .b_i(sq2), .valid_o(ih_vld),
-    .res_o(ih)
+  rc_fp_div #(.ExpW(ExpW), .FracW(FracW), .Stages(Ld)) u_div (
+    .clk_i, .rst_ni, .valid_i(at[TimeSq1] | at[TimeHs + Ls]), .a_i(One), .b_i(rt),
+    .valid_o(rinv_vld), .res_o(rinv)
   );
+  assign inv_res = rinv;
+  assign ih      = rinv;
   rc_delay_ram #(.Width(W), .Cycles(TimeIh - TimeHh)) u_dly_nhd (
     .clk_i, .rst_ni, .data_i(nhd), .data_o(nhd_d)
   );
@@ -489,17 +502,22 @@ module rc_light_term #(
     .on_o (checks_on)
   );
 
+  // The shared root's and divider's two users never come in one cycle (the phase).
+  SharedRoot_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+      !(at[TimeD2] && at[TimeHs]) && !(at[TimeSq1] && at[TimeHs + Ls]));
+
   // Each operation's result leaves at the time the schedule above gives it: the fp units' valid
   // chains agree with the stream starts, so no value is read at the wrong cycle.
   Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
       l_vld == strm[TimeL] && ll_vld == strm[TimeLl] && d01_vld == at[TimeD01] &&
-      d2_vld == at[TimeD2] && sq1_vld == at[TimeSq1] && inv_vld == at[TimeInv] &&
+      d2_vld == at[TimeD2] && rt_vld == (at[TimeSq1] | at[TimeHs + Ls]) &&
+      rinv_vld == (at[TimeInv] | at[TimeIh]) &&
       lh_vld == strm[TimeLh] && dist_vld == at[TimeLh] && nl_vld == strm[TimeLh + Lm] &&
       c01_vld == at[TimeLh + Lm + 1 + La] && cos_vld == at[TimeCos] && h_vld == strm[TimeH] &&
       hh_vld == strm[TimeH + Lm] && h01_vld == at[TimeH + Lm + 1 + La] &&
       hsum_vld == at[TimeHh] && nhp_vld == strm[TimeH + Lm] &&
       n01_vld == at[TimeH + Lm + 1 + La] && nhd_vld == at[TimeHh] &&
-      sq2_vld == at[TimeHh + Ls] && ih_vld == at[TimeIh] && nh_vld == at[TimeNh] &&
+      nh_vld == at[TimeNh] &&
       (&pow_vld_ok) && kdcos_vld == strm[TimeCos + Lm] && ksspec_vld == strm[TimeSpec + Lm] &&
       sum_vld == strm[TimeSum] && sl_vld == strm[TimeSum + Lm] && x_vld == strm[TimeX] &&
       term_vld == strm[TimeFix] && ka_vld == strm[Lm] && aw_vld == strm[2 * Lm] &&
