@@ -26,10 +26,11 @@
 //   scalar that a vector operation needs (inv, cos, spec) is held for its stream's three cycles by
 //   a register loaded in the first. The dot products (dist2, cos, H.H, N.H) are rc_serial_dot3:
 //   a stream's products, x + y as y's leaves, then + z. The power is ExpBits multipliers, one
-//   per bit, each taking b * b and then r * b in consecutive cycles. One square root and one
-//   divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H): jobs are taken at a fixed phase modulo
-//   3 (rc_serial_sched, Phased), and the two enter the root at times that differ modulo 3 (H.H a
-//   cycle after its sum), so no two jobs meet there. Values wait for their operations in rc_delay
+//   per bit, each taking b * b and then r * b in consecutive cycles. Jobs are taken at a fixed
+//   phase modulo 3 (rc_serial_sched, Phased), so scalar operations (one cycle per job) whose
+//   times differ modulo 3 share an operator and no two jobs meet there: one square root and one
+//   divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after its sum), and
+//   cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H 1). Values wait for their operations in rc_delay
 //   lines (short) and rc_delay_ram memories (long), so a job may follow another after three
 //   cycles or after any gap (rc_serial_sched keeps the slots and the job times). The last stage
 //   collects each stream's three components into the output FIFO.
@@ -97,7 +98,7 @@ module rc_light_term #(
   localparam int unsigned TimeSq1  = TimeD2 + Ls;             // sqrt(dist2)
   localparam int unsigned TimeInv  = TimeSq1 + Ld;            // 1 / sqrt(dist2)
   localparam int unsigned TimeLh   = TimeInv + Lm;            // lh, dist
-  localparam int unsigned TimeCos  = TimeLh + Lm + 1 + 2 * La;
+  localparam int unsigned TimeCos  = TimeLh + 2 + Lm + 1 + 2 * La; // (N.lh issued 2 late)
   localparam int unsigned TimeH    = TimeLh + La;             // H = lh - v
   localparam int unsigned TimeHh   = TimeH + Lm + 1 + 2 * La; // H.H and N.H
   localparam int unsigned TimeHs   = TimeHh + 1;              // H.H into the shared root
@@ -256,41 +257,43 @@ module rc_light_term #(
   // cos = N.lh, H = lh - V, N.H, H.H, nh                 //
   //////////////////////////////////////////////////////////
 
-  logic [W-1:0] n_at_lh, v_at_lh, n_at_h;
-  logic         nl_vld, c01_vld, cos_vld;
+  logic [W-1:0] n_at_lh, v_at_lh, n_at_h1, n_at_lh2, lh_s2;
   rc_delay_ram #(.Width(2 * W), .Cycles(TimeLh)) u_dly_nv (
     .clk_i, .rst_ni, .data_i({n_s, v_s}), .data_o({n_at_lh, v_at_lh})
   );
-  rc_delay #(.Width(W), .Cycles(TimeH - TimeLh)) u_dly_nh (
-    .clk_i, .data_i(n_at_lh), .data_o(n_at_h)
+  rc_delay #(.Width(W), .Cycles(TimeH + 1 - TimeLh)) u_dly_nh (
+    .clk_i, .data_i(n_at_lh), .data_o(n_at_h1)
+  );
+  rc_delay #(.Width(2 * W), .Cycles(2)) u_dly_nl (
+    .clk_i, .data_i({n_at_lh, lh_s}), .data_o({n_at_lh2, lh_s2})
   );
 
-  // cos = (N.x lh.x + N.y lh.y) + N.z lh.z.
-  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_cos (
-    .clk_i, .rst_ni, .strm_i(strm[TimeLh]), .xy_i(at[TimeLh + Lm + 1]),
-    .z_i(at[TimeLh + Lm + 1 + La]), .a_i(n_at_lh), .b_i(lh_s), .prod_valid_o(nl_vld),
-    .xy_valid_o(c01_vld), .valid_o(cos_vld), .res_o(cos_res)
-  );
-
-  logic [W-1:0] h_s, hsum, nhd, ih, nhd_d;
+  logic [W-1:0] h_s, h_s1, dots, nhd, ih, nhd_d;
   logic [W-1:0] nh;
-  logic         h_vld, hh_vld, h01_vld, hsum_vld, nhp_vld, n01_vld, nhd_vld;
+  logic [2:0]   dp_vld;
+  logic         h_vld, dxy_vld, dots_vld;
   logic         nh_vld;
   rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_h (
     .clk_i, .rst_ni, .valid_i(strm[TimeLh]), .sub_i(1'b1), .a_i(lh_s), .b_i(v_at_lh),
     .valid_o(h_vld), .res_o(h_s)
   );
-  // H.H and N.H, each (x + y) + z.
-  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_hh (
-    .clk_i, .rst_ni, .strm_i(strm[TimeH]), .xy_i(at[TimeH + Lm + 1]),
-    .z_i(at[TimeH + Lm + 1 + La]), .a_i(h_s), .b_i(h_s), .prod_valid_o(hh_vld),
-    .xy_valid_o(h01_vld), .valid_o(hsum_vld), .res_o(hsum)
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_h1 (.clk_i, .data_i(h_s), .data_o(h_s1));
+  // cos = N.lh, H.H and N.H, each (x + y) + z, through two adders shared by phase: N.lh's stream
+  // issued 2 cycles late, H.H's on time, N.H's 1 late, so their sums come at times that differ
+  // modulo 3 (phases 1, 2 and 0) and never meet (jobs start at phase 0, rc_serial_sched Phased).
+  // Each reads the shared result at its own time: cos at TimeCos, H.H at TimeHh, N.H a cycle
+  // later.
+  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW), .Users(3)) u_dots (
+    .clk_i, .rst_ni,
+    .strm_i({strm[TimeH + 1], strm[TimeH], strm[TimeLh + 2]}),
+    .xy_i  ({at[TimeH + 1 + Lm + 1], at[TimeH + Lm + 1], at[TimeLh + 2 + Lm + 1]}),
+    .z_i   ({at[TimeH + 1 + Lm + 1 + La], at[TimeH + Lm + 1 + La], at[TimeLh + 2 + Lm + 1 + La]}),
+    .a_i   ({n_at_h1, h_s, n_at_lh2}),
+    .b_i   ({h_s1, h_s, lh_s2}),
+    .prod_valid_o(dp_vld), .xy_valid_o(dxy_vld), .valid_o(dots_vld), .res_o(dots)
   );
-  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_nh (
-    .clk_i, .rst_ni, .strm_i(strm[TimeH]), .xy_i(at[TimeH + Lm + 1]),
-    .z_i(at[TimeH + Lm + 1 + La]), .a_i(n_at_h), .b_i(h_s), .prod_valid_o(nhp_vld),
-    .xy_valid_o(n01_vld), .valid_o(nhd_vld), .res_o(nhd)
-  );
+  assign cos_res = dots;
+  assign nhd     = dots;
   // One square root and one divider make both 1 / sqrt(dist2) (into the root at TimeD2) and
   // 1 / sqrt(H.H) (at TimeHs, a cycle after the sum): the two times differ modulo 3 and every
   // job's slot 0 is at phase 0 (rc_serial_sched, Phased), so no two jobs bring them to the
@@ -298,7 +301,7 @@ module rc_light_term #(
   // own time (TimeInv, TimeIh).
   logic [W-1:0] hsum_d1, rt_a, rt, rinv;
   logic         rt_vld, rinv_vld;
-  rc_delay #(.Width(W), .Cycles(1)) u_dly_hs (.clk_i, .data_i(hsum), .data_o(hsum_d1));
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_hs (.clk_i, .data_i(dots), .data_o(hsum_d1));
   assign rt_a = at[TimeD2] ? dist2 : hsum_d1;
   rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
     .clk_i, .rst_ni, .valid_i(at[TimeD2] | at[TimeHs]), .a_i(rt_a), .valid_o(rt_vld), .res_o(rt)
@@ -309,7 +312,7 @@ module rc_light_term #(
   );
   assign inv_res = rinv;
   assign ih      = rinv;
-  rc_delay_ram #(.Width(W), .Cycles(TimeIh - TimeHh)) u_dly_nhd (
+  rc_delay_ram #(.Width(W), .Cycles(TimeIh - TimeHh - 1)) u_dly_nhd (
     .clk_i, .rst_ni, .data_i(nhd), .data_o(nhd_d)
   );
   rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_nh (
@@ -512,11 +515,11 @@ module rc_light_term #(
       l_vld == strm[TimeL] && ll_vld == strm[TimeLl] && d01_vld == at[TimeD01] &&
       d2_vld == at[TimeD2] && rt_vld == (at[TimeSq1] | at[TimeHs + Ls]) &&
       rinv_vld == (at[TimeInv] | at[TimeIh]) &&
-      lh_vld == strm[TimeLh] && dist_vld == at[TimeLh] && nl_vld == strm[TimeLh + Lm] &&
-      c01_vld == at[TimeLh + Lm + 1 + La] && cos_vld == at[TimeCos] && h_vld == strm[TimeH] &&
-      hh_vld == strm[TimeH + Lm] && h01_vld == at[TimeH + Lm + 1 + La] &&
-      hsum_vld == at[TimeHh] && nhp_vld == strm[TimeH + Lm] &&
-      n01_vld == at[TimeH + Lm + 1 + La] && nhd_vld == at[TimeHh] &&
+      lh_vld == strm[TimeLh] && dist_vld == at[TimeLh] && h_vld == strm[TimeH] &&
+      dp_vld == {strm[TimeH + 1 + Lm], strm[TimeH + Lm], strm[TimeLh + 2 + Lm]} &&
+      dxy_vld == (at[TimeLh + 2 + Lm + 1 + La] | at[TimeH + Lm + 1 + La] |
+                  at[TimeH + 1 + Lm + 1 + La]) &&
+      dots_vld == (at[TimeCos] | at[TimeHh] | at[TimeHh + 1]) &&
       nh_vld == at[TimeNh] &&
       (&pow_vld_ok) && kdcos_vld == strm[TimeCos + Lm] && ksspec_vld == strm[TimeSpec + Lm] &&
       sum_vld == strm[TimeSum] && sl_vld == strm[TimeSum + Lm] && x_vld == strm[TimeX] &&
