@@ -12,9 +12,10 @@
 //   its events by a cycle, and its bits 63..PerfLoW (32) by two: the low half's carry is
 //   registered, so no 64-bit carry chain ends at a counter); counter CorePerfMaxStack instead
 //   keeps the largest perf_depth_i seen with perf_inc_i's CorePerfStackPushes field non-zero.
-//   With KindCounters = 0 the per-kind counters (CorePerfPrimaryRays .. CorePerfRefractTriangleTests)
-//   are not built: the primary ones read CorePerfRays, CorePerfTraversalSteps and
-//   CorePerfTriangleTests, the others 0 (their increments are not read).
+//   With KindCounters = 0 the per-kind counters (CorePerfPrimaryRays ..
+//   CorePerfRefractTriangleTests) are not built: the primary ones read CorePerfRays,
+//   CorePerfTraversalSteps and CorePerfTriangleTests, the others 0 (their increments are not
+//   read).
 //   perf_o = counter perf_sel_i (64 bits, zero for numbers >= CorePerfCount) one cycle late: the
 //   number is sampled at a clock edge and perf_o shows, from that edge on, the counter as it was
 //   before the edge (a multiplexer level between two register levels, see "The read"). So a

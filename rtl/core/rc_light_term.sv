@@ -30,10 +30,10 @@
 //   phase modulo 3 (rc_serial_sched, Phased), so scalar operations (one cycle per job) whose
 //   times differ modulo 3 share an operator and no two jobs meet there: one square root and one
 //   divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after its sum), and
-//   cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H 1). Values wait for their operations in rc_delay
-//   lines (short) and rc_delay_ram memories (long), so a job may follow another after three
-//   cycles or after any gap (rc_serial_sched keeps the slots and the job times). The last stage
-//   collects each stream's three components into the output FIFO.
+//   cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H 1). Values wait for
+//   their operations in rc_delay lines (short) and rc_delay_ram memories (long), so a job may
+//   follow another after three cycles or after any gap (rc_serial_sched keeps the slots and the
+//   job times). The last stage collects each stream's three components into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure, as rc_hit_geom (ready_o
 //   is the AND of two flip-flops; valid_o never depends on ready_i; results leave in order;
 //   tag_i travels with the operation to tag_o).
@@ -121,9 +121,14 @@ module rc_light_term #(
   if (TagW < 1 || ExpBits < 1) begin : g_param_check
     $error("rc_light_term: TagW and ExpBits must be at least 1");
   end
-  // The shared root and divider's two users must come at different phases (see "cos = N.lh").
-  if (TimeD2 % 3 == TimeHs % 3) begin : g_phase_check
-    $error("rc_light_term: the two square roots' times must differ modulo 3");
+  // The shared operators' users must come at different phases (see "cos = N.lh"): the root's
+  // two, and the three dot products' sums (their x + y times; each sum is La later).
+  localparam int unsigned PhCos = (TimeLh + 2 + Lm + 1) % 3;
+  localparam int unsigned PhHh  = (TimeH + Lm + 1) % 3;
+  localparam int unsigned PhNh  = (TimeH + 1 + Lm + 1) % 3;
+  if (TimeD2 % 3 == TimeHs % 3 || PhCos == PhHh || PhCos == PhNh || PhHh == PhNh)
+  begin : g_phase_check
+    $error("rc_light_term: the shared operators' users must come at different phases");
   end
 
   // lt(+0, x): x is positive, not zero (an exponent field of 0 reads as zero) and not NaN.
@@ -287,7 +292,8 @@ module rc_light_term #(
     .clk_i, .rst_ni,
     .strm_i({strm[TimeH + 1], strm[TimeH], strm[TimeLh + 2]}),
     .xy_i  ({at[TimeH + 1 + Lm + 1], at[TimeH + Lm + 1], at[TimeLh + 2 + Lm + 1]}),
-    .z_i   ({at[TimeH + 1 + Lm + 1 + La], at[TimeH + Lm + 1 + La], at[TimeLh + 2 + Lm + 1 + La]}),
+    .z_i   ({at[TimeH + 1 + Lm + 1 + La], at[TimeH + Lm + 1 + La],
+             at[TimeLh + 2 + Lm + 1 + La]}),
     .a_i   ({n_at_h1, h_s, n_at_lh2}),
     .b_i   ({h_s1, h_s, lh_s2}),
     .prod_valid_o(dp_vld), .xy_valid_o(dxy_vld), .valid_o(dots_vld), .res_o(dots)
