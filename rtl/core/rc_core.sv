@@ -788,7 +788,8 @@ module rc_core #(
 
   // The per-kind counters (a core with secondary packets only; rc_core_status aliases them
   // otherwise).
-  logic [35:0] kind_inc;
+  localparam int unsigned KindIncW = 3 * (rc_pkg::CorePerfCount - rc_pkg::CorePerfPrimaryRays);
+  logic [KindIncW-1:0] kind_inc;
   if (Secondary) begin : g_kind_perf
     rc_kind_perf #(
       .Threads(Threads)
@@ -813,7 +814,7 @@ module rc_core #(
 
   always_comb begin
     perf_inc = '0;
-    perf_inc[3*rc_pkg::CorePerfPrimaryRays +: 36]     = kind_inc;
+    perf_inc[3*rc_pkg::CorePerfPrimaryRays +: KindIncW] = kind_inc;
     perf_inc[3*rc_pkg::CorePerfCycles +: 3]           = 3'd1;
     perf_inc[3*rc_pkg::CorePerfBusyCycles +: 3]       = 3'(!idle);
     perf_inc[3*rc_pkg::CorePerfPackets +: 3]          = 3'(perf_packet);

@@ -22,7 +22,9 @@ module rc_kind_perf #(
   parameter int unsigned Threads = rc_pkg::CoreThreads,
   // Derived (do not override).
   parameter int unsigned ThrW    = (Threads > 1) ? $clog2(Threads) : 1,
-  parameter int unsigned KindW   = rc_pkg::RayKindBits
+  parameter int unsigned KindW   = rc_pkg::RayKindBits,
+  parameter int unsigned Kinds   = 1 << KindW,
+  parameter int unsigned IncW    = 3 * 3 * Kinds  // three events a kind, 3 bits each
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -39,7 +41,7 @@ module rc_kind_perf #(
   input  logic                 test_i,
   input  logic [ThrW-1:0]      test_thr_i,
 
-  output logic [36-1:0]        inc_o
+  output logic [IncW-1:0]      inc_o
 );
 
   if (Threads < 1 || (1 << ThrW) < Threads || KindW != 2) begin : g_param_check
@@ -73,7 +75,7 @@ module rc_kind_perf #(
 
   always_comb begin
     inc_o = '0;
-    for (int unsigned k = 0; k < 4; k++) begin
+    for (int unsigned k = 0; k < Kinds; k++) begin
       inc_o[3*(3*k + 0) +: 3] = (acc_kind_i == KindW'(k)) ? rays : 3'd0;
       inc_o[3*(3*k + 1) +: 3] = (step_kind == KindW'(k)) ? steps_i : 3'd0;
       inc_o[3*(3*k + 2) +: 3] = 3'(test_i && test_kind == KindW'(k));

@@ -215,12 +215,9 @@ module rc_setup_unit #(
   logic [4*W-1:0]  pin_ilen_q;
   logic [127:0]    pin_pix_q, pin_stri_q;
   logic [4*W-1:0]  pin_tlim_q;
-  logic            pin_sec_q, pin_any_q;
   logic [rc_pkg::RayKindBits-1:0] pin_kind_q, pkt_kind;
-  logic            pin_v_d, pkt_sec, pkt_any;
+  logic            pin_v_d;
   assign pkt_kind = Secondary ? pkt_kind_i : rc_pkg::RayPrimary;
-  assign pkt_sec = Secondary & (pkt_kind_i != rc_pkg::RayPrimary);
-  assign pkt_any = Secondary & (pkt_kind_i == rc_pkg::RayShadow);
   assign pin_v_d = pin_v_q ? ~acc_take_f : pkt_valid_i;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -236,10 +233,8 @@ module rc_setup_unit #(
       pin_dir_q  <= pkt_dir_i;
       pin_ilen_q <= pkt_inv_len_i;
       pin_pix_q  <= pkt_pixel_i;
-      pin_sec_q  <= pkt_sec;
-      pin_any_q  <= pkt_any;
       pin_kind_q <= pkt_kind;
-      pin_tlim_q <= pkt_sec ? pkt_t_hi_i : {4{rc_pkg::CoreFpPosInf}};
+      pin_tlim_q <= (pkt_kind != rc_pkg::RayPrimary) ? pkt_t_hi_i : {4{rc_pkg::CoreFpPosInf}};
       pin_stri_q <= pkt_start_tri_i;
     end
   end
@@ -271,8 +266,10 @@ module rc_setup_unit #(
   logic [4*W-1:0]  feed_ilen_q;
   logic [127:0]    feed_pix_q, feed_stri_q;
   logic [4*W-1:0]  feed_tlim_q;
-  logic            feed_sec_q, feed_any_q;
   logic [rc_pkg::RayKindBits-1:0] feed_kind_q;
+  logic            feed_sec, feed_any;  // decodes of the kind: a secondary packet, a shadow packet
+  assign feed_sec = feed_kind_q != rc_pkg::RayPrimary;
+  assign feed_any = feed_kind_q == rc_pkg::RayShadow;
   logic [3:0]      feed_vmask_q;
   logic [NU-1:0]   su_ready_all, su_valid_all;
   logic [UW-1:0]   out_u_q;
@@ -370,8 +367,6 @@ module rc_setup_unit #(
       feed_ilen_q  <= pin_ilen_q;
       feed_pix_q   <= pin_pix_q;
       feed_vmask_q <= pin_mask_q;
-      feed_sec_q   <= pin_sec_q;
-      feed_any_q   <= pin_any_q;
       feed_kind_q  <= pin_kind_q;
       feed_tlim_q  <= pin_tlim_q;
       feed_stri_q  <= pin_stri_q;
@@ -382,8 +377,8 @@ module rc_setup_unit #(
   assign acc_thr_o    = feed_thr_q;
   assign acc_hot_o    = gacc_q;
   assign acc_vmask_o  = feed_vmask_q;
-  assign acc_anyhit_o = feed_any_q;
-  assign acc_sec_o    = feed_sec_q;
+  assign acc_anyhit_o = feed_any;
+  assign acc_sec_o    = feed_sec;
   assign acc_kind_o   = feed_kind_q;
 
   // The ray store's words of the ray being taken.
@@ -425,7 +420,7 @@ module rc_setup_unit #(
     rw_r_q      <= feed_r_q;
     rw_orgdir_q <= {feed_dir_r, feed_org_r};
     rw_lenpix_q <= {rc_pkg::lane32(feed_pix_q, feed_r_q), lane_w(feed_ilen_q, feed_r_q)};
-    rw_lim_q    <= {feed_sec_q, rc_pkg::lane32(feed_stri_q, feed_r_q),
+    rw_lim_q    <= {feed_sec, rc_pkg::lane32(feed_stri_q, feed_r_q),
                     lane_w(feed_tlim_q, feed_r_q)};
     aw_data_q   <= aw_data;
   end

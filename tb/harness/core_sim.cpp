@@ -84,20 +84,6 @@ CoreSimResult secondary_pass(const scene::SceneImage& image, const std::vector<C
   return s;
 }
 
-// The packet of rays in `mask` of a secondary packet's rays and limits.
-CorePacket secondary_packet(RayKind kind, uint32_t mask,
-                            const std::array<Ray<fp24>, kPacketRays>& rays,
-                            const SecondaryLimits<fp24>& lim, size_t index) {
-  CorePacket p;
-  p.kind = kind;
-  p.mask = mask;
-  p.rays = rays;
-  p.t_hi = lim.t_hi;
-  p.start_tri = lim.exclude;
-  for (uint32_t r = 0; r < kPacketRays; ++r) p.slot[r] = static_cast<uint32_t>(4 * index + r);
-  return p;
-}
-
 // A secondary packet that ended with an error: the core writes colour 1 for each of its rays.
 bool secondary_failed(const Frame& f, size_t j, uint32_t mask) {
   for (uint32_t r = 0; r < kPacketRays; ++r)
@@ -228,6 +214,19 @@ void light_rtl(const scene::SceneImage& image, const RenderOptions& render,
 }
 
 }  // namespace
+
+CorePacket secondary_packet(RayKind kind, uint32_t mask,
+                            const std::array<Ray<fp24>, kPacketRays>& rays,
+                            const SecondaryLimits<fp24>& lim, size_t index) {
+  CorePacket p;
+  p.kind = kind;
+  p.mask = mask;
+  p.rays = rays;
+  p.t_hi = lim.t_hi;
+  p.start_tri = lim.exclude;
+  for (uint32_t r = 0; r < kPacketRays; ++r) p.slot[r] = static_cast<uint32_t>(4 * index + r);
+  return p;
+}
 
 CoreSimResult render_rtl(const scene::SceneImage& image, const RenderOptions& render,
                          const CoreSimOptions& options, CoreModel model) {

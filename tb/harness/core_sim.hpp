@@ -175,6 +175,12 @@ struct CorePacket {
   std::array<int32_t, kPacketRays> start_tri{-1, -1, -1, -1};
 };
 
+// The packet of `kind` of the rays in `mask` of a secondary packet's rays and limits, packet
+// `index` of a pass: ray r writes framebuffer pixel 4 * index + r of a 4-wide frame.
+CorePacket secondary_packet(RayKind kind, uint32_t mask,
+                            const std::array<Ray<fp24>, kPacketRays>& rays,
+                            const SecondaryLimits<fp24>& lim, size_t index);
+
 // The simulation of one verilated core model. Not copyable; one run per object.
 template <class Model>
 class CoreSim {

@@ -424,13 +424,7 @@ TEST_P(CoreRtlKinds, MixedKindsMatchGoldenPerKind) {
   const auto secondary = [&](harness::RayKind kind, uint32_t mask,
                              const std::array<Ray<fp24>, kPacketRays>& rays,
                              const SecondaryLimits<fp24>& lim) {
-    harness::CorePacket p;
-    p.kind = kind;
-    p.mask = mask;
-    p.rays = rays;
-    p.t_hi = lim.t_hi;
-    p.start_tri = lim.exclude;
-    add(p, &lim);
+    add(harness::secondary_packet(kind, mask, rays, lim, 0), &lim);  // slots set below
   };
   for (uint32_t py = 0; py < (opt.height + 1) / 2; ++py)
     for (uint32_t px = 0; px < (opt.width + 1) / 2; ++px) {
