@@ -20,6 +20,7 @@ rtl/core/rc_serial_dot3.sv
 rtl/core/rc_fp_to_fix.sv
 rtl/core/rc_hit_geom.sv
 rtl/core/rc_light_term.sv
+rtl/core/rc_hit_light.sv
 rtl/core/rc_shade_unit.sv
 rtl/core/rc_xform_unit.sv
 rtl/core/rc_isect_unit.sv

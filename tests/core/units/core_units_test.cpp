@@ -1,7 +1,8 @@
 // The core's datapath units (rtl/core/rc_trav_step.sv, rc_ray_setup.sv, rc_shade_unit.sv,
-// rc_fp_to_u8.sv, rc_hit_geom.sv, rc_light_term.sv, rc_fp_to_fix.sv), verilated at fp24, against
-// the golden model functions they implement (tb/golden/trace.hpp: trav_step, setup_ray, shade,
-// to_u8, hit_geometry, light_sample with ambient_terms, light_fixed), bit for bit.
+// rc_fp_to_u8.sv, rc_hit_geom.sv, rc_light_term.sv, rc_hit_light.sv, rc_fp_to_fix.sv), verilated
+// at fp24, against the golden model functions they implement (tb/golden/trace.hpp: trav_step,
+// setup_ray, shade, to_u8, hit_geometry, light_sample with ambient_terms, both for a hit and its
+// lights, light_fixed), bit for bit.
 //
 // The handshake units are driven through their valid/ready ports with seeded random valid_i gaps
 // and seeded random ready_i low periods. Every operation carries a sequence number as its tag;
@@ -22,6 +23,7 @@
 #include "Vrc_fp_to_fix.h"
 #include "Vrc_fp_to_u8.h"
 #include "Vrc_hit_geom.h"
+#include "Vrc_hit_light.h"
 #include "Vrc_light_term.h"
 #include "Vrc_ray_setup.h"
 #include "Vrc_shade_unit.h"
@@ -1017,12 +1019,15 @@ TEST(CoreUnits, HitGeomRandom) {
   EXPECT_GT(underflow, 1'000u);
 }
 
-// rc_hit_geom runs a hit's components through one slice: one hit per 3 cycles.
+// rc_hit_geom's latency: input register; V, N.V, the two sums of c, c * c, 1 - c^2,
+// e^2 (1 - c^2), q, sqrt(q), g, g * N, e V - g N; y and z behind x; the output FIFO.
+constexpr int64_t kHitGeomLatency =
+    1 + 2 * kMul + 1 + 2 * kAdd + 3 * kMul + 4 * kAdd + spec::kFpStagesSqrt + 2 + 1;
+
+// rc_hit_geom runs a hit's components through one slice: one hit per 3 cycles. The FIFO holds
+// latency / 3 + 2 entries.
 TEST(CoreUnits, HitGeomTiming) {
-  // Input register; V, N.V, the two sums of c, c * c, 1 - c^2, e^2 (1 - c^2), q, sqrt(q), g,
-  // g * N, e V - g N; y and z behind x; the output FIFO. The FIFO holds latency / 3 + 2 entries.
-  constexpr int64_t kSqrt = spec::kFpStagesSqrt;
-  constexpr int64_t lat = 1 + 2 * kMul + 1 + 2 * kAdd + 3 * kMul + 4 * kAdd + kSqrt + 2 + 1;
+  constexpr int64_t lat = kHitGeomLatency;
   run_timing<Vrc_hit_geom, HitGeomUnit>("rc_hit_geom", lat, static_cast<uint64_t>(lat / 3 + 2),
                                         hit_geom_case, 3);
 }
@@ -1053,18 +1058,18 @@ TEST(CoreUnits, LightTermRandom) {
   EXPECT_GT(saturated, 1'000u);
 }
 
-// rc_light_term takes one job per 3 cycles.
+// rc_light_term's latency: input register; L, L.L, its two sums, sqrt, 1 / sqrt, lh, N.lh's
+// product, H, H.H, its two sums, sqrt, 1 / sqrt, nh, the power (a multiply and a cycle per bit),
+// ks * spec, kd cos + ks spec, * colour, * w, fix; y and z behind x; the output FIFO. H.H enters
+// the shared square root a cycle after its sum (the root's other user is a phase earlier).
+constexpr int64_t kLightTermLatency = 1 + kAdd + kMul + 1 + 2 * kAdd + spec::kFpStagesSqrt + kDiv +
+                                      kMul + kAdd + kMul + 1 + 2 * kAdd + 1 + spec::kFpStagesSqrt +
+                                      kDiv + kMul + int64_t{spec::kLightExponentBits} * (kMul + 1) +
+                                      kMul + kAdd + 2 * kMul + 1 + 2 + 1;
+
+// rc_light_term takes one job per 3 cycles; a job waits at most 2 cycles for its phase.
 TEST(CoreUnits, LightTermTiming) {
-  // Input register; L, L.L, its two sums, sqrt, 1 / sqrt, lh, N.lh's product, H, H.H, its two
-  // sums, sqrt, 1 / sqrt, nh, the power (a multiply and a cycle per bit), ks * spec,
-  // kd cos + ks spec, * colour, * w, fix; y and z behind x; the output FIFO. H.H enters the
-  // shared square root a cycle after its sum (the root's other user is a phase earlier), and a
-  // job waits at most 2 cycles for its phase.
-  constexpr int64_t kSqrt = spec::kFpStagesSqrt;
-  constexpr int64_t kBits = spec::kLightExponentBits;
-  constexpr int64_t lat = 1 + kAdd + kMul + 1 + 2 * kAdd + kSqrt + kDiv + kMul + kAdd + kMul + 1 +
-                          2 * kAdd + 1 + kSqrt + kDiv + kMul + kBits * (kMul + 1) + kMul + kAdd +
-                          2 * kMul + 1 + 2 + 1;
+  constexpr int64_t lat = kLightTermLatency;
   run_timing<Vrc_light_term, LightTermUnit>(
       "rc_light_term", lat, static_cast<uint64_t>(lat / 3 + 2), light_term_case, 3, 2);
 }
@@ -1152,6 +1157,329 @@ TEST(CoreUnits, ToU8Exhaustive) {
       [](uint32_t x) { return static_cast<uint32_t>(to_u8<T>(fb(x))); },
       [](const Vrc_fp_to_u8& m) { return static_cast<uint32_t>(m.byte_o); });
   EXPECT_EQ(bad, 0u);
+}
+
+////////////////////////
+// rc_hit_light       //
+////////////////////////
+
+constexpr int kMaxLights = static_cast<int>(spec::kLightMaxLights);
+
+// A hit and its material as the lighting takes them, and the lights of its configuration.
+struct HitLightCase {
+  HitGeomUnit::In hit;
+  std::array<T, 3> kd, ks;
+  uint32_t ns = 0;
+};
+using LightSet = std::array<Geometry<T>::Light, kMaxLights>;
+
+// What rc_hit_light's two outputs give for one hit.
+struct HitLightGeo {
+  std::array<uint32_t, 3> p{}, r{}, refr{};
+  uint32_t w_mirror = 0, w_refract = 0;
+  bool mirror = false, refract = false;
+  bool operator==(const HitLightGeo& o) const {
+    return p == o.p && r == o.r && refr == o.refr && w_mirror == o.w_mirror &&
+           w_refract == o.w_refract && mirror == o.mirror && refract == o.refract;
+  }
+};
+struct HitLightSample {
+  uint32_t light = 0;
+  bool last = false;
+  std::array<uint32_t, 3> org{};
+  LightTermUnit::Out s;
+  bool operator==(const HitLightSample& o) const {
+    return light == o.light && last == o.last && org == o.org && s == o.s;
+  }
+};
+
+// The bench: hits through valid_i/ready_o with seeded random gaps, geo_ready_i and lt_ready_i
+// each with seeded random low bursts of their own; every output checked against the head of its
+// queue of golden results (hit_geometry, then light_sample and ambient_terms per light).
+class HitLightBench {
+ public:
+  HitLightBench(uint64_t seed, bool stalls) : rng_(seed), stalls_(stalls) {
+    tb_->ambient_i = kAmbient.bits();
+    tb_->valid_i = 0;
+    tb_->geo_ready_i = 0;
+    tb_->lt_ready_i = 0;
+    tb_.reset(4, [this] { tick(); });
+    tick();
+  }
+
+  // Sets the configuration (lights 0 .. count - 1 of `lights`); only while the unit is empty.
+  void configure(const LightSet& lights, uint32_t count) {
+    count_ = count;
+    lights_ = lights;
+    tb_->light_count_i = static_cast<uint8_t>(count);
+    tb_->light_dir_i = 0;
+    for (int l = 0; l < kMaxLights; ++l) {
+      tb_->light_dir_i |= static_cast<uint8_t>((lights[l].directional ? 1u : 0u) << l);
+      for (int a = 0; a < 3; ++a) {
+        put_field(tb_->light_pos_i, (3 * l + a) * kW, kW, lights[l].pos[a].bits());
+        put_field(tb_->light_col_i, (3 * l + a) * kW, kW, lights[l].color[a].bits());
+      }
+    }
+  }
+
+  void push(const HitLightCase& c) {
+    if (stalls_ && (rng_() & 7) == 0) {
+      tb_->valid_i = 0;
+      for (int i = 1 + static_cast<int>(rng_() % 6); i > 0; --i) tick();
+    }
+    const uint32_t tag = static_cast<uint32_t>(seq_++ & kTagMask);
+    tb_->valid_i = 1;
+    tb_->tag_i = static_cast<uint16_t>(tag);
+    Vrc_hit_light& d = tb_.m();
+    for (int a = 0; a < 3; ++a) {
+      put_field(d.org_i, a * kW, kW, c.hit.ray.org[a].bits());
+      put_field(d.dir_i, a * kW, kW, c.hit.ray.dir[a].bits());
+      put_field(d.n_i, a * kW, kW, c.hit.n[a].bits());
+      put_field(d.kd_i, a * kW, kW, c.kd[a].bits());
+      put_field(d.ks_i, a * kW, kW, c.ks[a].bits());
+    }
+    d.inv_len_i = c.hit.ray.inv_len.bits();
+    d.t_i = c.hit.t.bits();
+    d.dz_i = c.hit.dz.bits();
+    d.eta_enter_i = c.hit.eta_enter.bits();
+    d.eta_leave_i = c.hit.eta_leave.bits();
+    d.w_i = c.hit.w.bits();
+    d.mirror_i = c.hit.mirror.bits();
+    d.transmit_i = c.hit.transmit.bits();
+    d.ns_i = static_cast<uint16_t>(c.ns);
+    expect(c, tag);
+    ++hits_;
+    uint64_t waited = 0;
+    while (!tick()) {
+      if (++waited > 100000) {
+        fail("ready_o stuck low");
+        break;
+      }
+    }
+    tb_->valid_i = 0;
+  }
+
+  // Idles until both queues are empty, then some more cycles to catch spurious outputs.
+  void drain() {
+    tb_->valid_i = 0;
+    for (int i = 0; i < 100000 && (!geo_q_.empty() || !lt_q_.empty()); ++i) tick();
+    if (!geo_q_.empty() || !lt_q_.empty())
+      fail(std::to_string(geo_q_.size()) + " geo and " + std::to_string(lt_q_.size()) +
+           " light results missing after 100000 idle cycles");
+    for (int i = 0; i < 300; ++i) tick();
+  }
+
+  bool tick() {
+    tb_->geo_ready_i = ready(geo_low_);
+    tb_->lt_ready_i = ready(lt_low_);
+    tb_.eval();
+    const bool taken = tb_->valid_i && tb_->ready_o;
+    if (taken && first_take_ < 0) first_take_ = static_cast<int64_t>(cycle());
+    if (tb_->geo_valid_o && first_geo_ < 0) first_geo_ = static_cast<int64_t>(cycle());
+    if (tb_->lt_valid_o && first_lt_ < 0) first_lt_ = static_cast<int64_t>(cycle());
+    if (tb_->geo_valid_o && tb_->geo_ready_i) check_geo();
+    if (tb_->lt_valid_o && tb_->lt_ready_i) check_lt();
+    tb_.tick();
+    return taken;
+  }
+
+  // Cycles from the first hit's take to the first geo and the first light output.
+  int64_t geo_latency() const { return first_geo_ - first_take_; }
+  int64_t lt_latency() const { return first_lt_ - first_take_; }
+
+  uint64_t hits() const { return hits_; }
+  uint64_t samples() const { return samples_; }
+  uint64_t mismatches() const { return mismatches_; }
+  uint64_t cycle() const { return tb_.cycles(); }
+  bool ready_o() { return tb_->ready_o; }
+
+ private:
+  template <class Out>
+  struct Expect {
+    uint32_t tag;
+    Out want;
+  };
+
+  void expect(const HitLightCase& c, uint32_t tag) {
+    const HitGeomUnit::In& in = c.hit;
+    const HitGeometry<T> h = hit_geometry(in.ray, in.t, in.dz, in.n, in.eta_enter, in.eta_leave,
+                                          in.w, in.mirror, in.transmit);
+    HitLightGeo g;
+    for (int a = 0; a < 3; ++a) {
+      g.p[a] = h.p[a].bits();
+      g.r[a] = h.r[a].bits();
+      g.refr[a] = h.t[a].bits();
+    }
+    g.w_mirror = h.w_mirror.bits();
+    g.w_refract = h.w_refract.bits();
+    g.mirror = h.mirror;
+    g.refract = h.refract;
+    geo_q_.push_back({tag, g});
+    for (uint32_t l = 0; l < count_; ++l) {
+      HitLightSample s;
+      s.light = l;
+      s.last = l + 1 == count_;
+      s.org = g.p;
+      LightTermUnit::In li;
+      li.sp.p = h.p;
+      li.sp.n = h.n;
+      li.sp.v = h.v;
+      li.light = lights_[l];
+      li.kd = c.kd;
+      li.ks = c.ks;
+      li.ns = c.ns;
+      li.w = in.w;
+      s.s = LightTermUnit::golden(li);
+      lt_q_.push_back({tag, s});
+    }
+  }
+
+  bool ready(int& low) {
+    if (!stalls_) return true;
+    if (low > 0) return --low, false;
+    if (rng_() % 16 == 0) {
+      low = static_cast<int>(rng_() % 40);
+      return false;
+    }
+    return true;
+  }
+
+  void fail(const std::string& what) {
+    if (++mismatches_ <= 10) ADD_FAILURE() << what;
+  }
+
+  void check_geo() {
+    const Vrc_hit_light& d = tb_.m();
+    if (geo_q_.empty())
+      return fail("geo_valid_o with nothing pending, tag " + std::to_string(d.geo_tag_o));
+    const Expect<HitLightGeo> e = geo_q_.front();
+    geo_q_.pop_front();
+    HitLightGeo g;
+    for (int a = 0; a < 3; ++a) {
+      g.p[a] = static_cast<uint32_t>(get_field(d.geo_p_o, a * kW, kW));
+      g.r[a] = static_cast<uint32_t>(get_field(d.geo_r_o, a * kW, kW));
+      g.refr[a] = static_cast<uint32_t>(get_field(d.geo_refr_o, a * kW, kW));
+    }
+    g.w_mirror = d.geo_w_mirror_o;
+    g.w_refract = d.geo_w_refract_o;
+    g.mirror = d.geo_mirror_o;
+    g.refract = d.geo_refract_o;
+    if (d.geo_tag_o != e.tag)
+      fail("geo tag " + std::to_string(d.geo_tag_o) + ", expected " + std::to_string(e.tag));
+    else if (!(g == e.want))
+      fail("geo of hit " + std::to_string(e.tag) + " differs from hit_geometry()");
+  }
+
+  void check_lt() {
+    const Vrc_hit_light& d = tb_.m();
+    ++samples_;
+    if (lt_q_.empty())
+      return fail("lt_valid_o with nothing pending, tag " + std::to_string(d.lt_tag_o));
+    const Expect<HitLightSample> e = lt_q_.front();
+    lt_q_.pop_front();
+    HitLightSample s;
+    s.light = d.lt_light_o;
+    s.last = d.lt_last_o;
+    s.s.present = d.lt_present_o;
+    s.s.t_hi = d.lt_t_hi_o;
+    for (int a = 0; a < 3; ++a) {
+      s.org[a] = static_cast<uint32_t>(get_field(d.lt_org_o, a * kW, kW));
+      if (s.s.present) s.s.lh[a] = static_cast<uint32_t>(get_field(d.lt_dir_o, a * kW, kW));
+      s.s.term[a] = static_cast<uint32_t>(get_field(d.lt_term_o, a * kFixW, kFixW));
+      s.s.amb[a] = static_cast<uint32_t>(get_field(d.lt_amb_o, a * kFixW, kFixW));
+    }
+    if (d.lt_tag_o != e.tag)
+      fail("light tag " + std::to_string(d.lt_tag_o) + ", expected " + std::to_string(e.tag));
+    else if (!(s == e.want))
+      fail("light " + std::to_string(e.want.light) + " of hit " + std::to_string(e.tag) +
+           ": rtl light " + std::to_string(s.light) + " last " + std::to_string(s.last) +
+           " present " + std::to_string(s.s.present) + ", golden present " +
+           std::to_string(e.want.s.present) + (s.org == e.want.org ? "" : "; origins differ"));
+  }
+
+  VerilatedTb<Vrc_hit_light> tb_;
+  std::mt19937_64 rng_;
+  bool stalls_;
+  LightSet lights_{};
+  uint32_t count_ = 0;
+  std::deque<Expect<HitLightGeo>> geo_q_;
+  std::deque<Expect<HitLightSample>> lt_q_;
+  uint64_t seq_ = 0, hits_ = 0, samples_ = 0, mismatches_ = 0;
+  int64_t first_take_ = -1, first_geo_ = -1, first_lt_ = -1;
+  int geo_low_ = 0, lt_low_ = 0;
+};
+
+HitLightCase hit_light_case(Gen& g) {
+  HitLightCase c;
+  c.hit = hit_geom_case(g);
+  const LightTermUnit::In m = light_term_case(g);  // its material
+  c.kd = m.kd;
+  c.ks = m.ks;
+  c.ns = m.ns;
+  return c;
+}
+
+// A configuration's lights: as light_term_case() makes them, around the origin.
+LightSet light_set(Gen& g) {
+  LightSet s;
+  for (Geometry<T>::Light& l : s) l = light_term_case(g).light;
+  return s;
+}
+
+// Every light count 0 .. MaxLights (each with lights of its own) under random stalls on the input
+// and on both outputs: each hit's geometry and its light samples, in order, bit for bit.
+TEST(CoreUnits, HitLightRandom) {
+  Gen g(707);
+  HitLightBench b(708, true);
+  for (const uint32_t count : {1u, 2u, 4u, 0u, 3u, 1u}) {
+    b.configure(light_set(g), count);
+    for (int i = 0; i < 8000; ++i) b.push(hit_light_case(g));
+    b.drain();
+    EXPECT_EQ(b.mismatches(), 0u) << count << " lights";
+  }
+  report_cases("rtl rc_hit_light vs hit_geometry, light_sample and ambient_terms", b.hits(),
+               b.mismatches());
+  std::printf("[info] rc_hit_light: %llu hits, %llu light samples, %llu cycles\n",
+              static_cast<unsigned long long>(b.hits()),
+              static_cast<unsigned long long>(b.samples()),
+              static_cast<unsigned long long>(b.cycle()));
+  EXPECT_EQ(b.samples(), 8000u * (1 + 2 + 4 + 0 + 3 + 1));
+}
+
+// Without stalls, a hit per 3 cycles with at most one light and one per 3 x count cycles with
+// more: N hits take at most that many cycles plus the pipeline's fill and drain.
+TEST(CoreUnits, HitLightThroughput) {
+  Gen g(709);
+  for (const uint32_t count : {0u, 1u, 2u, 4u}) {
+    HitLightBench b(710, false);
+    b.configure(light_set(g), count);
+    constexpr uint64_t kHits = 2000;
+    const uint64_t start = b.cycle();
+    for (uint64_t i = 0; i < kHits; ++i) {
+      while (!b.ready_o()) b.tick();
+      b.push(hit_light_case(g));
+    }
+    const uint64_t cycles = b.cycle() - start;
+    b.drain();
+    EXPECT_EQ(b.mismatches(), 0u);
+    const uint64_t per = 3 * std::max(count, 1u);
+    std::printf(
+        "[timing] rc_hit_light, %u lights: %llu hits taken in %llu cycles (%.3f per hit); "
+        "latency %lld cycles to the geometry, %s to the first light\n",
+        count, static_cast<unsigned long long>(kHits), static_cast<unsigned long long>(cycles),
+        static_cast<double>(cycles) / static_cast<double>(kHits),
+        static_cast<long long>(b.geo_latency()),
+        count > 0 ? std::to_string(b.lt_latency()).c_str() : "none");
+    // rc_hit_geom's latency and the geo FIFO's head register; the light job is taken a cycle
+    // after the geometry is (the sequencer's register), at most 2 cycles later for its phase,
+    // then rc_light_term's latency.
+    EXPECT_EQ(b.geo_latency(), kHitGeomLatency + 1);
+    if (count > 0) {
+      EXPECT_GE(b.lt_latency(), kHitGeomLatency + 1 + kLightTermLatency);
+      EXPECT_LE(b.lt_latency(), kHitGeomLatency + 1 + 2 + kLightTermLatency);
+    }
+    EXPECT_LE(cycles, per * kHits + 8) << count << " lights";
+  }
 }
 
 }  // namespace

@@ -1,0 +1,304 @@
+// rc_hit_light: the lighting of one hit (docs/architecture.md, "Lighting", "Reflection",
+// "Refraction"): its geometry (rc_hit_geom) and, for each light of the configuration in order, the
+// light's sample (rc_light_term): the hit's part of rc::lit_work() (tb/golden/trace.hpp).
+//
+// Contract
+// - Function: per hit taken, exactly
+//     h = hit_geometry(ray, t_i, dz_i, n_i, eta_enter_i, eta_leave_i, w_i, mirror_i, transmit_i)
+//     for l = 0 .. light_count_i - 1:
+//       s_l = light_sample({h.p, h.n, h.v}, light l, kd_i, ks_i, ns_i, w_i),
+//       a_l = ambient_terms(kd_i, w_i)
+//   bit for bit, with ray = {org_i, dir_i, inv_len_i} and light l = {light_dir_i[l],
+//   light_pos_i[l], light_col_i[l]} (vectors at [(3l + a)*W +: W]). Vector ports hold component
+//   or channel a at [a*W +: W] (W = 1 + ExpW + FracW), fixed-point ports channel c at
+//   [c*(FixBits+1) +: FixBits+1], as rc_hit_geom and rc_light_term.
+// - Outputs: two streams, each in the order the hits were taken.
+//     geo_*: one record per hit: h.p, h.r (mirror direction), h.t (refraction direction), the
+//            children's weights and flags (what a hit's mirror and refraction rays need).
+//     lt_*:  light_count_i records per hit, lights in order: the light's index, lt_last_o (the
+//            hit's last light), the shadow ray's origin h.p (lt_org_o), s_l's present, direction
+//            lh (meaningful when present), t_hi and term, and a_l (the same for every light).
+//   A hit taken while light_count_i is 0 has its geo record only.
+// - Structure: the hit enters rc_hit_geom with kd_i, ks_i, ns_i and w_i in its tag; its result
+//   is split between the geo FIFO and a sequencer register that holds the hit's point, normal,
+//   view and material while it issues one rc_light_term job per light (the light's configuration
+//   chosen by an AND-OR select of the register's light index). The light jobs' tags carry the
+//   hit's tag, the light's index and h.p, so lt_* is rc_light_term's output FIFO itself.
+// - Handshake: valid_i/ready_o in (rc_hit_geom's: ready_o is flip-flops only and never depends
+//   on valid_i); geo_valid_o/geo_ready_i and lt_valid_o/lt_ready_i out, each with backpressure;
+//   no valid depends on its ready. Nothing is dropped or duplicated.
+// - Throughput: one hit per 3 cycles while light_count_i <= 1 and both outputs are ready; one per
+//   3 x light_count_i cycles with more lights (rc_light_term takes one job per 3 cycles).
+// - Configuration: ambient_i, light_count_i (0 .. MaxLights) and the lights are quasi-static:
+//   they may change only while no hit is in the unit.
+// - Parameters: ExpW, FracW: the number format; TagW: tag bits (>= 1); MaxLights (>= 1):
+//   docs/spec.toml [light] max_lights; FixBits, ExpBits: [light] fixed_bits, exponent_bits.
+// - Illegal input: light_count_i above MaxLights (an assertion catches it).
+// - Reset: rst_ni (active low, asynchronous) clears control state only.
+module rc_hit_light #(
+  parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW     = rc_pkg::Fp24FracW,
+  parameter int unsigned TagW      = 8,
+  parameter int unsigned MaxLights = rc_pkg::LightMaxLights,
+  parameter int unsigned FixBits   = rc_pkg::LightFixedBits,
+  parameter int unsigned ExpBits   = rc_pkg::LightExponentBits,
+  // Derived (do not override).
+  parameter int unsigned W         = 1 + ExpW + FracW,
+  parameter int unsigned FW        = FixBits + 1,
+  parameter int unsigned LightW    = (MaxLights > 1) ? $clog2(MaxLights) : 1,
+  parameter int unsigned CountW    = $clog2(MaxLights + 1)
+) (
+  input  logic                     clk_i,
+  input  logic                     rst_ni,
+
+  // Configuration (quasi-static).
+  input  logic [W-1:0]             ambient_i,
+  input  logic [CountW-1:0]        light_count_i,
+  input  logic [MaxLights-1:0]     light_dir_i,   // light l is directional
+  input  logic [MaxLights*3*W-1:0] light_pos_i,   // its position, or the vector toward it
+  input  logic [MaxLights*3*W-1:0] light_col_i,   // its colour x intensity
+
+  // A hit.
+  input  logic                     valid_i,
+  output logic                     ready_o,
+  input  logic [TagW-1:0]          tag_i,
+  input  logic [3*W-1:0]           org_i,
+  input  logic [3*W-1:0]           dir_i,
+  input  logic [W-1:0]             inv_len_i,
+  input  logic [W-1:0]             t_i,
+  input  logic [W-1:0]             dz_i,
+  input  logic [3*W-1:0]           n_i,           // the triangle's unit normal
+  input  logic [W-1:0]             eta_enter_i,
+  input  logic [W-1:0]             eta_leave_i,
+  input  logic [W-1:0]             w_i,           // the ray's weight
+  input  logic [W-1:0]             mirror_i,
+  input  logic [W-1:0]             transmit_i,
+  input  logic [3*W-1:0]           kd_i,
+  input  logic [3*W-1:0]           ks_i,
+  input  logic [ExpBits-1:0]       ns_i,          // the material's integer exponent
+
+  // Its geometry.
+  output logic                     geo_valid_o,
+  input  logic                     geo_ready_i,
+  output logic [TagW-1:0]          geo_tag_o,
+  output logic [3*W-1:0]           geo_p_o,
+  output logic [3*W-1:0]           geo_r_o,
+  output logic [3*W-1:0]           geo_refr_o,
+  output logic [W-1:0]             geo_w_mirror_o,
+  output logic [W-1:0]             geo_w_refract_o,
+  output logic                     geo_mirror_o,
+  output logic                     geo_refract_o,
+
+  // Its light samples.
+  output logic                     lt_valid_o,
+  input  logic                     lt_ready_i,
+  output logic [TagW-1:0]          lt_tag_o,
+  output logic [LightW-1:0]        lt_light_o,
+  output logic                     lt_last_o,
+  output logic [3*W-1:0]           lt_org_o,
+  output logic                     lt_present_o,
+  output logic [3*W-1:0]           lt_dir_o,
+  output logic [W-1:0]             lt_t_hi_o,
+  output logic [3*FW-1:0]          lt_term_o,
+  output logic [3*FW-1:0]          lt_amb_o
+);
+
+  if (TagW < 1 || MaxLights < 1) begin : g_param_check
+    $error("rc_hit_light: TagW and MaxLights must be at least 1");
+  end
+
+  //////////////////
+  // The geometry //
+  //////////////////
+
+  localparam int unsigned MatW  = 6 * W + ExpBits + W;  // kd, ks, ns, w
+  localparam int unsigned GTagW = TagW + MatW;
+
+  logic              hg_valid, hg_ready, hg_back, hg_mirror, hg_refract;
+  logic [GTagW-1:0]  hg_tag;
+  logic [3*W-1:0]    hg_p, hg_n, hg_v, hg_r, hg_refr;
+  logic [W-1:0]      hg_w_mirror, hg_w_refract;
+
+  rc_hit_geom #(
+    .ExpW (ExpW),
+    .FracW(FracW),
+    .TagW (GTagW)
+  ) u_geom (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .ready_o,
+    .tag_i      ({tag_i, kd_i, ks_i, ns_i, w_i}),
+    .org_i,
+    .dir_i,
+    .inv_len_i,
+    .t_i,
+    .dz_i,
+    .n_i,
+    .eta_enter_i,
+    .eta_leave_i,
+    .w_i,
+    .mirror_i,
+    .transmit_i,
+    .valid_o    (hg_valid),
+    .ready_i    (hg_ready),
+    .tag_o      (hg_tag),
+    .back_o     (hg_back),
+    .p_o        (hg_p),
+    .n_o        (hg_n),
+    .v_o        (hg_v),
+    .r_o        (hg_r),
+    .refr_o     (hg_refr),
+    .w_mirror_o (hg_w_mirror),
+    .w_refract_o(hg_w_refract),
+    .mirror_o   (hg_mirror),
+    .refract_o  (hg_refract)
+  );
+
+  logic unused_back;
+  assign unused_back = hg_back;  // the facing normal is what the lights need
+
+  ////////////////////////////////////////////////
+  // The split: the geo FIFO and the sequencer  //
+  ////////////////////////////////////////////////
+
+  // A geometry result is taken when the geo FIFO has room and, unless there are no lights, the
+  // sequencer is free (it frees the cycle after it issues its hit's last light job).
+  localparam int unsigned GeoW     = TagW + 9 * W + 2 * W + 2;
+  localparam int unsigned GeoDepth = 2;
+
+  logic                           no_lights, seq_v_q, hg_take;
+  logic [$clog2(GeoDepth+1)-1:0]  geo_count;
+
+  assign no_lights = light_count_i == '0;
+  assign hg_ready  = (geo_count != GeoDepth[$clog2(GeoDepth+1)-1:0]) & (no_lights | ~seq_v_q);
+  assign hg_take   = hg_valid & hg_ready;
+
+  rc_fifo #(
+    .Width   (GeoW),
+    .Depth   (GeoDepth),
+    .MemArray(1'b0)
+  ) u_geo_fifo (
+    .clk_i,
+    .rst_ni,
+    .push_i (hg_take),
+    .data_i ({hg_tag[GTagW-1 -: TagW], hg_p, hg_r, hg_refr, hg_w_mirror, hg_w_refract, hg_mirror,
+              hg_refract}),
+    .valid_o(geo_valid_o),
+    .ready_i(geo_ready_i),
+    .data_o ({geo_tag_o, geo_p_o, geo_r_o, geo_refr_o, geo_w_mirror_o, geo_w_refract_o,
+              geo_mirror_o, geo_refract_o}),
+    .count_o(geo_count)
+  );
+
+  // The sequencer: the hit whose light jobs are being issued, and the next light's index.
+  logic [TagW-1:0]    seq_tag_q;
+  logic [3*W-1:0]     seq_p_q, seq_n_q, seq_view_q, seq_kd_q, seq_ks_q;
+  logic [ExpBits-1:0] seq_ns_q;
+  logic [W-1:0]       seq_w_q;
+  logic [LightW-1:0]  seq_l_q;
+  logic               seq_last, lt_take, lt_ready;
+
+  assign seq_last = CountW'(seq_l_q) == light_count_i - CountW'(1);
+  assign lt_take  = seq_v_q & lt_ready;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      seq_v_q <= 1'b0;
+      seq_l_q <= '0;
+    end else if (hg_take && !no_lights) begin
+      seq_v_q <= 1'b1;
+      seq_l_q <= '0;
+    end else if (lt_take) begin
+      seq_v_q <= ~seq_last;
+      seq_l_q <= seq_l_q + LightW'(1);
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (hg_take) begin
+      {seq_tag_q, seq_kd_q, seq_ks_q, seq_ns_q, seq_w_q} <= hg_tag;
+      seq_p_q    <= hg_p;
+      seq_n_q    <= hg_n;
+      seq_view_q <= hg_v;
+    end
+  end
+
+  // The light of the sequencer's index (an AND-OR select over the configuration).
+  logic             sel_dir;
+  logic [3*W-1:0]   sel_pos, sel_col;
+  always_comb begin
+    sel_dir = 1'b0;
+    sel_pos = '0;
+    sel_col = '0;
+    for (int unsigned l = 0; l < MaxLights; l++) begin
+      if (seq_l_q == LightW'(l)) begin
+        sel_dir = sel_dir | light_dir_i[l];
+        sel_pos = sel_pos | light_pos_i[l*3*W +: 3*W];
+        sel_col = sel_col | light_col_i[l*3*W +: 3*W];
+      end
+    end
+  end
+
+  ////////////////////////
+  // The light samples  //
+  ////////////////////////
+
+  localparam int unsigned LTagW = TagW + LightW + 1 + 3 * W;
+
+  logic [LTagW-1:0] lt_tag;
+
+  rc_light_term #(
+    .ExpW   (ExpW),
+    .FracW  (FracW),
+    .TagW   (LTagW),
+    .FixBits(FixBits),
+    .ExpBits(ExpBits)
+  ) u_light (
+    .clk_i,
+    .rst_ni,
+    .ambient_i,
+    .valid_i    (seq_v_q),
+    .ready_o    (lt_ready),
+    .tag_i      ({seq_tag_q, seq_l_q, seq_last, seq_p_q}),
+    .p_i        (seq_p_q),
+    .n_i        (seq_n_q),
+    .v_i        (seq_view_q),
+    .dir_light_i(sel_dir),
+    .lpos_i     (sel_pos),
+    .lcol_i     (sel_col),
+    .kd_i       (seq_kd_q),
+    .ks_i       (seq_ks_q),
+    .ns_i       (seq_ns_q),
+    .w_i        (seq_w_q),
+    .valid_o    (lt_valid_o),
+    .ready_i    (lt_ready_i),
+    .tag_o      (lt_tag),
+    .present_o  (lt_present_o),
+    .lh_o       (lt_dir_o),
+    .t_hi_o     (lt_t_hi_o),
+    .term_o     (lt_term_o),
+    .amb_o      (lt_amb_o)
+  );
+
+  assign {lt_tag_o, lt_light_o, lt_last_o, lt_org_o} = lt_tag;
+
+  ////////////////
+  // Assertions //
+  ////////////////
+
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+  // The configuration names at most MaxLights lights.
+  LightCount_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 light_count_i <= CountW'(MaxLights));
+  // The sequencer's light index stays below the count while it issues.
+  LightIndex_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                 seq_v_q |-> CountW'(seq_l_q) < light_count_i);
+`endif
+
+endmodule
