@@ -1,61 +1,77 @@
-// rc_fp_to_fix: a format value to the lighting's fixed point (docs/architecture.md, "Lighting":
-// fix(x) = round_to_nearest_even(min(max(x, 0), 1) * 2^F) as an integer, a NaN gives 0).
+// rc_fp_to_fix: a format value to an unsigned fixed-point integer with FixBits fraction bits,
+// clamped to [0, Max]: the lighting's fixed point (docs/architecture.md, "Lighting": fix(x) =
+// round_to_nearest_even(min(max(x, 0), 1) * 2^F), a NaN gives 0; Max = 2^F) and, with no fraction
+// bits and Max = 2^exponent_bits - 1, a material's integer exponent (rc_fp_to_exp).
 //
 // Contract
-// - Function: exactly rc::light_fixed() (tb/golden/trace.hpp), bit for bit, with F = FixBits:
-//   fix_o = 0 for a NaN, a zero (an exponent field of 0) or a negative x_i; 2^F for x_i >= 1
-//   (+inf too); otherwise x_i = 1.f x 2^k with k < 0, and fix_o = the integer nearest to
-//   1.f x 2^(k + F), ties to even. The golden model's min(max(x, 0), 1) * 2^F is exact in the
-//   format (a power of two times a value at most 1, far inside the range), so this is the same
-//   number; it is computed here on the significand as an integer shift.
-// - Handshake: valid only, no backpressure. valid_o is valid_i one cycle later; fix_o belongs to
+// - Function: out_o = min(round_to_nearest_even(x_i * 2^FixBits), Max) for x_i > 0, 0 for a NaN,
+//   a zero (an exponent field of 0) or a negative x_i; Max for +inf. Bit for bit
+//   rc::light_fixed() at the defaults and rc::light_exponent() at FixBits = 0, Max = 2^10 - 1
+//   (tb/golden/trace.hpp). x_i * 2^FixBits is exact in the format for every value below the
+//   clamp, so this is computed on the significand as an integer shift: x_i = 1.f x 2^k with
+//   2^k * 2^FixBits at most Max (else out_o = Max), out_o the integer nearest to
+//   1.f x 2^(k + FixBits), ties to even, then the clamp (which only a Max that is not a power of
+//   two needs: a value just below 2^TopK rounds up to it).
+// - Handshake: valid only, no backpressure. valid_o is valid_i one cycle later; out_o belongs to
 //   the input of the cycle before and is meaningful only while valid_o is 1.
 // - Latency: 1 (the output register).
-// - Parameters: ExpW, FracW: the number format (default fp24); FixBits: F (default
-//   docs/spec.toml [light] fixed_bits), at most FracW.
+// - Parameters: ExpW, FracW: the number format (default fp24); FixBits: the fraction bits (default
+//   docs/spec.toml [light] fixed_bits), at most FracW; Max: the clamp (>= 1; default 2^FixBits),
+//   with Max / 2^FixBits < 2^(FracW - FixBits) so that every value below it shifts right.
 // - Illegal input: none; every bit pattern of x_i is legal.
 // - Reset: rst_ni (active low, asynchronous) clears only valid_o.
 module rc_fp_to_fix #(
   parameter int unsigned ExpW    = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW   = rc_pkg::Fp24FracW,
-  parameter int unsigned FixBits = rc_pkg::LightFixedBits
+  parameter int unsigned FixBits = rc_pkg::LightFixedBits,
+  parameter int unsigned Max     = 1 << FixBits,
+  // Derived (do not override).
+  parameter int unsigned OutW    = $clog2(Max + 1)
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
   input  logic                valid_i,
   input  logic [ExpW+FracW:0] x_i,
   output logic                valid_o,
-  output logic [FixBits:0]    fix_o
+  output logic [OutW-1:0]     out_o
 );
 
-  if (FixBits > FracW || FixBits < 1) begin : g_param_check
-    $error("rc_fp_to_fix: FixBits must be 1 .. FracW");
+  // TopK: values from 2^TopK / 2^FixBits on give Max; below, k + FixBits < TopK.
+  localparam int unsigned MaxLog = $clog2(Max + 1) - 1;                 // floor(log2(Max))
+  localparam bit          MaxPow = (1 << MaxLog) == Max;
+  localparam int unsigned TopK   = MaxLog + (MaxPow ? 0 : 1);
+
+  if (FixBits > FracW || Max < 1 || TopK > FracW) begin : g_param_check
+    $error("rc_fp_to_fix: need FixBits <= FracW, Max >= 1 and Max below 2^FracW");
   end
 
   localparam int unsigned W       = 1 + ExpW + FracW;
   localparam int unsigned BiasInt = (1 << (ExpW - 1)) - 1;
   localparam int unsigned MW      = FracW + 1;  // the significand 1.f as an integer
-  // The shift right of the significand: FracW - FixBits - k for x = 1.f x 2^k; k <= -1 here, and
-  // a shift beyond MW leaves less than a half: 0.
-  localparam int unsigned ShW     = $clog2(MW + 2) + 1;
+  // The shift right of the significand: FracW - (k + FixBits) for x = 1.f x 2^k with
+  // k + FixBits < TopK, so at least FracW - TopK + 1 >= 1; a shift beyond MW leaves less than a
+  // half: 0.
+  localparam int unsigned ShW     = $clog2(MW + FracW + 2) + 1;
 
   logic [ExpW-1:0]  e;
   logic [FracW-1:0] f;
-  logic             s, is_nan, is_zero, ge_one;
+  logic             s, is_nan, is_zero, ge_top;
   logic [MW-1:0]    m;
-  logic [ExpW:0]    sh_full;   // BiasInt - e + FracW - FixBits, for e < BiasInt
+  logic [ExpW:0]    sh_full;   // BiasInt - e + FracW - FixBits, for e < BiasInt + TopK - FixBits
   logic [ShW-1:0]   sh;
   logic             sh_big;
   logic [MW-1:0]    q, rem, half;
   logic             up;
-  logic [FixBits:0] fix_d;
+  logic [OutW:0]    rounded;   // at most 2^TopK
+  logic [OutW-1:0]  out_d;
 
   assign s       = x_i[W-1];
   assign e       = x_i[W-2 -: ExpW];
   assign f       = x_i[FracW-1:0];
   assign is_nan  = (&e) && (f != '0);
   assign is_zero = e == '0;
-  assign ge_one  = e >= ExpW'(BiasInt);
+  // x >= 2^TopK / 2^FixBits: e - BiasInt + FixBits >= TopK.
+  assign ge_top  = {1'b0, e} + (ExpW + 1)'(FixBits) >= (ExpW + 1)'(BiasInt + TopK);
   assign m       = {1'b1, f};
   assign sh_full = (ExpW + 1)'(BiasInt) - {1'b0, e} + (ExpW + 1)'(FracW - FixBits);
   assign sh_big  = sh_full > (ExpW + 1)'(MW);
@@ -67,7 +83,7 @@ module rc_fp_to_fix #(
     half = '0;
     up   = 1'b0;
     if (!sh_big) begin
-      // sh >= 1 here (e < BiasInt and FixBits <= FracW).
+      // sh >= 1 here (below 2^TopK, see ShW).
       q    = m >> sh;
       rem  = m & ((MW'(1) << sh) - MW'(1));
       half = MW'(1) << (sh - ShW'(1));
@@ -75,10 +91,16 @@ module rc_fp_to_fix #(
     end
   end
 
+  assign rounded = (OutW + 1)'(q) + (OutW + 1)'(up);
+  if (MW > OutW + 1) begin : g_q_hi
+    logic unused_q_hi;
+    assign unused_q_hi = ^q[MW-1:OutW+1];  // 0: below 2^TopK the shift leaves at most OutW bits
+  end
+
   always_comb begin
-    if (s || is_nan || is_zero) fix_d = '0;
-    else if (ge_one) fix_d = (FixBits + 1)'(1) << FixBits;
-    else fix_d = (FixBits + 1)'(q) + (FixBits + 1)'(up);
+    if (s || is_nan || is_zero) out_d = '0;
+    else if (ge_top || (!MaxPow && rounded > (OutW + 1)'(Max))) out_d = OutW'(Max);
+    else out_d = OutW'(rounded);
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -87,7 +109,7 @@ module rc_fp_to_fix #(
   end
 
   always_ff @(posedge clk_i) begin
-    fix_o <= fix_d;
+    out_o <= out_d;
   end
 
 endmodule

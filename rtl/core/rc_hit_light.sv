@@ -1,29 +1,38 @@
-// rc_hit_light: the lighting of one hit (docs/architecture.md, "Lighting", "Reflection",
-// "Refraction"): its geometry (rc_hit_geom) and, for each light of the configuration in order, the
-// light's sample (rc_light_term): the hit's part of rc::lit_work() (tb/golden/trace.hpp).
+// rc_hit_light: the lighting of a packet's hits (docs/architecture.md, "Lighting", "Reflection",
+// "Refraction"): each hit's geometry (rc_hit_geom) and, for each light of the configuration in
+// order, the light's sample at each of the packet's hits (rc_light_term), so that a light's
+// samples for one packet (its shadow packet's lanes) leave one after the other: the hits' part of
+// rc::lit_work() (tb/golden/trace.hpp).
 //
 // Contract
+// - Input: hits, a packet's hits consecutively (1 to 4 of them, in lane order; the caller gives
+//   only the lanes with a hit), last_i on the packet's last one.
 // - Function: per hit taken, exactly
 //     h = hit_geometry(ray, t_i, dz_i, n_i, eta_enter_i, eta_leave_i, w_i, mirror_i, transmit_i)
-//     for l = 0 .. light_count_i - 1:
-//       s_l = light_sample({h.p, h.n, h.v}, light l, kd_i, ks_i, ns_i, w_i),
-//       a_l = ambient_terms(kd_i, w_i)
+//   and per light l = 0 .. light_count_i - 1 and hit,
+//     s = light_sample({h.p, h.n, h.v}, light l, kd_i, ks_i, ns_i, w_i),
+//     a = ambient_terms(kd_i, w_i)
 //   bit for bit, with ray = {org_i, dir_i, inv_len_i} and light l = {light_dir_i[l],
 //   light_pos_i[l], light_col_i[l]} (vectors at [(3l + a)*W +: W]). Vector ports hold component
 //   or channel a at [a*W +: W] (W = 1 + ExpW + FracW), fixed-point ports channel c at
 //   [c*(FixBits+1) +: FixBits+1], as rc_hit_geom and rc_light_term.
-// - Outputs: two streams, each in the order the hits were taken.
-//     geo_*: one record per hit: h.p, h.r (mirror direction), h.t (refraction direction), the
-//            children's weights and flags (what a hit's mirror and refraction rays need).
-//     lt_*:  light_count_i records per hit, lights in order: the light's index, lt_last_o (the
-//            hit's last light), the shadow ray's origin h.p (lt_org_o), s_l's present, direction
-//            lh (meaningful when present), t_hi and term, and a_l (the same for every light).
-//   A hit taken while light_count_i is 0 has its geo record only.
-// - Structure: the hit enters rc_hit_geom with kd_i, ks_i, ns_i and w_i in its tag; its result
-//   is split between the geo FIFO and a sequencer register that holds the hit's point, normal,
-//   view and material while it issues one rc_light_term job per light (the light's configuration
-//   chosen by an AND-OR select of the register's light index). The light jobs' tags carry the
-//   hit's tag, the light's index and h.p, so lt_* is rc_light_term's output FIFO itself.
+// - Outputs: two streams.
+//     geo_*: one record per hit, in the order the hits were taken: h.p, h.r (mirror direction),
+//            h.t (refraction direction), the children's weights and flags (what the hit's mirror
+//            and refraction rays need).
+//     lt_*:  light_count_i x (the packet's hits) records per packet, packets in order, and in a
+//            packet light by light, each light's hits in order: the hit's tag, the light's index,
+//            lt_lane_last_o (the light's last hit of the packet: its shadow packet is complete),
+//            lt_light_last_o (the packet's last light), the shadow ray's origin h.p (lt_org_o),
+//            s's present, direction lh (meaningful when present), t_hi and term, and a (the same
+//            for every light).
+//   A packet taken while light_count_i is 0 has its geo records only.
+// - Structure: a hit enters rc_hit_geom with last_i, kd_i, ks_i, ns_i and w_i in its tag; its
+//   result goes to the geo FIFO and, with lights, into a lane memory (distributed RAM, two banks
+//   of four lanes: point, normal, view, material and tag) that a packet fills while the other
+//   bank's packet issues its rc_light_term jobs, light by light and lane by lane (the light's
+//   configuration chosen by an AND-OR select of the light index). The jobs' tags carry the hit's
+//   tag, the light's index, the two last flags and h.p, so lt_* is rc_light_term's output FIFO.
 // - Handshake: valid_i/ready_o in (rc_hit_geom's: ready_o is flip-flops only and never depends
 //   on valid_i); geo_valid_o/geo_ready_i and lt_valid_o/lt_ready_i out, each with backpressure;
 //   no valid depends on its ready. Nothing is dropped or duplicated.
@@ -33,7 +42,8 @@
 //   they may change only while no hit is in the unit.
 // - Parameters: ExpW, FracW: the number format; TagW: tag bits (>= 1); MaxLights (>= 1):
 //   docs/spec.toml [light] max_lights; FixBits, ExpBits: [light] fixed_bits, exponent_bits.
-// - Illegal input: light_count_i above MaxLights (an assertion catches it).
+// - Illegal input: light_count_i above MaxLights; a packet of more than 4 hits (assertions catch
+//   both).
 // - Reset: rst_ni (active low, asynchronous) clears control state only.
 module rc_hit_light #(
   parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
@@ -62,6 +72,7 @@ module rc_hit_light #(
   input  logic                     valid_i,
   output logic                     ready_o,
   input  logic [TagW-1:0]          tag_i,
+  input  logic                     last_i,        // the packet's last hit
   input  logic [3*W-1:0]           org_i,
   input  logic [3*W-1:0]           dir_i,
   input  logic [W-1:0]             inv_len_i,
@@ -94,7 +105,8 @@ module rc_hit_light #(
   input  logic                     lt_ready_i,
   output logic [TagW-1:0]          lt_tag_o,
   output logic [LightW-1:0]        lt_light_o,
-  output logic                     lt_last_o,
+  output logic                     lt_lane_last_o,
+  output logic                     lt_light_last_o,
   output logic [3*W-1:0]           lt_org_o,
   output logic                     lt_present_o,
   output logic [3*W-1:0]           lt_dir_o,
@@ -112,7 +124,7 @@ module rc_hit_light #(
   //////////////////
 
   localparam int unsigned MatW  = 6 * W + ExpBits + W;  // kd, ks, ns, w
-  localparam int unsigned GTagW = TagW + MatW;
+  localparam int unsigned GTagW = TagW + 1 + MatW;
 
   logic              hg_valid, hg_ready, hg_back, hg_mirror, hg_refract;
   logic [GTagW-1:0]  hg_tag;
@@ -128,7 +140,7 @@ module rc_hit_light #(
     .rst_ni,
     .valid_i,
     .ready_o,
-    .tag_i      ({tag_i, kd_i, ks_i, ns_i, w_i}),
+    .tag_i      ({tag_i, last_i, kd_i, ks_i, ns_i, w_i}),
     .org_i,
     .dir_i,
     .inv_len_i,
@@ -158,21 +170,32 @@ module rc_hit_light #(
   logic unused_back;
   assign unused_back = hg_back;  // the facing normal is what the lights need
 
-  ////////////////////////////////////////////////
-  // The split: the geo FIFO and the sequencer  //
-  ////////////////////////////////////////////////
+  //////////////////////////////////////////////
+  // The split: the geo FIFO and the lane memory //
+  //////////////////////////////////////////////
 
   // A geometry result is taken when the geo FIFO has room and, unless there are no lights, the
-  // sequencer is free (it frees the cycle after it issues its hit's last light job).
+  // lane memory's fill bank is free.
   localparam int unsigned GeoW     = TagW + 9 * W + 2 * W + 2;
   localparam int unsigned GeoDepth = 2;
+  localparam int unsigned CntFW    = $clog2(GeoDepth + 1);
+  localparam int unsigned LaneW    = TagW + 9 * W + MatW;  // tag, p, n, v, kd, ks, ns, w
 
-  logic                           no_lights, seq_v_q, hg_take;
-  logic [$clog2(GeoDepth+1)-1:0]  geo_count;
+  logic              no_lights, hg_take, hg_last, fill_bank_full;
+  logic [CntFW-1:0]  geo_count;
+  logic [TagW-1:0]   hg_tag_hit;
+  logic [MatW-1:0]   hg_mat;
+  logic [1:0]        full_q;        // bank b holds a packet whose light jobs are not all issued
+  logic [1:0]        full_set, full_clr;
+  logic              wb_q, rb_q;    // the bank being filled, the bank issuing
+  logic [1:0]        wk_q;          // the next lane to fill
+  logic [3:0]        lanes_q;       // bank b's last lane at [2b +: 2]
 
-  assign no_lights = light_count_i == '0;
-  assign hg_ready  = (geo_count != GeoDepth[$clog2(GeoDepth+1)-1:0]) & (no_lights | ~seq_v_q);
-  assign hg_take   = hg_valid & hg_ready;
+  assign {hg_tag_hit, hg_last, hg_mat} = hg_tag;
+  assign no_lights      = light_count_i == '0;
+  assign fill_bank_full = wb_q ? full_q[1] : full_q[0];
+  assign hg_ready       = (geo_count != CntFW'(GeoDepth)) & (no_lights | ~fill_bank_full);
+  assign hg_take        = hg_valid & hg_ready;
 
   rc_fifo #(
     .Width   (GeoW),
@@ -182,8 +205,7 @@ module rc_hit_light #(
     .clk_i,
     .rst_ni,
     .push_i (hg_take),
-    .data_i ({hg_tag[GTagW-1 -: TagW], hg_p, hg_r, hg_refr, hg_w_mirror, hg_w_refract, hg_mirror,
-              hg_refract}),
+    .data_i ({hg_tag_hit, hg_p, hg_r, hg_refr, hg_w_mirror, hg_w_refract, hg_mirror, hg_refract}),
     .valid_o(geo_valid_o),
     .ready_i(geo_ready_i),
     .data_o ({geo_tag_o, geo_p_o, geo_r_o, geo_refr_o, geo_w_mirror_o, geo_w_refract_o,
@@ -191,39 +213,65 @@ module rc_hit_light #(
     .count_o(geo_count)
   );
 
-  // The sequencer: the hit whose light jobs are being issued, and the next light's index.
-  logic [TagW-1:0]    seq_tag_q;
-  logic [3*W-1:0]     seq_p_q, seq_n_q, seq_view_q, seq_kd_q, seq_ks_q;
-  logic [ExpBits-1:0] seq_ns_q;
-  logic [W-1:0]       seq_w_q;
-  logic [LightW-1:0]  seq_l_q;
-  logic               seq_last, lt_take, lt_ready;
+  // The lane memory: entry {bank, lane}, written at the fill side, read asynchronously at the
+  // issue side (distributed RAM).
+  logic [LaneW-1:0] lane_mem_q [8];
+  logic             fill;
+  assign fill = hg_take & ~no_lights;
+  always_ff @(posedge clk_i) begin
+    if (fill) lane_mem_q[{wb_q, wk_q}] <= {hg_tag_hit, hg_p, hg_n, hg_v, hg_mat};
+  end
 
-  assign seq_last = CountW'(seq_l_q) == light_count_i - CountW'(1);
-  assign lt_take  = seq_v_q & lt_ready;
+  // The issue side: light rl_q of lane rk_q of bank rb_q.
+  logic [LightW-1:0]  rl_q;
+  logic [1:0]         rk_q;
+  logic               iss_valid, lt_take, lt_ready, lane_last, light_last;
+  logic [TagW-1:0]    iss_tag;
+  logic [3*W-1:0]     iss_p, iss_n, iss_view, iss_kd, iss_ks;
+  logic [ExpBits-1:0] iss_ns;
+  logic [W-1:0]       iss_w;
+
+  assign iss_valid  = rb_q ? full_q[1] : full_q[0];
+  assign {iss_tag, iss_p, iss_n, iss_view, iss_kd, iss_ks, iss_ns, iss_w} =
+      lane_mem_q[{rb_q, rk_q}];
+  assign lane_last  = rk_q == lanes_q[2*rb_q +: 2];
+  assign light_last = CountW'(rl_q) == light_count_i - CountW'(1);
+  assign lt_take    = iss_valid & lt_ready;
+
+  always_comb begin
+    full_set = '0;
+    full_clr = '0;
+    full_set[wb_q] = fill & hg_last;
+    full_clr[rb_q] = lt_take & lane_last & light_last;
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      seq_v_q <= 1'b0;
-      seq_l_q <= '0;
-    end else if (hg_take && !no_lights) begin
-      seq_v_q <= 1'b1;
-      seq_l_q <= '0;
-    end else if (lt_take) begin
-      seq_v_q <= ~seq_last;
-      seq_l_q <= seq_l_q + LightW'(1);
-    end
-  end
-  always_ff @(posedge clk_i) begin
-    if (hg_take) begin
-      {seq_tag_q, seq_kd_q, seq_ks_q, seq_ns_q, seq_w_q} <= hg_tag;
-      seq_p_q    <= hg_p;
-      seq_n_q    <= hg_n;
-      seq_view_q <= hg_v;
+      full_q  <= '0;
+      wb_q    <= 1'b0;
+      wk_q    <= '0;
+      lanes_q <= '0;
+      rb_q    <= 1'b0;
+      rk_q    <= '0;
+      rl_q    <= '0;
+    end else begin
+      full_q <= (full_q | full_set) & ~full_clr;
+      if (fill) begin
+        wk_q <= hg_last ? 2'd0 : wk_q + 2'd1;
+        wb_q <= wb_q ^ hg_last;
+        if (hg_last) lanes_q[2*wb_q +: 2] <= wk_q;
+      end
+      if (lt_take) begin
+        rk_q <= lane_last ? 2'd0 : rk_q + 2'd1;
+        if (lane_last) begin
+          rl_q <= light_last ? '0 : rl_q + LightW'(1);
+          rb_q <= rb_q ^ light_last;
+        end
+      end
     end
   end
 
-  // The light of the sequencer's index (an AND-OR select over the configuration).
+  // The light of the issue side's index (an AND-OR select over the configuration).
   logic             sel_dir;
   logic [3*W-1:0]   sel_pos, sel_col;
   always_comb begin
@@ -231,7 +279,7 @@ module rc_hit_light #(
     sel_pos = '0;
     sel_col = '0;
     for (int unsigned l = 0; l < MaxLights; l++) begin
-      if (seq_l_q == LightW'(l)) begin
+      if (rl_q == LightW'(l)) begin
         sel_dir = sel_dir | light_dir_i[l];
         sel_pos = sel_pos | light_pos_i[l*3*W +: 3*W];
         sel_col = sel_col | light_col_i[l*3*W +: 3*W];
@@ -243,7 +291,7 @@ module rc_hit_light #(
   // The light samples  //
   ////////////////////////
 
-  localparam int unsigned LTagW = TagW + LightW + 1 + 3 * W;
+  localparam int unsigned LTagW = TagW + LightW + 2 + 3 * W;
 
   logic [LTagW-1:0] lt_tag;
 
@@ -257,19 +305,19 @@ module rc_hit_light #(
     .clk_i,
     .rst_ni,
     .ambient_i,
-    .valid_i    (seq_v_q),
+    .valid_i    (iss_valid),
     .ready_o    (lt_ready),
-    .tag_i      ({seq_tag_q, seq_l_q, seq_last, seq_p_q}),
-    .p_i        (seq_p_q),
-    .n_i        (seq_n_q),
-    .v_i        (seq_view_q),
+    .tag_i      ({iss_tag, rl_q, lane_last, light_last, iss_p}),
+    .p_i        (iss_p),
+    .n_i        (iss_n),
+    .v_i        (iss_view),
     .dir_light_i(sel_dir),
     .lpos_i     (sel_pos),
     .lcol_i     (sel_col),
-    .kd_i       (seq_kd_q),
-    .ks_i       (seq_ks_q),
-    .ns_i       (seq_ns_q),
-    .w_i        (seq_w_q),
+    .kd_i       (iss_kd),
+    .ks_i       (iss_ks),
+    .ns_i       (iss_ns),
+    .w_i        (iss_w),
     .valid_o    (lt_valid_o),
     .ready_i    (lt_ready_i),
     .tag_o      (lt_tag),
@@ -280,7 +328,7 @@ module rc_hit_light #(
     .amb_o      (lt_amb_o)
   );
 
-  assign {lt_tag_o, lt_light_o, lt_last_o, lt_org_o} = lt_tag;
+  assign {lt_tag_o, lt_light_o, lt_lane_last_o, lt_light_last_o, lt_org_o} = lt_tag;
 
   ////////////////
   // Assertions //
@@ -296,9 +344,12 @@ module rc_hit_light #(
   // The configuration names at most MaxLights lights.
   LightCount_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  light_count_i <= CountW'(MaxLights));
-  // The sequencer's light index stays below the count while it issues.
+  // The issue side's light index stays below the count while it issues.
   LightIndex_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                 seq_v_q |-> CountW'(seq_l_q) < light_count_i);
+                                 iss_valid |-> CountW'(rl_q) < light_count_i);
+  // A packet has at most four hits.
+  PacketLanes_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  fill && wk_q == 2'd3 |-> hg_last);
 `endif
 
 endmodule

@@ -424,7 +424,7 @@ module rc_light_term #(
   logic [FW-1:0] term_s;
   logic          term_vld;
   rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_t (
-    .clk_i, .rst_ni, .valid_i(strm[TimeX]), .x_i(x_s), .valid_o(term_vld), .fix_o(term_s)
+    .clk_i, .rst_ni, .valid_i(strm[TimeX]), .x_i(x_s), .valid_o(term_vld), .out_o(term_s)
   );
   logic pres_at_fix;
   rc_delay_ram #(.Width(1), .Cycles(TimeFix - TimeCos)) u_dly_pres (
@@ -447,7 +447,7 @@ module rc_light_term #(
     .clk_i, .rst_ni, .valid_i(strm[Lm]), .a_i(ka), .b_i(w_at_ka), .valid_o(aw_vld), .res_o(aw)
   );
   rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_a (
-    .clk_i, .rst_ni, .valid_i(strm[2 * Lm]), .x_i(aw), .valid_o(amb_vld), .fix_o(amb_s)
+    .clk_i, .rst_ni, .valid_i(strm[2 * Lm]), .x_i(aw), .valid_o(amb_vld), .out_o(amb_s)
   );
   rc_delay_ram #(.Width(FW), .Cycles(TimeFix - (2 * Lm + 1))) u_dly_amb (
     .clk_i, .rst_ni, .data_i(amb_s), .data_o(amb_at_fix)

@@ -1,8 +1,8 @@
 // The core's datapath units (rtl/core/rc_trav_step.sv, rc_ray_setup.sv, rc_shade_unit.sv,
-// rc_fp_to_u8.sv, rc_hit_geom.sv, rc_light_term.sv, rc_hit_light.sv, rc_fp_to_fix.sv), verilated
-// at fp24, against the golden model functions they implement (tb/golden/trace.hpp: trav_step,
-// setup_ray, shade, to_u8, hit_geometry, light_sample with ambient_terms, both for a hit and its
-// lights, light_fixed), bit for bit.
+// rc_fp_to_u8.sv, rc_hit_geom.sv, rc_light_term.sv, rc_hit_light.sv, rc_fp_to_fix.sv,
+// rc_fp_to_exp.sv), verilated at fp24, against the golden model functions they implement
+// (tb/golden/trace.hpp: trav_step, setup_ray, shade, to_u8, hit_geometry, light_sample with
+// ambient_terms, both for a hit and its lights, light_fixed, light_exponent), bit for bit.
 //
 // The handshake units are driven through their valid/ready ports with seeded random valid_i gaps
 // and seeded random ready_i low periods. Every operation carries a sequence number as its tag;
@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "Vrc_fp_to_exp.h"
 #include "Vrc_fp_to_fix.h"
 #include "Vrc_fp_to_u8.h"
 #include "Vrc_hit_geom.h"
@@ -1137,7 +1138,7 @@ TEST(CoreUnits, ToFixExhaustive) {
   const uint64_t bad = run_every_encoding<Vrc_fp_to_fix>(
       "rc_fp_to_fix vs golden light_fixed<fp24>", 1, 505,
       [](uint32_t x) { return light_fixed<T>(fb(x)); },
-      [](const Vrc_fp_to_fix& m) { return static_cast<uint32_t>(m.fix_o); });
+      [](const Vrc_fp_to_fix& m) { return static_cast<uint32_t>(m.out_o); });
   EXPECT_EQ(bad, 0u);
   // The inputs cover the rounding's ties: encodings whose value x 2^fixed_bits is an exact x.5.
   uint64_t ties = 0;
@@ -1148,6 +1149,28 @@ TEST(CoreUnits, ToFixExhaustive) {
   std::printf("[info] rc_fp_to_fix: %llu encodings at an exact x.5 tie\n",
               static_cast<unsigned long long>(ties));
   EXPECT_GT(ties, 1000u);
+}
+
+// rc_fp_to_exp (rc_fp_to_fix with no fraction bits and a clamp that is not a power of two,
+// valid-only, latency 1) against light_exponent<fp24>() for every fp24 encoding.
+TEST(CoreUnits, ToExpExhaustive) {
+  const uint64_t bad = run_every_encoding<Vrc_fp_to_exp>(
+      "rc_fp_to_exp vs golden light_exponent<fp24>", 1, 606,
+      [](uint32_t x) { return light_exponent<T>(fb(x)); },
+      [](const Vrc_fp_to_exp& m) { return static_cast<uint32_t>(m.ns_o); });
+  EXPECT_EQ(bad, 0u);
+  // The inputs cover the rounding's ties (x.5 below the clamp) and the values just below the
+  // clamp that round up to 2^exponent_bits.
+  uint64_t ties = 0, near_top = 0;
+  for (uint32_t x = 0; x <= T::kMask; ++x) {
+    const double v = fb(x).to_double();
+    ties += v > 0.0 && v < kLightExponentMax && v - std::floor(v) == 0.5 ? 1 : 0;
+    near_top += v >= kLightExponentMax + 0.5 && v < kLightExponentMax + 1.0 ? 1 : 0;
+  }
+  std::printf("[info] rc_fp_to_exp: %llu encodings at an exact x.5 tie, %llu in [1023.5, 1024)\n",
+              static_cast<unsigned long long>(ties), static_cast<unsigned long long>(near_top));
+  EXPECT_GT(ties, 1000u);
+  EXPECT_GT(near_top, 10u);
 }
 
 // rc_fp_to_u8 (valid-only, latency kToU8Latency) against to_u8<fp24>() for every fp24 encoding.
@@ -1185,17 +1208,19 @@ struct HitLightGeo {
 };
 struct HitLightSample {
   uint32_t light = 0;
-  bool last = false;
+  bool lane_last = false, light_last = false;
   std::array<uint32_t, 3> org{};
   LightTermUnit::Out s;
   bool operator==(const HitLightSample& o) const {
-    return light == o.light && last == o.last && org == o.org && s == o.s;
+    return light == o.light && lane_last == o.lane_last && light_last == o.light_last &&
+           org == o.org && s == o.s;
   }
 };
 
-// The bench: hits through valid_i/ready_o with seeded random gaps, geo_ready_i and lt_ready_i
-// each with seeded random low bursts of their own; every output checked against the head of its
-// queue of golden results (hit_geometry, then light_sample and ambient_terms per light).
+// The bench: packets of hits through valid_i/ready_o with seeded random gaps, geo_ready_i and
+// lt_ready_i each with seeded random low bursts of their own; every output checked against the
+// head of its queue of golden results (hit_geometry per hit; light_sample and ambient_terms per
+// light and hit).
 class HitLightBench {
  public:
   HitLightBench(uint64_t seed, bool stalls) : rng_(seed), stalls_(stalls) {
@@ -1222,41 +1247,49 @@ class HitLightBench {
     }
   }
 
-  void push(const HitLightCase& c) {
-    if (stalls_ && (rng_() & 7) == 0) {
-      tb_->valid_i = 0;
-      for (int i = 1 + static_cast<int>(rng_() % 6); i > 0; --i) tick();
-    }
-    const uint32_t tag = static_cast<uint32_t>(seq_++ & kTagMask);
-    tb_->valid_i = 1;
-    tb_->tag_i = static_cast<uint16_t>(tag);
-    Vrc_hit_light& d = tb_.m();
-    for (int a = 0; a < 3; ++a) {
-      put_field(d.org_i, a * kW, kW, c.hit.ray.org[a].bits());
-      put_field(d.dir_i, a * kW, kW, c.hit.ray.dir[a].bits());
-      put_field(d.n_i, a * kW, kW, c.hit.n[a].bits());
-      put_field(d.kd_i, a * kW, kW, c.kd[a].bits());
-      put_field(d.ks_i, a * kW, kW, c.ks[a].bits());
-    }
-    d.inv_len_i = c.hit.ray.inv_len.bits();
-    d.t_i = c.hit.t.bits();
-    d.dz_i = c.hit.dz.bits();
-    d.eta_enter_i = c.hit.eta_enter.bits();
-    d.eta_leave_i = c.hit.eta_leave.bits();
-    d.w_i = c.hit.w.bits();
-    d.mirror_i = c.hit.mirror.bits();
-    d.transmit_i = c.hit.transmit.bits();
-    d.ns_i = static_cast<uint16_t>(c.ns);
-    expect(c, tag);
-    ++hits_;
-    uint64_t waited = 0;
-    while (!tick()) {
-      if (++waited > 100000) {
-        fail("ready_o stuck low");
-        break;
+  // Presents a packet's hits one after the other (each after a seeded random gap), last_i on
+  // the last.
+  void push(const std::vector<HitLightCase>& packet) {
+    std::vector<uint32_t> tags;
+    for (size_t k = 0; k < packet.size(); ++k) {
+      const HitLightCase& c = packet[k];
+      if (stalls_ && (rng_() & 7) == 0) {
+        tb_->valid_i = 0;
+        for (int i = 1 + static_cast<int>(rng_() % 6); i > 0; --i) tick();
       }
+      const uint32_t tag = static_cast<uint32_t>(seq_++ & kTagMask);
+      tags.push_back(tag);
+      tb_->valid_i = 1;
+      tb_->tag_i = static_cast<uint16_t>(tag);
+      tb_->last_i = k + 1 == packet.size();
+      Vrc_hit_light& d = tb_.m();
+      for (int a = 0; a < 3; ++a) {
+        put_field(d.org_i, a * kW, kW, c.hit.ray.org[a].bits());
+        put_field(d.dir_i, a * kW, kW, c.hit.ray.dir[a].bits());
+        put_field(d.n_i, a * kW, kW, c.hit.n[a].bits());
+        put_field(d.kd_i, a * kW, kW, c.kd[a].bits());
+        put_field(d.ks_i, a * kW, kW, c.ks[a].bits());
+      }
+      d.inv_len_i = c.hit.ray.inv_len.bits();
+      d.t_i = c.hit.t.bits();
+      d.dz_i = c.hit.dz.bits();
+      d.eta_enter_i = c.hit.eta_enter.bits();
+      d.eta_leave_i = c.hit.eta_leave.bits();
+      d.w_i = c.hit.w.bits();
+      d.mirror_i = c.hit.mirror.bits();
+      d.transmit_i = c.hit.transmit.bits();
+      d.ns_i = static_cast<uint16_t>(c.ns);
+      ++hits_;
+      uint64_t waited = 0;
+      while (!tick()) {
+        if (++waited > 100000) {
+          fail("ready_o stuck low");
+          break;
+        }
+      }
+      tb_->valid_i = 0;
     }
-    tb_->valid_i = 0;
+    expect(packet, tags);
   }
 
   // Idles until both queues are empty, then some more cycles to catch spurious outputs.
@@ -1300,38 +1333,46 @@ class HitLightBench {
     Out want;
   };
 
-  void expect(const HitLightCase& c, uint32_t tag) {
-    const HitGeomUnit::In& in = c.hit;
-    const HitGeometry<T> h = hit_geometry(in.ray, in.t, in.dz, in.n, in.eta_enter, in.eta_leave,
-                                          in.w, in.mirror, in.transmit);
-    HitLightGeo g;
-    for (int a = 0; a < 3; ++a) {
-      g.p[a] = h.p[a].bits();
-      g.r[a] = h.r[a].bits();
-      g.refr[a] = h.t[a].bits();
+  // The golden results of a packet: each hit's geometry; then per light, each hit's sample.
+  void expect(const std::vector<HitLightCase>& packet, const std::vector<uint32_t>& tags) {
+    std::vector<HitGeometry<T>> hg;
+    for (size_t k = 0; k < packet.size(); ++k) {
+      const HitGeomUnit::In& in = packet[k].hit;
+      const HitGeometry<T> h = hit_geometry(in.ray, in.t, in.dz, in.n, in.eta_enter, in.eta_leave,
+                                            in.w, in.mirror, in.transmit);
+      hg.push_back(h);
+      HitLightGeo g;
+      for (int a = 0; a < 3; ++a) {
+        g.p[a] = h.p[a].bits();
+        g.r[a] = h.r[a].bits();
+        g.refr[a] = h.t[a].bits();
+      }
+      g.w_mirror = h.w_mirror.bits();
+      g.w_refract = h.w_refract.bits();
+      g.mirror = h.mirror;
+      g.refract = h.refract;
+      geo_q_.push_back({tags[k], g});
     }
-    g.w_mirror = h.w_mirror.bits();
-    g.w_refract = h.w_refract.bits();
-    g.mirror = h.mirror;
-    g.refract = h.refract;
-    geo_q_.push_back({tag, g});
-    for (uint32_t l = 0; l < count_; ++l) {
-      HitLightSample s;
-      s.light = l;
-      s.last = l + 1 == count_;
-      s.org = g.p;
-      LightTermUnit::In li;
-      li.sp.p = h.p;
-      li.sp.n = h.n;
-      li.sp.v = h.v;
-      li.light = lights_[l];
-      li.kd = c.kd;
-      li.ks = c.ks;
-      li.ns = c.ns;
-      li.w = in.w;
-      s.s = LightTermUnit::golden(li);
-      lt_q_.push_back({tag, s});
-    }
+    for (uint32_t l = 0; l < count_; ++l)
+      for (size_t k = 0; k < packet.size(); ++k) {
+        const HitLightCase& c = packet[k];
+        HitLightSample s;
+        s.light = l;
+        s.lane_last = k + 1 == packet.size();
+        s.light_last = l + 1 == count_;
+        for (int a = 0; a < 3; ++a) s.org[a] = hg[k].p[a].bits();
+        LightTermUnit::In li;
+        li.sp.p = hg[k].p;
+        li.sp.n = hg[k].n;
+        li.sp.v = hg[k].v;
+        li.light = lights_[l];
+        li.kd = c.kd;
+        li.ks = c.ks;
+        li.ns = c.ns;
+        li.w = c.hit.w;
+        s.s = LightTermUnit::golden(li);
+        lt_q_.push_back({tags[k], s});
+      }
   }
 
   bool ready(int& low) {
@@ -1379,7 +1420,8 @@ class HitLightBench {
     lt_q_.pop_front();
     HitLightSample s;
     s.light = d.lt_light_o;
-    s.last = d.lt_last_o;
+    s.lane_last = d.lt_lane_last_o;
+    s.light_last = d.lt_light_last_o;
     s.s.present = d.lt_present_o;
     s.s.t_hi = d.lt_t_hi_o;
     for (int a = 0; a < 3; ++a) {
@@ -1392,9 +1434,10 @@ class HitLightBench {
       fail("light tag " + std::to_string(d.lt_tag_o) + ", expected " + std::to_string(e.tag));
     else if (!(s == e.want))
       fail("light " + std::to_string(e.want.light) + " of hit " + std::to_string(e.tag) +
-           ": rtl light " + std::to_string(s.light) + " last " + std::to_string(s.last) +
-           " present " + std::to_string(s.s.present) + ", golden present " +
-           std::to_string(e.want.s.present) + (s.org == e.want.org ? "" : "; origins differ"));
+           ": rtl light " + std::to_string(s.light) + " last " + std::to_string(s.lane_last) +
+           std::to_string(s.light_last) + " present " + std::to_string(s.s.present) +
+           ", golden present " + std::to_string(e.want.s.present) +
+           (s.org == e.want.org ? "" : "; origins differ"));
   }
 
   VerilatedTb<Vrc_hit_light> tb_;
@@ -1426,14 +1469,24 @@ LightSet light_set(Gen& g) {
   return s;
 }
 
+// A packet of 1 to 4 hits.
+std::vector<HitLightCase> hit_light_packet(Gen& g) {
+  std::vector<HitLightCase> p(1 + g.u(4));
+  for (HitLightCase& c : p) c = hit_light_case(g);
+  return p;
+}
+
 // Every light count 0 .. MaxLights (each with lights of its own) under random stalls on the input
 // and on both outputs: each hit's geometry and its light samples, in order, bit for bit.
 TEST(CoreUnits, HitLightRandom) {
   Gen g(707);
   HitLightBench b(708, true);
+  uint64_t samples = 0;
   for (const uint32_t count : {1u, 2u, 4u, 0u, 3u, 1u}) {
     b.configure(light_set(g), count);
-    for (int i = 0; i < 8000; ++i) b.push(hit_light_case(g));
+    const uint64_t before = b.hits();
+    while (b.hits() - before < 8000) b.push(hit_light_packet(g));
+    samples += (b.hits() - before) * count;
     b.drain();
     EXPECT_EQ(b.mismatches(), 0u) << count << " lights";
   }
@@ -1443,21 +1496,23 @@ TEST(CoreUnits, HitLightRandom) {
               static_cast<unsigned long long>(b.hits()),
               static_cast<unsigned long long>(b.samples()),
               static_cast<unsigned long long>(b.cycle()));
-  EXPECT_EQ(b.samples(), 8000u * (1 + 2 + 4 + 0 + 3 + 1));
+  EXPECT_EQ(b.samples(), samples);
 }
 
-// Without stalls, a hit per 3 cycles with at most one light and one per 3 x count cycles with
-// more: N hits take at most that many cycles plus the pipeline's fill and drain.
+// Without stalls, packets of four hits: a hit per 3 cycles with at most one light and one per
+// 3 x count cycles with more: N hits take at most that many cycles plus the pipeline's fill and
+// drain.
 TEST(CoreUnits, HitLightThroughput) {
   Gen g(709);
   for (const uint32_t count : {0u, 1u, 2u, 4u}) {
     HitLightBench b(710, false);
     b.configure(light_set(g), count);
-    constexpr uint64_t kHits = 2000;
+    constexpr uint64_t kHits = 2000;  // packets of 4
     const uint64_t start = b.cycle();
-    for (uint64_t i = 0; i < kHits; ++i) {
-      while (!b.ready_o()) b.tick();
-      b.push(hit_light_case(g));
+    for (uint64_t i = 0; i < kHits / 4; ++i) {
+      std::vector<HitLightCase> p(4);
+      for (HitLightCase& c : p) c = hit_light_case(g);
+      b.push(p);
     }
     const uint64_t cycles = b.cycle() - start;
     b.drain();
@@ -1470,13 +1525,14 @@ TEST(CoreUnits, HitLightThroughput) {
         static_cast<double>(cycles) / static_cast<double>(kHits),
         static_cast<long long>(b.geo_latency()),
         count > 0 ? std::to_string(b.lt_latency()).c_str() : "none");
-    // rc_hit_geom's latency and the geo FIFO's head register; the light job is taken a cycle
-    // after the geometry is (the sequencer's register), at most 2 cycles later for its phase,
-    // then rc_light_term's latency.
+    // The geometry: rc_hit_geom's latency and the geo FIFO's head register. The first light
+    // sample: the packet's fourth hit is taken 9 cycles after its first, its geometry enters the
+    // lane memory, whose bank is issued from the cycle after; the job waits at most 2 cycles for
+    // its phase, then rc_light_term's latency.
     EXPECT_EQ(b.geo_latency(), kHitGeomLatency + 1);
     if (count > 0) {
-      EXPECT_GE(b.lt_latency(), kHitGeomLatency + 1 + kLightTermLatency);
-      EXPECT_LE(b.lt_latency(), kHitGeomLatency + 1 + 2 + kLightTermLatency);
+      EXPECT_GE(b.lt_latency(), kHitGeomLatency + 9 + 1 + kLightTermLatency);
+      EXPECT_LE(b.lt_latency(), kHitGeomLatency + 9 + 1 + 2 + kLightTermLatency);
     }
     EXPECT_LE(cycles, per * kHits + 8) << count << " lights";
   }
