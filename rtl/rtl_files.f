@@ -19,6 +19,7 @@ rtl/core/rc_serial_sched.sv
 rtl/core/rc_serial_dot3.sv
 rtl/core/rc_fp_to_fix.sv
 rtl/core/rc_fp_to_exp.sv
+rtl/core/rc_light_byte.sv
 rtl/core/rc_hit_geom.sv
 rtl/core/rc_light_term.sv
 rtl/core/rc_hit_light.sv

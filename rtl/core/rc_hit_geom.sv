@@ -25,11 +25,13 @@
 //   as one value at a fixed cycle. A scalar that a vector operation needs (t, inv_len, the
 //   mirror term's c + c, the refraction term's g) is held for the three cycles of the stream by
 //   a register loaded in the stream's first cycle. One multiplier takes c * c, e * e and e * c in
-//   consecutive cycles, one the two weights. Each value reaches its operation through rc_delay
+//   consecutive cycles, one the two weights. Hits are taken at a fixed phase modulo 3
+//   (rc_serial_sched, Phased), so the three scalar sums c + c, 1 - c * c and q = 1 - x, whose
+//   times differ modulo 3, share one adder. Each value reaches its operation through rc_delay
 //   lines (rc_delay_ram memories where they are long) of the lengths the fp units' latencies give
-//   (the times below, in cycles after slot 0),
-//   so a stream's timing never depends on its neighbours: a hit may follow another after three
-//   cycles or after any gap (rc_serial_sched keeps the slots and says which job time is now).
+//   (the times below, in cycles after slot 0), so a stream's timing never depends on its
+//   neighbours: a hit may follow another after three cycles or after any gap (rc_serial_sched
+//   keeps the slots and says which job time is now).
 //   The last stage collects each stream's three components into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
 //   when valid_i & ready_o. ready_o is the AND of two flip-flops (rc_credit_fifo's credit
@@ -41,8 +43,9 @@
 //   V, N.V, the sum c, c * c, 1 - c * c, e^2 (1 - c^2), q, sqrt(q), g, g * N, e * V - g * N
 //   (TimeT = 67 after slot 0), two cycles for the stream's y and z, the FIFO's output register 1.
 // - Throughput: one hit per 3 cycles while ready_i is 1 (ready_o rises again in the hit's last
-//   cycle in the input register). The FIFO holds Latency / 3 + 2 entries, enough credits for
-//   every operation in flight at that rate.
+//   cycle in the input register); ready_o is high only in cycles whose phase modulo 3 lets a hit
+//   start at phase 0, so a hit offered after a gap may wait up to 2 cycles. The FIFO holds
+//   Latency / 3 + 2 entries, enough credits for every operation in flight at that rate.
 // - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1).
 // - Illegal input: none; every bit pattern of the data inputs is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, the
@@ -118,6 +121,11 @@ module rc_hit_geom #(
   if (TagW < 1) begin : g_param_check
     $error("rc_hit_geom: TagW must be at least 1");
   end
+  // The shared adder's three users must come at different phases.
+  if (TimeC % 3 == (TimeC + Lm) % 3 || TimeC % 3 == TimeX % 3 || (TimeC + Lm) % 3 == TimeX % 3)
+  begin : g_phase_check
+    $error("rc_hit_geom: the shared adder's users must come at different phases");
+  end
 
   // lt(+0, x): x is positive, not zero (an exponent field of 0 reads as zero) and not NaN.
   function automatic logic pos(input logic [W-1:0] x);
@@ -162,7 +170,7 @@ module rc_hit_geom #(
   // operation issued at time T (its x; y and z follow) is busy (rc_serial_sched).
   logic [TimeOut:0]   at;
   logic [TimeOut-2:0] strm;
-  rc_serial_sched #(.Time(TimeOut)) u_sched (
+  rc_serial_sched #(.Time(TimeOut), .Phased(1'b1)) u_sched (
     .clk_i, .rst_ni, .take_i(take), .slot_o(slot_q), .in_free_o(in_free_q), .at_o(at),
     .strm_o(strm)
   );
@@ -245,12 +253,8 @@ module rc_hit_geom #(
   //////////////////////////////////////
 
   logic [W-1:0] kn, v_at_kn, r_s, v_at_g;
-  logic         k_vld, kn_vld, r_vld;
+  logic         kn_vld, r_vld;
 
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_k (
-    .clk_i, .rst_ni, .valid_i(at[TimeC]), .sub_i(1'b0), .a_i(c_res), .b_i(c_res),
-    .valid_o(k_vld), .res_o(k_res)
-  );
   rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_kn (
     .clk_i, .rst_ni, .valid_i(strm[TimeK]), .a_i(k_b), .b_i(n_at_k), .valid_o(kn_vld),
     .res_o(kn)
@@ -281,17 +285,13 @@ module rc_hit_geom #(
 
   // One multiplier: c * c at TimeC, e * e at TimeC + 1, e * c at TimeC + 2.
   logic [W-1:0] m5_a, m5_b, m5, e2_d, ec_d, s_res, x_res, q_res, sq_res;
-  logic         m5_vld, s_vld, x_vld, q_vld, sq_vld, g_vld;
+  logic         m5_vld, x_vld, sq_vld, g_vld;
   assign m5_a = at[TimeC] ? c_b : e_at_c;
   assign m5_b = at[TimeC + 1] ? e_at_c : c_b;
 
   rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_m5 (
     .clk_i, .rst_ni, .valid_i(strm[TimeC]), .a_i(m5_a), .b_i(m5_b), .valid_o(m5_vld),
     .res_o(m5)
-  );
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_s (
-    .clk_i, .rst_ni, .valid_i(at[TimeC + Lm]), .sub_i(1'b1), .a_i(One), .b_i(m5),
-    .valid_o(s_vld), .res_o(s_res)
   );
   rc_delay #(.Width(W), .Cycles(TimeS - (TimeC + 1 + Lm))) u_dly_e2 (
     .clk_i, .data_i(m5), .data_o(e2_d)
@@ -300,10 +300,23 @@ module rc_hit_geom #(
     .clk_i, .rst_ni, .valid_i(at[TimeS]), .a_i(e2_d), .b_i(s_res), .valid_o(x_vld),
     .res_o(x_res)
   );
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_q (
-    .clk_i, .rst_ni, .valid_i(at[TimeX]), .sub_i(1'b1), .a_i(One), .b_i(x_res),
-    .valid_o(q_vld), .res_o(q_res)
+  // One adder for the three scalar sums, issued at different phases (jobs start at phase 0,
+  // rc_serial_sched Phased): c + c at TimeC, 1 - c * c at TimeC + Lm, 1 - x at TimeX. Each user
+  // reads the result La cycles after its issue (TimeK, TimeS, TimeQ).
+  logic [W-1:0] sa_a, sa_b, sa_res;
+  logic         sa_sub, sa_valid, sa_vld;
+  assign sa_valid = at[TimeC] | at[TimeC + Lm] | at[TimeX];
+  assign sa_sub   = at[TimeC + Lm] | at[TimeX];
+  assign sa_a     = ({W{at[TimeC]}} & c_res) | ({W{sa_sub}} & One);
+  assign sa_b     = ({W{at[TimeC]}} & c_res) | ({W{at[TimeC + Lm]}} & m5) |
+                    ({W{at[TimeX]}} & x_res);
+  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_shared (
+    .clk_i, .rst_ni, .valid_i(sa_valid), .sub_i(sa_sub), .a_i(sa_a), .b_i(sa_b),
+    .valid_o(sa_vld), .res_o(sa_res)
   );
+  assign k_res = sa_res;
+  assign s_res = sa_res;
+  assign q_res = sa_res;
   rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
     .clk_i, .rst_ni, .valid_i(at[TimeQ]), .a_i(q_res), .valid_o(sq_vld), .res_o(sq_res)
   );
@@ -440,12 +453,16 @@ module rc_hit_geom #(
                                td_vld == strm[TimeV] && v_vld == strm[TimeV] &&
                                p_vld == strm[TimeP] && nv_vld == strm[TimeNv] &&
                                s01_vld == at[TimeS01] && c_vld == at[TimeC] &&
-                               k_vld == at[TimeK] && kn_vld == strm[TimeKn] &&
+                               sa_vld == (at[TimeK] | at[TimeS] | at[TimeQ]) &&
+                               kn_vld == strm[TimeKn] &&
                                r_vld == strm[TimeR] && m5_vld == strm[TimeC + Lm] &&
-                               s_vld == at[TimeS] && x_vld == at[TimeX] && q_vld == at[TimeQ] &&
+                               x_vld == at[TimeX] &&
                                sq_vld == at[TimeSq] && g_vld == at[TimeG] &&
                                gn_vld == strm[TimeGn] && ev_vld == strm[TimeGn] &&
                                t_vld == strm[TimeT] && wx_vld == (at[Lm] | at[Lm + 1]));
+  // At most one user of the shared adder in a cycle (the phases keep them apart).
+  OneUser_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              $onehot0({at[TimeC], at[TimeC + Lm], at[TimeX]}));
   // ready_o must be known once out of reset (upstream acts on it).
   ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));

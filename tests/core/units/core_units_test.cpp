@@ -1,8 +1,9 @@
 // The core's datapath units (rtl/core/rc_trav_step.sv, rc_ray_setup.sv, rc_shade_unit.sv,
 // rc_fp_to_u8.sv, rc_hit_geom.sv, rc_light_term.sv, rc_hit_light.sv, rc_fp_to_fix.sv,
-// rc_fp_to_exp.sv), verilated at fp24, against the golden model functions they implement
-// (tb/golden/trace.hpp: trav_step, setup_ray, shade, to_u8, hit_geometry, light_sample with
-// ambient_terms, both for a hit and its lights, light_fixed, light_exponent), bit for bit.
+// rc_fp_to_exp.sv, rc_light_byte.sv), verilated at fp24, against the golden model functions they
+// implement (tb/golden/trace.hpp: trav_step, setup_ray, shade, to_u8, hit_geometry, light_sample
+// with ambient_terms, both for a hit and its lights, light_fixed, light_exponent, light_byte), bit
+// for bit.
 //
 // The handshake units are driven through their valid/ready ports with seeded random valid_i gaps
 // and seeded random ready_i low periods. Every operation carries a sequence number as its tag;
@@ -25,6 +26,7 @@
 #include "Vrc_fp_to_u8.h"
 #include "Vrc_hit_geom.h"
 #include "Vrc_hit_light.h"
+#include "Vrc_light_byte.h"
 #include "Vrc_light_term.h"
 #include "Vrc_ray_setup.h"
 #include "Vrc_shade_unit.h"
@@ -1025,12 +1027,12 @@ TEST(CoreUnits, HitGeomRandom) {
 constexpr int64_t kHitGeomLatency =
     1 + 2 * kMul + 1 + 2 * kAdd + 3 * kMul + 4 * kAdd + spec::kFpStagesSqrt + 2 + 1;
 
-// rc_hit_geom runs a hit's components through one slice: one hit per 3 cycles. The FIFO holds
-// latency / 3 + 2 entries.
+// rc_hit_geom runs a hit's components through one slice: one hit per 3 cycles; a hit waits at
+// most 2 cycles for its phase. The FIFO holds latency / 3 + 2 entries.
 TEST(CoreUnits, HitGeomTiming) {
   constexpr int64_t lat = kHitGeomLatency;
   run_timing<Vrc_hit_geom, HitGeomUnit>("rc_hit_geom", lat, static_cast<uint64_t>(lat / 3 + 2),
-                                        hit_geom_case, 3);
+                                        hit_geom_case, 3, 2);
 }
 
 TEST(CoreUnits, LightTermRandom) {
@@ -1075,12 +1077,13 @@ TEST(CoreUnits, LightTermTiming) {
       "rc_light_term", lat, static_cast<uint64_t>(lat / 3 + 2), light_term_case, 3, 2);
 }
 
-// Every fp24 encoding through a valid-only converter (x_i, valid_i -> out, valid_o `latency`
-// cycles later), with seeded random idle cycles (1 in 16): each result must come exactly
-// `latency` cycles after its input and equal want(x). Returns the mismatches (the first ten are
-// reported as failures).
-template <class V, class Want, class Got>
-uint64_t run_every_encoding(const char* what, uint64_t latency, uint64_t seed, Want want, Got got) {
+// Inputs x = 0 .. 2^24 - 1 through a valid-only converter (set(model, x) drives its input,
+// valid_i -> out, valid_o `latency` cycles later), with seeded random idle cycles (1 in 16): each
+// result must come exactly `latency` cycles after its input and equal want(x). Returns the
+// mismatches (the first ten are reported as failures).
+template <class V, class Set, class Want, class Got>
+uint64_t run_every_input(const char* what, uint64_t latency, uint64_t seed, Set set, Want want,
+                         Got got) {
   VerilatedTb<V> tb;
   std::mt19937_64 rng(seed);
   tb->valid_i = 0;
@@ -1113,7 +1116,7 @@ uint64_t run_every_encoding(const char* what, uint64_t latency, uint64_t seed, W
   for (uint32_t x = 0; x <= T::kMask;) {
     const bool idle = (rng() & 15) == 0;
     tb->valid_i = !idle;
-    tb->x_i = x;
+    set(tb.m(), x);
     if (!idle) {
       q.push_back({x, want(x), tb.cycles() + latency});
       ++cases;
@@ -1128,9 +1131,16 @@ uint64_t run_every_encoding(const char* what, uint64_t latency, uint64_t seed, W
     tb.tick();
   }
   if (!q.empty()) fail(std::to_string(q.size()) + " results missing");
-  report_cases((std::string("rtl ") + what + ": every fp24 encoding").c_str(), cases, mismatches);
+  report_cases((std::string("rtl ") + what).c_str(), cases, mismatches);
   EXPECT_EQ(cases, uint64_t{T::kMask} + 1);
   return mismatches;
+}
+
+// Every fp24 encoding x through a converter whose input is x_i (run_every_input).
+template <class V, class Want, class Got>
+uint64_t run_every_encoding(const char* what, uint64_t latency, uint64_t seed, Want want, Got got) {
+  return run_every_input<V>((std::string(what) + ": every fp24 encoding").c_str(), latency, seed,
+                            [](V& m, uint32_t x) { m.x_i = x; }, want, got);
 }
 
 // rc_fp_to_fix (valid-only, latency 1) against light_fixed<fp24>() for every fp24 encoding.
@@ -1171,6 +1181,18 @@ TEST(CoreUnits, ToExpExhaustive) {
               static_cast<unsigned long long>(ties), static_cast<unsigned long long>(near_top));
   EXPECT_GT(ties, 1000u);
   EXPECT_GT(near_top, 10u);
+}
+
+// rc_light_byte (valid-only, latency 1) against light_byte(): every sum below 2^23 (2^16 and up
+// clamp) and 2^23 sums spread over the whole 32-bit range (x scrambled by an odd multiplier).
+TEST(CoreUnits, LightByteEverySum) {
+  const auto sum = [](uint32_t x) { return x < (1u << 23) ? x : x * 0x9E3779B1u; };
+  const uint64_t bad = run_every_input<Vrc_light_byte>(
+      "rc_light_byte vs golden light_byte: sums 0 .. 2^23 - 1 and 2^23 over 32 bits", 1, 707,
+      [&](Vrc_light_byte& m, uint32_t x) { m.sum_i = sum(x); },
+      [&](uint32_t x) { return static_cast<uint32_t>(light_byte(sum(x))); },
+      [](const Vrc_light_byte& m) { return static_cast<uint32_t>(m.byte_o); });
+  EXPECT_EQ(bad, 0u);
 }
 
 // rc_fp_to_u8 (valid-only, latency kToU8Latency) against to_u8<fp24>() for every fp24 encoding.
