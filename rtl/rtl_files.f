@@ -5,6 +5,7 @@ rtl/fp/rc_fp_round_flags.sv
 rtl/fp/rc_fp_round_kinds.sv
 rtl/fp/rc_fp_round_pack.sv
 rtl/fp/rc_fp_add.sv
+rtl/fp/rc_fp_twice.sv
 rtl/fp/rc_fp_mul.sv
 rtl/fp/rc_fp_div.sv
 rtl/fp/rc_fp_sqrt.sv

@@ -26,8 +26,8 @@
 //   mirror term's c + c, the refraction term's g) is held for the three cycles of the stream by
 //   a register loaded in the stream's first cycle. One multiplier takes c * c, e * e and e * c in
 //   consecutive cycles, one the two weights. Hits are taken at a fixed phase modulo 3
-//   (rc_serial_sched, Phased), so the three scalar sums c + c, 1 - c * c and q = 1 - x, whose
-//   times differ modulo 3, share one adder. Each value reaches its operation through rc_delay
+//   (rc_serial_sched, Phased), so the three scalar sums 1 - c * c, q = 1 - x and g, whose times
+//   differ modulo 3, share one adder; c + c is rc_fp_twice (exact doubling, a cycle). Each value reaches its operation through rc_delay
 //   lines (rc_delay_ram memories where they are long) of the lengths the fp units' latencies give
 //   (the times below, in cycles after slot 0), so a stream's timing never depends on its
 //   neighbours: a hit may follow another after three cycles or after any gap (rc_serial_sched
@@ -100,7 +100,7 @@ module rc_hit_geom #(
   localparam int unsigned TimeNv  = TimeV + Lm;        // N * V, per component
   localparam int unsigned TimeS01 = TimeNv + 1 + La;   // N.x V.x + N.y V.y (issued with y)
   localparam int unsigned TimeC   = TimeS01 + La;      // c
-  localparam int unsigned TimeK   = TimeC + La;        // c + c
+  localparam int unsigned TimeK   = TimeC + 1;         // c + c (rc_fp_twice)
   localparam int unsigned TimeKn  = TimeK + Lm;        // (c + c) * N
   localparam int unsigned TimeR   = TimeKn + La;       // R = V - (c + c) N
   localparam int unsigned TimeS   = TimeC + Lm + La;   // 1 - c * c
@@ -122,8 +122,8 @@ module rc_hit_geom #(
     $error("rc_hit_geom: TagW must be at least 1");
   end
   // The shared adder's three users must come at different phases.
-  if (TimeC % 3 == (TimeC + Lm) % 3 || TimeC % 3 == TimeX % 3 || (TimeC + Lm) % 3 == TimeX % 3)
-  begin : g_phase_check
+  if (TimeSq % 3 == (TimeC + Lm) % 3 || TimeSq % 3 == TimeX % 3 ||
+      (TimeC + Lm) % 3 == TimeX % 3) begin : g_phase_check
     $error("rc_hit_geom: the shared adder's users must come at different phases");
   end
 
@@ -253,7 +253,12 @@ module rc_hit_geom #(
   //////////////////////////////////////
 
   logic [W-1:0] kn, v_at_kn, r_s, v_at_g;
-  logic         kn_vld, r_vld;
+  logic         k_vld, kn_vld, r_vld;
+
+  // c + c: exact doubling (rc_fp_twice, x + x bit for bit), a cycle.
+  rc_fp_twice #(.ExpW(ExpW), .FracW(FracW)) u_twice_k (
+    .clk_i, .rst_ni, .valid_i(at[TimeC]), .x_i(c_res), .valid_o(k_vld), .res_o(k_res)
+  );
 
   rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_kn (
     .clk_i, .rst_ni, .valid_i(strm[TimeK]), .a_i(k_b), .b_i(n_at_k), .valid_o(kn_vld),
@@ -285,7 +290,7 @@ module rc_hit_geom #(
 
   // One multiplier: c * c at TimeC, e * e at TimeC + 1, e * c at TimeC + 2.
   logic [W-1:0] m5_a, m5_b, m5, e2_d, ec_d, s_res, x_res, q_res, sq_res;
-  logic         m5_vld, x_vld, sq_vld, g_vld;
+  logic         m5_vld, x_vld, sq_vld;
   assign m5_a = at[TimeC] ? c_b : e_at_c;
   assign m5_b = at[TimeC + 1] ? e_at_c : c_b;
 
@@ -301,31 +306,27 @@ module rc_hit_geom #(
     .res_o(x_res)
   );
   // One adder for the three scalar sums, issued at different phases (jobs start at phase 0,
-  // rc_serial_sched Phased): c + c at TimeC, 1 - c * c at TimeC + Lm, 1 - x at TimeX. Each user
-  // reads the result La cycles after its issue (TimeK, TimeS, TimeQ).
+  // rc_serial_sched Phased): 1 - c * c at TimeC + Lm, 1 - x at TimeX, g = e c + sqrt(q) at
+  // TimeSq. Each user reads the result La cycles after its issue (TimeS, TimeQ, TimeG).
   logic [W-1:0] sa_a, sa_b, sa_res;
   logic         sa_sub, sa_valid, sa_vld;
-  assign sa_valid = at[TimeC] | at[TimeC + Lm] | at[TimeX];
+  assign sa_valid = at[TimeC + Lm] | at[TimeX] | at[TimeSq];
   assign sa_sub   = at[TimeC + Lm] | at[TimeX];
-  assign sa_a     = ({W{at[TimeC]}} & c_res) | ({W{sa_sub}} & One);
-  assign sa_b     = ({W{at[TimeC]}} & c_res) | ({W{at[TimeC + Lm]}} & m5) |
-                    ({W{at[TimeX]}} & x_res);
+  assign sa_a     = ({W{sa_sub}} & One) | ({W{at[TimeSq]}} & ec_d);
+  assign sa_b     = ({W{at[TimeC + Lm]}} & m5) | ({W{at[TimeX]}} & x_res) |
+                    ({W{at[TimeSq]}} & sq_res);
   rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_shared (
     .clk_i, .rst_ni, .valid_i(sa_valid), .sub_i(sa_sub), .a_i(sa_a), .b_i(sa_b),
     .valid_o(sa_vld), .res_o(sa_res)
   );
-  assign k_res = sa_res;
   assign s_res = sa_res;
   assign q_res = sa_res;
+  assign g_res = sa_res;
   rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
     .clk_i, .rst_ni, .valid_i(at[TimeQ]), .a_i(q_res), .valid_o(sq_vld), .res_o(sq_res)
   );
   rc_delay_ram #(.Width(W), .Cycles(TimeSq - (TimeC + 2 + Lm))) u_dly_ec (
     .clk_i, .rst_ni, .data_i(m5), .data_o(ec_d)
-  );
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_g (
-    .clk_i, .rst_ni, .valid_i(at[TimeSq]), .sub_i(1'b0), .a_i(ec_d), .b_i(sq_res),
-    .valid_o(g_vld), .res_o(g_res)
   );
 
   // Total internal reflection (not lt(0, q), NaN too), held for the stream and carried to T.
@@ -453,16 +454,17 @@ module rc_hit_geom #(
                                td_vld == strm[TimeV] && v_vld == strm[TimeV] &&
                                p_vld == strm[TimeP] && nv_vld == strm[TimeNv] &&
                                s01_vld == at[TimeS01] && c_vld == at[TimeC] &&
-                               sa_vld == (at[TimeK] | at[TimeS] | at[TimeQ]) &&
+                               k_vld == at[TimeK] &&
+                               sa_vld == (at[TimeS] | at[TimeQ] | at[TimeG]) &&
                                kn_vld == strm[TimeKn] &&
                                r_vld == strm[TimeR] && m5_vld == strm[TimeC + Lm] &&
                                x_vld == at[TimeX] &&
-                               sq_vld == at[TimeSq] && g_vld == at[TimeG] &&
+                               sq_vld == at[TimeSq] &&
                                gn_vld == strm[TimeGn] && ev_vld == strm[TimeGn] &&
                                t_vld == strm[TimeT] && wx_vld == (at[Lm] | at[Lm + 1]));
   // At most one user of the shared adder in a cycle (the phases keep them apart).
   OneUser_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                              $onehot0({at[TimeC], at[TimeC + Lm], at[TimeX]}));
+                              $onehot0({at[TimeC + Lm], at[TimeX], at[TimeSq]}));
   // ready_o must be known once out of reset (upstream acts on it).
   ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));

@@ -1,9 +1,9 @@
 // The core's datapath units (rtl/core/rc_trav_step.sv, rc_ray_setup.sv, rc_shade_unit.sv,
 // rc_fp_to_u8.sv, rc_hit_geom.sv, rc_light_term.sv, rc_hit_light.sv, rc_fp_to_fix.sv,
-// rc_fp_to_exp.sv, rc_light_byte.sv), verilated at fp24, against the golden model functions they
-// implement (tb/golden/trace.hpp: trav_step, setup_ray, shade, to_u8, hit_geometry, light_sample
-// with ambient_terms, both for a hit and its lights, light_fixed, light_exponent, light_byte), bit
-// for bit.
+// rc_fp_to_exp.sv, rc_light_byte.sv, rtl/fp/rc_fp_twice.sv), verilated at fp24, against the golden
+// model functions they implement (tb/golden/trace.hpp: trav_step, setup_ray, shade, to_u8,
+// hit_geometry, light_sample with ambient_terms, both for a hit and its lights, light_fixed,
+// light_exponent, light_byte; fp.hpp's x + x), bit for bit.
 //
 // The handshake units are driven through their valid/ready ports with seeded random valid_i gaps
 // and seeded random ready_i low periods. Every operation carries a sequence number as its tag;
@@ -24,6 +24,7 @@
 #include "Vrc_fp_to_exp.h"
 #include "Vrc_fp_to_fix.h"
 #include "Vrc_fp_to_u8.h"
+#include "Vrc_fp_twice.h"
 #include "Vrc_hit_geom.h"
 #include "Vrc_hit_light.h"
 #include "Vrc_light_byte.h"
@@ -1192,6 +1193,15 @@ TEST(CoreUnits, LightByteEverySum) {
       [&](Vrc_light_byte& m, uint32_t x) { m.sum_i = sum(x); },
       [&](uint32_t x) { return static_cast<uint32_t>(light_byte(sum(x))); },
       [](const Vrc_light_byte& m) { return static_cast<uint32_t>(m.byte_o); });
+  EXPECT_EQ(bad, 0u);
+}
+
+// rc_fp_twice (valid-only, latency 1: rc_hit_geom's c + c) against the golden x + x for every
+// fp24 encoding.
+TEST(CoreUnits, TwiceExhaustive) {
+  const uint64_t bad = run_every_encoding<Vrc_fp_twice>(
+      "rc_fp_twice vs golden x + x", 1, 808, [](uint32_t x) { return (fb(x) + fb(x)).bits(); },
+      [](const Vrc_fp_twice& m) { return static_cast<uint32_t>(m.res_o); });
   EXPECT_EQ(bad, 0u);
 }
 
