@@ -19,7 +19,7 @@
 //   docs/spec.toml [light] fixed_bits), at most FracW; Max: the clamp (>= 1; default 2^FixBits),
 //   with Max / 2^FixBits < 2^(FracW - FixBits) so that every value below it shifts right.
 // - Illegal input: none; every bit pattern of x_i is legal.
-// - Reset: rst_ni (active low, asynchronous) clears only valid_o.
+// - Reset: rst_ni (active low, asynchronous) clears only valid_o (rc_pipe_out).
 module rc_fp_to_fix #(
   parameter int unsigned ExpW    = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW   = rc_pkg::Fp24FracW,
@@ -103,13 +103,17 @@ module rc_fp_to_fix #(
     else out_d = OutW'(rounded);
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) valid_o <= 1'b0;
-    else valid_o <= valid_i;
-  end
-
-  always_ff @(posedge clk_i) begin
-    out_o <= out_d;
-  end
+  rc_pipe_out #(
+    .Width   (OutW),
+    .DataRegs(1),
+    .Stages  (1)
+  ) u_out (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .data_i (out_d),
+    .valid_o,
+    .data_o (out_o)
+  );
 
 endmodule

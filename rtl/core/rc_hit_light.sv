@@ -170,9 +170,9 @@ module rc_hit_light #(
   logic unused_back;
   assign unused_back = hg_back;  // the facing normal is what the lights need
 
-  //////////////////////////////////////////////
+  /////////////////////////////////////////////////
   // The split: the geo FIFO and the lane memory //
-  //////////////////////////////////////////////
+  /////////////////////////////////////////////////
 
   // A geometry result is taken when the geo FIFO has room and, unless there are no lights, the
   // lane memory's fill bank is free.

@@ -11,7 +11,7 @@
 // - Parameters: FixBits: F (default docs/spec.toml [light] fixed_bits, >= 1); SumW: the sum's bits
 //   (> FixBits).
 // - Illegal input: none; every sum is legal.
-// - Reset: rst_ni (active low, asynchronous) clears only valid_o.
+// - Reset: rst_ni (active low, asynchronous) clears only valid_o (rc_pipe_out).
 module rc_light_byte #(
   parameter int unsigned FixBits = rc_pkg::LightFixedBits,
   parameter int unsigned SumW    = 32
@@ -47,13 +47,17 @@ module rc_light_byte #(
   // q + up never exceeds 255: q = 255 only at m = 2^F, where rem = 0.
   assign byte_d = 8'(q + 9'(up));
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) valid_o <= 1'b0;
-    else valid_o <= valid_i;
-  end
-
-  always_ff @(posedge clk_i) begin
-    byte_o <= byte_d;
-  end
+  rc_pipe_out #(
+    .Width   (8),
+    .DataRegs(1),
+    .Stages  (1)
+  ) u_out (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .data_i (byte_d),
+    .valid_o,
+    .data_o (byte_o)
+  );
 
 endmodule

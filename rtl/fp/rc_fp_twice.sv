@@ -12,7 +12,7 @@
 // - Latency: 1 (the output register).
 // - Parameters: ExpW, FracW: the number format (default fp24).
 // - Illegal input: none; every bit pattern of x_i is legal.
-// - Reset: rst_ni (active low, asynchronous) clears only valid_o.
+// - Reset: rst_ni (active low, asynchronous) clears only valid_o (rc_pipe_out).
 module rc_fp_twice #(
   parameter int unsigned ExpW  = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW = rc_pkg::Fp24FracW
@@ -47,13 +47,17 @@ module rc_fp_twice #(
     else res_d = {s, e + ExpW'(1), f};
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) valid_o <= 1'b0;
-    else valid_o <= valid_i;
-  end
-
-  always_ff @(posedge clk_i) begin
-    res_o <= res_d;
-  end
+  rc_pipe_out #(
+    .Width   (W),
+    .DataRegs(1),
+    .Stages  (1)
+  ) u_out (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .data_i (res_d),
+    .valid_o,
+    .data_o (res_o)
+  );
 
 endmodule

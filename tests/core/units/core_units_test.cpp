@@ -105,6 +105,20 @@ class Gen {
 // Handshake harness (valid/ready)    //
 ////////////////////////////////////////
 
+// An output's ready_i under stalls: low for 1..40 cycles now and then, high otherwise (`low`:
+// the cycles of the current low burst still to come).
+bool ready_burst(std::mt19937_64& rng, int& low) {
+  if (low > 0) {
+    --low;
+    return false;
+  }
+  if (rng() % 16 == 0) {
+    low = static_cast<int>(rng() % 40);
+    return false;
+  }
+  return true;
+}
+
 // Unit traits: In, Out, drive(V&, In), read(V&) -> Out, golden(In) -> Out, show(In, Out, Out).
 template <class V, class U>
 class StreamHarness {
@@ -184,17 +198,7 @@ class StreamHarness {
   bool next_ready() {
     if (ready_mode_ == 1) return true;
     if (ready_mode_ == 2) return false;
-    if (!stalls_) return true;
-    // Bursts: ready_i low for 1..40 cycles now and then, high otherwise.
-    if (ready_low_left_ > 0) {
-      --ready_low_left_;
-      return false;
-    }
-    if ((rng_() % 16) == 0) {
-      ready_low_left_ = static_cast<int>(rng_() % 40);
-      return false;
-    }
-    return true;
+    return !stalls_ || ready_burst(rng_, ready_low_left_);
   }
 
   void fail(const std::string& what) {
@@ -1407,15 +1411,7 @@ class HitLightBench {
       }
   }
 
-  bool ready(int& low) {
-    if (!stalls_) return true;
-    if (low > 0) return --low, false;
-    if (rng_() % 16 == 0) {
-      low = static_cast<int>(rng_() % 40);
-      return false;
-    }
-    return true;
-  }
+  bool ready(int& low) { return !stalls_ || ready_burst(rng_, low); }
 
   void fail(const std::string& what) {
     if (++mismatches_ <= 10) ADD_FAILURE() << what;
