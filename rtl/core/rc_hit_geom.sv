@@ -27,11 +27,11 @@
 //   a register loaded in the stream's first cycle. One multiplier takes c * c, e * e and e * c in
 //   consecutive cycles, one the two weights. Hits are taken at a fixed phase modulo 3
 //   (rc_serial_sched, Phased), so the three scalar sums 1 - c * c, q = 1 - x and g, whose times
-//   differ modulo 3, share one adder; c + c is rc_fp_twice (exact doubling, a cycle). Each value reaches its operation through rc_delay
-//   lines (rc_delay_ram memories where they are long) of the lengths the fp units' latencies give
-//   (the times below, in cycles after slot 0), so a stream's timing never depends on its
-//   neighbours: a hit may follow another after three cycles or after any gap (rc_serial_sched
-//   keeps the slots and says which job time is now).
+//   differ modulo 3, share one adder; c + c is rc_fp_twice (exact doubling, a cycle). Each value
+//   reaches its operation through rc_delay lines (rc_delay_ram memories where they are long) of
+//   the lengths the fp units' latencies give (the times below, in cycles after slot 0), so a
+//   stream's timing never depends on its neighbours: a hit may follow another after three cycles
+//   or after any gap (rc_serial_sched keeps the slots and says which job time is now).
 //   The last stage collects each stream's three components into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
 //   when valid_i & ready_o. ready_o is the AND of two flip-flops (rc_credit_fifo's credit
