@@ -50,8 +50,8 @@ module rc_fp_to_fix #(
   localparam int unsigned MW      = FracW + 1;  // the significand 1.f as an integer
   // The shift right of the significand: FracW - (k + FixBits) for x = 1.f x 2^k with
   // k + FixBits < TopK, so at least FracW - TopK + 1 >= 1; a shift beyond MW leaves less than a
-  // half: 0.
-  localparam int unsigned ShW     = $clog2(MW + FracW + 2) + 1;
+  // half: 0, so sh is only used up to MW.
+  localparam int unsigned ShW     = $clog2(MW + 2) + 1;
 
   logic [ExpW-1:0]  e;
   logic [FracW-1:0] f;

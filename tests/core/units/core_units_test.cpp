@@ -119,6 +119,24 @@ bool ready_burst(std::mt19937_64& rng, int& low) {
   return true;
 }
 
+// Before an input under stalls: now and then (1 in 8) 1..6 idle cycles with valid_i low.
+template <class V, class Tick>
+void input_gap(std::mt19937_64& rng, V& m, Tick tick) {
+  if ((rng() & 7) != 0) return;
+  const int gap = 1 + static_cast<int>(rng() % 6);
+  m.valid_i = 0;
+  for (int i = 0; i < gap; ++i) tick();
+}
+
+// Ticks until the presented input is taken (tick() returns whether it was); false when ready_o
+// stays low for 100,000 cycles.
+template <class Tick>
+bool wait_taken(Tick tick) {
+  for (uint64_t waited = 0; !tick();)
+    if (++waited > 100000) return false;
+  return true;
+}
+
 // Unit traits: In, Out, drive(V&, In), read(V&) -> Out, golden(In) -> Out, show(In, Out, Out).
 template <class V, class U>
 class StreamHarness {
@@ -136,24 +154,14 @@ class StreamHarness {
 
   // Presents one operation (after a seeded random gap) and holds it until it is taken.
   void push(const In& in) {
-    if (stalls_ && (rng_() & 7) == 0) {
-      const int gap = 1 + static_cast<int>(rng_() % 6);
-      tb_->valid_i = 0;
-      for (int i = 0; i < gap; ++i) tick();
-    }
+    if (stalls_) input_gap(rng_, tb_.m(), [this] { tick(); });
     tb_->valid_i = 1;
     tb_->tag_i = static_cast<uint16_t>(seq_ & kTagMask);
     U::drive(tb_.m(), in);
     q_.push_back({in, U::golden(in), static_cast<uint32_t>(seq_ & kTagMask)});
     ++seq_;
     ++cases_;
-    uint64_t waited = 0;
-    while (!tick()) {
-      if (++waited > 100000) {
-        fail("ready_o stuck low");
-        break;
-      }
-    }
+    if (!wait_taken([this] { return tick(); })) fail("ready_o stuck low");
     tb_->valid_i = 0;
   }
 
@@ -551,7 +559,8 @@ struct HitGeomUnit {
     }
   };
   static void init(Vrc_hit_geom&) {}
-  static void drive(Vrc_hit_geom& d, const In& in) {
+  template <class V>  // rc_hit_geom, or rc_hit_light (the same ports for a hit)
+  static void drive(V& d, const In& in) {
     for (int a = 0; a < 3; ++a) {
       put_field(d.org_i, a * kW, kW, in.ray.org[a].bits());
       put_field(d.dir_i, a * kW, kW, in.ray.dir[a].bits());
@@ -1289,40 +1298,21 @@ class HitLightBench {
     std::vector<uint32_t> tags;
     for (size_t k = 0; k < packet.size(); ++k) {
       const HitLightCase& c = packet[k];
-      if (stalls_ && (rng_() & 7) == 0) {
-        tb_->valid_i = 0;
-        for (int i = 1 + static_cast<int>(rng_() % 6); i > 0; --i) tick();
-      }
+      if (stalls_) input_gap(rng_, tb_.m(), [this] { tick(); });
       const uint32_t tag = static_cast<uint32_t>(seq_++ & kTagMask);
       tags.push_back(tag);
       tb_->valid_i = 1;
       tb_->tag_i = static_cast<uint16_t>(tag);
       tb_->last_i = k + 1 == packet.size();
       Vrc_hit_light& d = tb_.m();
+      HitGeomUnit::drive(d, c.hit);  // the same port names as rc_hit_geom's
       for (int a = 0; a < 3; ++a) {
-        put_field(d.org_i, a * kW, kW, c.hit.ray.org[a].bits());
-        put_field(d.dir_i, a * kW, kW, c.hit.ray.dir[a].bits());
-        put_field(d.n_i, a * kW, kW, c.hit.n[a].bits());
         put_field(d.kd_i, a * kW, kW, c.kd[a].bits());
         put_field(d.ks_i, a * kW, kW, c.ks[a].bits());
       }
-      d.inv_len_i = c.hit.ray.inv_len.bits();
-      d.t_i = c.hit.t.bits();
-      d.dz_i = c.hit.dz.bits();
-      d.eta_enter_i = c.hit.eta_enter.bits();
-      d.eta_leave_i = c.hit.eta_leave.bits();
-      d.w_i = c.hit.w.bits();
-      d.mirror_i = c.hit.mirror.bits();
-      d.transmit_i = c.hit.transmit.bits();
       d.ns_i = static_cast<uint16_t>(c.ns);
       ++hits_;
-      uint64_t waited = 0;
-      while (!tick()) {
-        if (++waited > 100000) {
-          fail("ready_o stuck low");
-          break;
-        }
-      }
+      if (!wait_taken([this] { return tick(); })) fail("ready_o stuck low");
       tb_->valid_i = 0;
     }
     expect(packet, tags);
@@ -1371,23 +1361,11 @@ class HitLightBench {
 
   // The golden results of a packet: each hit's geometry; then per light, each hit's sample.
   void expect(const std::vector<HitLightCase>& packet, const std::vector<uint32_t>& tags) {
-    std::vector<HitGeometry<T>> hg;
+    std::vector<HitGeomUnit::Out> hg;
     for (size_t k = 0; k < packet.size(); ++k) {
-      const HitGeomUnit::In& in = packet[k].hit;
-      const HitGeometry<T> h = hit_geometry(in.ray, in.t, in.dz, in.n, in.eta_enter, in.eta_leave,
-                                            in.w, in.mirror, in.transmit);
+      const HitGeomUnit::Out h = HitGeomUnit::golden(packet[k].hit);
       hg.push_back(h);
-      HitLightGeo g;
-      for (int a = 0; a < 3; ++a) {
-        g.p[a] = h.p[a].bits();
-        g.r[a] = h.r[a].bits();
-        g.refr[a] = h.t[a].bits();
-      }
-      g.w_mirror = h.w_mirror.bits();
-      g.w_refract = h.w_refract.bits();
-      g.mirror = h.mirror;
-      g.refract = h.refract;
-      geo_q_.push_back({tags[k], g});
+      geo_q_.push_back({tags[k], {h.p, h.r, h.refr, h.w_mirror, h.w_refract, h.mirror, h.refract}});
     }
     for (uint32_t l = 0; l < count_; ++l)
       for (size_t k = 0; k < packet.size(); ++k) {
@@ -1396,11 +1374,13 @@ class HitLightBench {
         s.light = l;
         s.lane_last = k + 1 == packet.size();
         s.light_last = l + 1 == count_;
-        for (int a = 0; a < 3; ++a) s.org[a] = hg[k].p[a].bits();
+        s.org = hg[k].p;
         LightTermUnit::In li;
-        li.sp.p = hg[k].p;
-        li.sp.n = hg[k].n;
-        li.sp.v = hg[k].v;
+        for (int a = 0; a < 3; ++a) {
+          li.sp.p[a] = fb(hg[k].p[a]);
+          li.sp.n[a] = fb(hg[k].n[a]);
+          li.sp.v[a] = fb(hg[k].v[a]);
+        }
         li.light = lights_[l];
         li.kd = c.kd;
         li.ks = c.ks;
