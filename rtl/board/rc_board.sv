@@ -338,6 +338,7 @@ module rc_board #(
   logic [StatusW-1:0] core_error;
 
   logic [Threads*rc_pkg::ThreadStateBits-1:0] core_dbg_states;
+  logic [W-1:0] core_fb_dz;
   rc_core #(
     .ExpW   (ExpW),
     .FracW  (FracW),
@@ -374,6 +375,7 @@ module rc_board #(
     .fb_t_o          (fb_t),
     .fb_u_o          (fb_u),
     .fb_v_o          (fb_v),
+    .fb_dz_o         (core_fb_dz),
     .node_req_valid_o(node_req_valid),
     .node_req_ready_i(node_req_ready),
     .node_req_tag_o  (node_req_tag),
@@ -425,9 +427,10 @@ module rc_board #(
     .perf_o          (perf),
     .dbg_thread_state_o(core_dbg_states)
   );
-  // The core's debug port feeds nothing on the board (the harness reads it on a core alone).
+  // The core's debug port feeds nothing on the board (the harness reads it on a core alone), nor
+  // does d'z (zero at Secondary = 0; a tree controller's).
   logic unused_core_dbg;
-  assign unused_core_dbg = ^core_dbg_states;
+  assign unused_core_dbg = ^{core_dbg_states, core_fb_dz};
 
   /////////////////
   // Framebuffer //

@@ -25,10 +25,12 @@
 //   treats the two kinds alike). A primary packet's t_hi and start triangles are not read.
 // - Framebuffer write port: valid/ready, one write per existing ray of every packet, in no
 //   particular order: fb_pixel_o (the ray's pixel id), fb_rgb_o, and the ray's hit record
-//   (fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o; zero on a miss). A packet that met an error
-//   writes the background with no hit for every ray. A secondary packet's rays are not shaded:
-//   they write their hit records (a shadow ray's hit: it is occluded; none: it reached its
-//   limit, the light) and colour 0, or 1 when the packet met an error (no hits then).
+//   (fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o; zero on a miss) with its d'z (fb_dz_o, what a
+//   tree controller needs to light the hit; zero on a miss, and always with Secondary = 0). A
+//   packet that met an error writes the background with no hit for every ray. A secondary
+//   packet's rays are not shaded: they write their hit records (a shadow ray's hit: it is
+//   occluded; none: it reached its limit, the light) and colour 0, or 1 when the packet met an
+//   error (no hits then).
 // - Memory ports node_, list_, tri_, shd_, mat_: the protocol of docs/architecture.md ("Memory
 //   ports"): request (index, tag) and response (tag, data, error) handshakes, responses in any
 //   order after any delay. Records: node pair 128 bits (a request for node i answers records i
@@ -113,6 +115,7 @@ module rc_core #(
   output logic [W-1:0]        fb_t_o,
   output logic [W-1:0]        fb_u_o,
   output logic [W-1:0]        fb_v_o,
+  output logic [W-1:0]        fb_dz_o,
 
   // Memory port: kd nodes (pairs).
   output logic                node_req_valid_o,
@@ -638,11 +641,12 @@ module rc_core #(
   logic [ThrW-1:0]  shd_tri_thr, shd_rec_thr, shd_dz_thr;
   logic [1:0]       shd_rec_ray, shd_dz_ray;
   logic [127:0]     hits_shade_tri;
-  logic [3*W+31:0]  hits_fb_best;
+  logic [4*W+31:0]  hits_fb_best;
   logic [W-1:0]     hits_dz;
 
   rc_hit_store #(
-    .Threads(Threads)
+    .Threads(Threads),
+    .FbDz   (Secondary)
   ) u_hits (
     .clk_i,
     .rst_ni,
@@ -744,6 +748,7 @@ module rc_core #(
     .fb_t_o,
     .fb_u_o,
     .fb_v_o,
+    .fb_dz_o,
     .free_valid_o   (shd_free_valid),
     .free_thr_o     (shd_free_thr),
     .free0_valid_o  (shd_free0_valid),

@@ -22,12 +22,14 @@
 //     pop:   t of the four rays per thread (the pop unit's cull);
 //     shade: the four rays' triangles per thread (the shading sequencer's requests);
 //     dz:    d'z per {thread, ray} (shading);
-//     fb:    {tri, v, u, t} per {thread, ray} (the framebuffer write's hit record).
+//     fb:    {dz, tri, v, u, t} per {thread, ray} (the framebuffer write's hit record; dz only
+//            with FbDz, zero without).
 //   A copy's word for a ray counts only where the ray's hit bit is set; readers gate with it.
-// - Parameters: Threads.
+// - Parameters: Threads; FbDz: 1 = the fb copy holds d'z (a tree controller lights the hits).
 // - Reset: rst_ni (active low, asynchronous) clears the valid bits.
 module rc_hit_store #(
   parameter int unsigned Threads = rc_pkg::CoreThreads,
+  parameter bit          FbDz    = 1'b1,
   // Derived (do not override).
   parameter int unsigned W       = rc_pkg::CoreFpW,
   parameter int unsigned ThrW    = (Threads > 1) ? $clog2(Threads) : 1
@@ -61,7 +63,7 @@ module rc_hit_store #(
   input  logic                  fb_re_i,
   input  logic [ThrW-1:0]       fb_thr_i,
   input  logic [1:0]            fb_ray_i,
-  output logic [3*W+31:0]       fb_best_o,      // {tri, v, u, t}
+  output logic [4*W+31:0]       fb_best_o,      // {dz, tri, v, u, t}
   input  logic                  dz_re_i,
   input  logic [ThrW-1:0]       dz_thr_i,
   input  logic [1:0]            dz_ray_i,
@@ -266,16 +268,26 @@ module rc_hit_store #(
     .raddr_i({dz_thr_i, dz_ray_i}),
     .rdata_o(dz_o)
   );
+  localparam int unsigned FbW = (FbDz ? 4 : 3) * W + 32;
+  logic [FbW-1:0] fb_rd;
+  logic [FbW-1:0] fb_wd;
+  if (FbDz) begin : g_fb_dz
+    assign fb_wd     = {wc_q.dz, wc_q.tri_idx, wc_q.v, wc_q.u, wc_q.t};
+    assign fb_best_o = fb_rd;
+  end else begin : g_fb_no_dz
+    assign fb_wd     = {wc_q.tri_idx, wc_q.v, wc_q.u, wc_q.t};
+    assign fb_best_o = {{W{1'b0}}, fb_rd};
+  end
   rc_ram #(
-    .Width(3 * W + 32), .Depth(4 << ThrW), .OutReg(1'b1)
+    .Width(FbW), .Depth(4 << ThrW), .OutReg(1'b1)
   ) u_bf (
     .clk_i,
     .we_i   (wc_we_q),
     .waddr_i(wc_rid_q),
-    .wdata_i({wc_q.tri_idx, wc_q.v, wc_q.u, wc_q.t}),
+    .wdata_i(fb_wd),
     .re_i   (fb_re_i),
     .raddr_i({fb_thr_i, fb_ray_i}),
-    .rdata_o(fb_best_o)
+    .rdata_o(fb_rd)
   );
 
 `ifndef SYNTHESIS

@@ -20,9 +20,9 @@
 //   store's fb copy) and its inv_len (rc_ray_store), two cycles, and queues the shading of kd
 //   (zero after a failed shading or material read: black) for rc_shade_unit.
 // - Framebuffer writes (fb_*, valid/ready from a queue's head register): the shaded rays first,
-//   then the misses. A write's pixel id (rc_ray_store) and hit record (the hit store's fb copy;
-//   zeros for a miss) are read on its way to the queue (two cycles). One write per existing ray;
-//   a thread's last write frees it (free_valid_o, two cycles after the write).
+//   then the misses. A write's pixel id (rc_ray_store) and hit record with its d'z (the hit
+//   store's fb copy; zeros for a miss) are read on its way to the queue (two cycles). One write
+//   per existing ray; a thread's last write frees it (free_valid_o, two cycles after the write).
 // - Secondary packets (shadow and bounce; rc_thread_ctrl's kind bit, read with the rays): no ray
 //   is shaded; every ray goes the misses' way and is written with its hit record (zeros when it
 //   has none: a shadow ray that reached the light, a bounce ray that left the scene) and colour
@@ -64,7 +64,7 @@ module rc_shade_seq #(
   output logic                 rec_re_o,
   output logic [ThrW-1:0]      rec_thr_o,
   output logic [1:0]           rec_ray_o,
-  input  logic [3*W+31:0]      rec_i,          // {tri, v, u, t}
+  input  logic [4*W+31:0]      rec_i,          // {dz, tri, v, u, t}
   output logic                 dz_re_o,
   output logic [ThrW-1:0]      dz_thr_o,
   output logic [1:0]           dz_ray_o,
@@ -109,6 +109,7 @@ module rc_shade_seq #(
   output logic [W-1:0]         fb_t_o,
   output logic [W-1:0]         fb_u_o,
   output logic [W-1:0]         fb_v_o,
+  output logic [W-1:0]         fb_dz_o,
 
   // Threads freed: by their last write (free_*), or at the pick for a packet without rays
   // (free0_*).
@@ -472,9 +473,9 @@ module rc_shade_seq #(
   logic [RidW-1:0] f_rid, f1_rid_q, f2_rid_q;
   logic [23:0]     f_rgb, f1_rgb_q, f2_rgb_q;
   logic [$clog2(OutQD+1)-1:0] oq_cnt;
-  logic [ThrW+32+24+1+32+3*W-1:0] oq_data;
+  logic [ThrW+32+24+1+32+4*W-1:0] oq_data;
   logic            fb_take;
-  logic [W-1:0]    rec_t, rec_u, rec_v;
+  logic [W-1:0]    rec_t, rec_u, rec_v, rec_dz;
   logic [31:0]     rec_tri;
 
   assign f_take    = (sho_v | miss_v) & f_room_q;
@@ -509,11 +510,11 @@ module rc_shade_seq #(
   assign pix_re_o  = f_take;
   assign pix_thr_o = f_rid[RidW-1:2];
   assign pix_ray_o = f_rid[1:0];
-  assign {rec_tri, rec_v, rec_u, rec_t} = rec_i;
+  assign {rec_dz, rec_tri, rec_v, rec_u, rec_t} = rec_i;
 
   logic [ThrW-1:0] oq_thr;
   rc_fifo #(
-    .Width(ThrW + 32 + 24 + 1 + 32 + 3 * W),
+    .Width(ThrW + 32 + 24 + 1 + 32 + 4 * W),
     .Depth(OutQD)
   ) u_out_q (
     .clk_i,
@@ -521,13 +522,14 @@ module rc_shade_seq #(
     .push_i (f2_v_q),
     .data_i ({f2_rid_q[RidW-1:2], pix_i, f2_rgb_q, f2_hit_q, f2_hit_q ? rec_tri : 32'd0,
               f2_hit_q ? rec_t : {W{1'b0}}, f2_hit_q ? rec_u : {W{1'b0}},
-              f2_hit_q ? rec_v : {W{1'b0}}}),
+              f2_hit_q ? rec_v : {W{1'b0}}, f2_hit_q ? rec_dz : {W{1'b0}}}),
     .valid_o(fb_valid_o),
     .ready_i(fb_ready_i),
     .data_o (oq_data),
     .count_o(oq_cnt)
   );
-  assign {oq_thr, fb_pixel_o, fb_rgb_o, fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o} = oq_data;
+  assign {oq_thr, fb_pixel_o, fb_rgb_o, fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o, fb_dz_o} =
+      oq_data;
   assign fb_take = fb_valid_o & fb_ready_i;
 
   // Writes still due per thread: set as shading takes the packet (st1), counted down by writes

@@ -64,6 +64,12 @@ inline uint64_t mix_seed(uint64_t x) {
 std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
     const scene::SceneImage& image, const std::array<MemoryParams, kCorePorts>& memory);
 
+// rc_tracer's two lighting ports (lshd_*, lmat_*): the shading section, and each material's
+// bytes [image_material] kd .. transmit + 4, with the given timing (their own stall seeds).
+std::vector<std::unique_ptr<MemoryPort>> make_light_ports(const scene::SceneImage& image,
+                                                          const MemoryParams& shading,
+                                                          const MemoryParams& materials);
+
 // The core's root_node_i (and the board's root registers): node 0's record, zero when the node
 // section is empty.
 uint64_t root_node_record(const scene::SceneImage& image);
@@ -85,8 +91,11 @@ std::array<KindCounters, kRayKinds> kind_counters(const std::array<uint64_t, kCo
 // the rays of the packets of that kind fed to the core (`rays_fed`, by kind), a kind without rays
 // must have no traversal steps or triangle tests, and each event's kinds must sum to the core's
 // total of it.
+// A kind whose bit is set in `on_chip_kinds` is made on chip (rc_tracer's shadow packets): its
+// rays are not fed, so only its other checks apply.
 std::vector<std::string> kind_problems(const std::array<uint64_t, kCorePerfCount>& perf,
-                                       const std::array<uint64_t, kRayKinds>& rays_fed);
+                                       const std::array<uint64_t, kRayKinds>& rays_fed,
+                                       uint32_t on_chip_kinds = 0);
 
 // The fewest cycles a core needs for a frame with these counters, the ideal of the efficiency
 // figure (efficiency = ideal_cycles / cycles): its four traversal sub-units take one step each
@@ -136,6 +145,10 @@ struct CoreSimResult {
   // on the host (the core has no light unit yet).
   bool lit = false;
   SecondaryPasses shadow, bounce, refract;
+  // A tree controller's run (rc_tracer, at max_bounces 0): the frame is lit on chip (rgb,
+  // light_mask; bounce_tri and refract_tri all -2), its counters are the core's totals over every
+  // kind (perf), and bit k set: kind k's packets were made on chip (not fed).
+  uint32_t on_chip_kinds = 0;
 };
 
 // What a run must show besides a frame and counters equal to the golden model's: the core idle at

@@ -64,6 +64,30 @@ std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
   return ports;
 }
 
+std::vector<std::unique_ptr<MemoryPort>> make_light_ports(const scene::SceneImage& image,
+                                                          const MemoryParams& shading,
+                                                          const MemoryParams& materials) {
+  std::vector<std::unique_ptr<MemoryPort>> ports;
+  MemoryParams sp = shading, mp = materials;
+  sp.seed = mix_seed(sp.seed ^ 0x11647u);  // not the core's ports' stall sequences
+  mp.seed = mix_seed(mp.seed ^ 0x11648u);
+  ports.push_back(std::make_unique<MemoryPort>(
+      image, static_cast<uint32_t>(spec::kImageSectionIdShading), sp, 1u));
+  const scene::SectionInfo& mat =
+      image.section(static_cast<uint32_t>(spec::kImageSectionIdMaterials));
+  const auto kd = static_cast<size_t>(spec::kImageMaterialKd);
+  const auto len = static_cast<uint32_t>(spec::kImageMaterialTransmit + 4 - spec::kImageMaterialKd);
+  const size_t stride = mat.stride;
+  std::vector<uint8_t> bytes(static_cast<size_t>(mat.count) * stride, 0);
+  const size_t avail = static_cast<size_t>(mat.count) * stride;
+  const uint8_t* first = image.bytes().data() + mat.offset;
+  if (avail > kd) std::copy(first + kd, first + avail, bytes.begin());  // the rest stays zero
+  ports.push_back(std::make_unique<MemoryPort>(std::move(bytes), mat.count,
+                                               static_cast<uint32_t>(stride), len, mp,
+                                               image.name() + ":materials.lit"));
+  return ports;
+}
+
 uint64_t root_node_record(const scene::SceneImage& image) {
   return image.node_count() > 0 ? image.node(0).raw : 0;
 }
@@ -131,12 +155,19 @@ std::vector<std::string> run_problems(const CoreSimResult& r) {
   if (r.misses_with_payload)
     out.push_back(std::to_string(r.misses_with_payload) +
                   " misses carry a non-zero hit record (a miss must report tri, t, u, v = 0)");
+  // The core writes once per ray it traced: the frame's, and those of the kinds made on chip
+  // (a tree controller takes those writes; the harness sees one write per frame ray).
   const uint64_t counted = r.perf[static_cast<size_t>(spec::kCorePerfFbWrites)];
-  if (counted != r.writes_due || r.fb_writes != r.writes_due)
+  uint64_t on_chip = 0;
+  const std::array<KindCounters, kRayKinds> kc = kind_counters(r.perf);
+  for (int k = 0; k < kRayKinds; ++k)
+    if (r.on_chip_kinds >> k & 1u) on_chip += kc[static_cast<size_t>(k)].rays;
+  if (counted != r.writes_due + on_chip || r.fb_writes != r.writes_due)
     out.push_back("framebuffer writes: the core counted " + std::to_string(counted) +
                   ", the harness saw " + std::to_string(r.fb_writes) + ", the frame's rays " +
-                  std::to_string(r.writes_due));
-  for (const std::string& p : kind_problems(r.perf, r.rays_fed)) out.push_back(p);
+                  std::to_string(r.writes_due) +
+                  (on_chip ? ", the rays made on chip " + std::to_string(on_chip) : ""));
+  for (const std::string& p : kind_problems(r.perf, r.rays_fed, r.on_chip_kinds)) out.push_back(p);
   for (const std::string& p : r.shadow.problems) out.push_back("shadow pass: " + p);
   for (const std::string& p : r.bounce.problems) out.push_back("bounce pass: " + p);
   for (const std::string& p : r.refract.problems) out.push_back("refract pass: " + p);
@@ -175,14 +206,15 @@ std::array<KindCounters, kRayKinds> kind_counters(
 }
 
 std::vector<std::string> kind_problems(const std::array<uint64_t, kCorePerfCount>& perf,
-                                       const std::array<uint64_t, kRayKinds>& rays_fed) {
+                                       const std::array<uint64_t, kRayKinds>& rays_fed,
+                                       uint32_t on_chip_kinds) {
   std::vector<std::string> out;
   const std::array<KindCounters, kRayKinds> kc = kind_counters(perf);
   KindCounters sum;
   for (int k = 0; k < kRayKinds; ++k) {
     const KindCounters& c = kc[static_cast<size_t>(k)];
     const std::string name = ray_kind_name(k);
-    if (c.rays != rays_fed[static_cast<size_t>(k)])
+    if (!(on_chip_kinds >> k & 1u) && c.rays != rays_fed[static_cast<size_t>(k)])
       out.push_back(name + " rays: the core counted " + std::to_string(c.rays) + ", " +
                     std::to_string(rays_fed[static_cast<size_t>(k)]) + " were fed");
     if (c.rays == 0 && (c.traversal_steps != 0 || c.triangle_tests != 0))

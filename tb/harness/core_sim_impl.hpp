@@ -13,9 +13,11 @@
 #include <random>
 #include <sstream>
 #include <type_traits>
+#include <utility>
 
 #include "core_sim.hpp"
 #include "error.hpp"
+#include "geometry.hpp"
 #include "verilated_tb.hpp"
 
 namespace rc::harness {
@@ -39,6 +41,12 @@ template <class P>
 void clear_words(P& port) {
   set_words(port, {});
 }
+
+// A tree controller model (rc_tracer): the core's ports plus the lights and two lighting ports.
+template <class M, class = void>
+struct IsTracer : std::false_type {};
+template <class M>
+struct IsTracer<M, std::void_t<decltype(std::declval<M&>().light_count_i)>> : std::true_type {};
 
 }  // namespace detail
 
@@ -72,6 +80,7 @@ struct CoreSim<Model>::State {
   std::unique_ptr<VerilatedTb<Model>> tb;  // the model, its clock and reset, the waveform
   Model* m = nullptr;                      // tb's model
   std::vector<std::unique_ptr<MemoryPort>> ports;
+  std::vector<std::unique_ptr<MemoryPort>> lports;  // a tree controller's lshd, lmat
   std::mt19937_64 rng;
   uint64_t cycle = 0;
   uint64_t quiet = 0;  // cycles since the last handshake on any port
@@ -104,6 +113,9 @@ struct CoreSim<Model>::State {
         s << ", showing tag " << p.response()->tag << " (index " << p.response()->index << ")";
       s << "\n";
     }
+    for (const auto& p : lports)
+      s << "  " << p->name() << " port: " << p->outstanding() << " outstanding, "
+        << p->stats().requests << " requests, " << p->stats().responses << " responses\n";
     return s.str();
   }
 
@@ -132,6 +144,8 @@ CoreSim<Model>::CoreSim(const scene::SceneImage& image, const CoreSimOptions& op
   s.rng.seed(mix_seed(s.opt.stall_seed ^ 0x5eedf00dull));
 
   s.ports = make_core_ports(image, s.opt.memory);
+  if constexpr (detail::IsTracer<Model>::value)
+    s.lports = make_light_ports(image, s.opt.memory[kPortShading], s.opt.memory[kPortMaterials]);
 
   // Not fatal on error: an assertion ends the run with a CoreSimError, not abort().
   s.tb = std::make_unique<VerilatedTb<Model>>("core", false, std::vector<std::string>{},
@@ -202,6 +216,25 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
                    static_cast<uint32_t>(feed.background[1]) << 8 |
                    static_cast<uint32_t>(feed.background[2]) << 16;
   m.t_eps_i = feed.t_eps.bits();
+  constexpr bool kTracer = detail::IsTracer<Model>::value;
+  if constexpr (kTracer) {
+    // The scene's lights and its shadow rays' t_eps (load_geometry(), as the golden model).
+    const Geometry<T> g = load_geometry<T>(s.image);
+    if (g.lights.empty() || g.lights.size() > static_cast<size_t>(spec::kLightMaxLights))
+      throw std::invalid_argument("CoreSim: the tree controller lights 1 to " +
+                                  std::to_string(spec::kLightMaxLights) + " lights, " +
+                                  s.image.name() + " has " + std::to_string(g.lights.size()));
+    m.light_count_i = static_cast<uint8_t>(g.lights.size());
+    m.light_dir_i = 0;
+    for (unsigned l = 0; l < g.lights.size(); ++l) {
+      if (g.lights[l].directional) m.light_dir_i |= static_cast<uint8_t>(1u << l);
+      for (unsigned a = 0; a < 3; ++a) {
+        set_field(m.light_pos_i, (3 * l + a) * W, W, g.lights[l].pos[a].bits());
+        set_field(m.light_col_i, (3 * l + a) * W, W, g.lights[l].color[a].bits());
+      }
+    }
+    m.t_eps_i = g.t_eps.bits();
+  }
   m.pkt_kind_i = static_cast<uint8_t>(spec::kRayKindPrimary);
   m.pkt_valid_i = 0;
   m.fb_ready_i = 0;
@@ -252,6 +285,11 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
   f.hit_t.assign(slots, 0.0f);
   f.hits.assign(slots, HitRecord{});
   res.pixel_cycle.assign(slots, 0);
+  if constexpr (kTracer) {
+    f.light_mask.assign(slots, 0);
+    f.bounce_tri.assign(slots, -2);  // max_bounces 0: no mirror or refraction rays
+    f.refract_tri.assign(slots, -2);
+  }
 
   const auto load_packet = [&](uint64_t k) {
     const CorePacket& p = packets[k];
@@ -341,6 +379,12 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
                m.shd_rsp_error_i, *s.ports[kPortShading]);
     drive_port(m.mat_req_ready_i, m.mat_rsp_valid_i, m.mat_rsp_tag_i, m.mat_rsp_data_i,
                m.mat_rsp_error_i, *s.ports[kPortMaterials]);
+    if constexpr (kTracer) {
+      drive_port(m.lshd_req_ready_i, m.lshd_rsp_valid_i, m.lshd_rsp_tag_i, m.lshd_rsp_data_i,
+                 m.lshd_rsp_error_i, *s.lports[0]);
+      drive_port(m.lmat_req_ready_i, m.lmat_rsp_valid_i, m.lmat_rsp_tag_i, m.lmat_rsp_data_i,
+                 m.lmat_rsp_error_i, *s.lports[1]);
+    }
     tb.eval();
 
     // ---- Handshakes completing at the coming edge ----
@@ -355,6 +399,12 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
                 *s.ports[kPortShading]);
     sample_port(m.mat_req_valid_o, m.mat_req_tag_o, m.mat_req_index_o, m.mat_rsp_ready_o,
                 *s.ports[kPortMaterials]);
+    if constexpr (kTracer) {
+      sample_port(m.lshd_req_valid_o, m.lshd_req_tag_o, m.lshd_req_index_o, m.lshd_rsp_ready_o,
+                  *s.lports[0]);
+      sample_port(m.lmat_req_valid_o, m.lmat_req_tag_o, m.lmat_req_index_o, m.lmat_rsp_ready_o,
+                  *s.lports[1]);
+    }
     if (m.pkt_valid_i && m.pkt_ready_o) {
       res.packet_cycle.push_back(s.cycle);
       ++s.packets_fed;
@@ -393,6 +443,7 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
         ++s.miss_payload;  // a miss must report zeros; t, u, v stay as reported (they differ)
       }
       f.hits[pix] = h;
+      if constexpr (kTracer) f.light_mask[pix] = m.fb_lights_o;
     }
     checked([&] { tb.check(); });
 
@@ -402,6 +453,7 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
       tb.tick([&] {
         dump(2 * s.cycle + 1);
         for (auto& p : s.ports) p->tick();
+        for (auto& p : s.lports) p->tick();
       });
     });
     ++s.cycle;
@@ -428,6 +480,7 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
     if (!tail_started) {
       bool outstanding = false;
       for (auto& p : s.ports) outstanding = outstanding || p->outstanding() > 0;
+      for (auto& p : s.lports) outstanding = outstanding || p->outstanding() > 0;
       if (s.packets_fed == s.packets_total && s.written == s.pixels_total && m.idle_o &&
           !outstanding)
         tail_started = true;
@@ -438,6 +491,9 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
   if (s.opt.progress && std::chrono::steady_clock::now() - start > std::chrono::seconds(1))
     std::fprintf(stderr, "\n");
   for (auto& p : s.ports)
+    if (p->stats().requests != p->stats().responses || p->outstanding() > 0)
+      fail(std::string("requests after the last pixel (") + p->name() + ")");
+  for (auto& p : s.lports)
     if (p->stats().requests != p->stats().responses || p->outstanding() > 0)
       fail(std::string("requests after the last pixel (") + p->name() + ")");
   if (s.miss_payload)
@@ -465,6 +521,10 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
   for (int i = 0; i < kCorePorts; ++i)
     res.memory[static_cast<size_t>(i)] = s.ports[static_cast<size_t>(i)]->stats();
   f.counters = counters_from_perf(res.perf, res.error_bits);
+  if constexpr (kTracer) {
+    res.lit = true;
+    res.on_chip_kinds = 1u << static_cast<unsigned>(spec::kRayKindShadow);
+  }
   tb.flush_trace();
   if (!s.opt.trace_path.empty() && !tb.tracing())
     throw CoreSimError("--trace " + s.opt.trace_path + ": no waveform written: the trace window " +
