@@ -1,49 +1,57 @@
 // rc_tracer: the tree controller around rc_core (docs/architecture.md, "The tracer"): scene
-// lighting made on chip. Primary packets go to the core; from their hits the controller reads each
-// hit's shading record and material, lights it with rc_hit_light, sends the shadow packets it
-// makes back to the core, adds the terms of the shadow rays that reach their light, and writes
-// each pixel once, when its tree is done: rc::lit_work() and rc::lit_accumulate() of
-// tb/golden/trace.hpp at max_bounces 0 (local shading and shadows; no mirror or refraction rays).
+// lighting made on chip. Primary packets go to the core; from each packet's hits the controller
+// reads the shading records and materials, lights the hits with rc_hit_light, sends the shadow
+// packets it makes back to the core, then the hits' mirror and refraction packets, lights their
+// hits in turn, and writes each pixel once, when its whole ray tree is done: rc::lit_work(),
+// rc::lit_accumulate() and rc::lit_finish() of tb/golden/trace.hpp, to depth max_bounces_i.
 //
 // Contract
 // - Ports: rc_core's (its configuration, packet input, framebuffer write, five memory ports,
 //   status, counters and debug, with the core's meaning), and:
 //     light_count_i (1 .. MaxLights), light_dir_i, light_pos_i, light_col_i: the lights, as
-//       rc_hit_light's (quasi-static, as the core's configuration);
+//       rc_hit_light's; max_bounces_i (0 .. MaxBounces): the depth of the trees; bg_i: the
+//       background colour as format values (channel c = byte c / 255 in double, rounded once),
+//       what a mirror or refraction ray that misses sees (all quasi-static, as the core's
+//       configuration);
 //     lshd_*: shading records for the lighting (the core's shd record: material word, unit
 //       normal, |n|), tag FetchW bits;
 //     lmat_*: materials for the lighting: bytes [image_material] kd .. transmit + 4 of a record
 //       (LMatW bits, the field at byte offset o at [(o - kd)*8 +: 32]), tag FetchW bits.
-//   Both follow the memory protocol of docs/architecture.md ("Memory ports"): responses in any
-//   order after any delay; no two requests with one tag outstanding.
+//   Both follow the memory protocol of docs/architecture.md ("Memory ports").
 // - Packet input: primary packets only (pkt_kind_i, pkt_t_hi_i and pkt_start_tri_i are not
-//   read; the controller makes the secondary packets). A packet with rays takes a slot (Slots of
-//   them); pkt_ready_o is low while no slot is free or a shadow packet waits for the core.
+//   read). A packet with rays takes a slot (Slots of them); pkt_ready_o is low while no slot is
+//   free or a packet of the controller's own waits for the core.
 // - Framebuffer write port: one write per existing ray of every primary packet, in no particular
-//   order, once the pixel's tree is done: the pixel id, fb_rgb_o = light_byte() of the pixel's
-//   sums for a hit (the ambient term and the terms of the lights whose shadow ray reached the
-//   light), the core's write for a ray without a hit (the background), and the primary ray's hit
-//   record as the core wrote it; fb_lights_o, bit l: light l's shadow ray reached it (0 for a
-//   miss).
-// - Inside: every packet the core gets carries {shadow, slot, light, lane} as its pixel ids
-//   (bit 31 set for a shadow packet), so the core's writes come back here and are always taken.
-//   A primary write stores the ray's hit record; when a packet's writes are all back, its hits go
-//   to the fetch in lane order: a shading request, then a material request (Ns through
-//   rc_fp_to_exp), put back in order in FetchEntries entries, then to rc_hit_light with weight 1.
-//   Its light samples come light by light, in a light the packet's hits in lane order: each sets
-//   the lane's sum to the ambient term at light 0, stores the lane's term, and a present sample
-//   adds its ray (origin P, direction lh, limit t_hi, start triangle the hit's) to the light's
-//   shadow packet, which goes to a two-entry queue at the light's last hit when it has a ray.
-//   Shadow packets go to the core before primary ones. A shadow ray's write without a hit (and
-//   without its packet's error, colour 1) adds the lane's term to its sum. A slot is done when
-//   its samples are all made and its shadow rays all back; its lanes are then written, one per
-//   cycle, and the slot is freed.
+//   order, once the pixel's tree is done: the pixel id; fb_rgb_o = light_byte() of the pixel's
+//   sums for a hit, the core's write for a ray without a hit (the background); the primary ray's
+//   hit record as the core wrote it; fb_lights_o, bit l: light l's shadow ray from the primary
+//   hit reached the light (0 for a miss); fb_bounce_tri_o, fb_refract_tri_o: the triangle the
+//   pixel's first mirror (refraction) ray hit, -1 when it missed or its packet failed, -2 when
+//   there is none.
+// - Inside (docs/architecture.md, "The tracer"): a slot holds a primary packet's pixel ids, its
+//   hit records, its lanes' sums and one packet of its tree at a time, the current one: its rays,
+//   weights, depth and the core's writes. Every non-shadow packet the core gets carries
+//   {0, slot, lane} as its pixel ids, a shadow packet {1, shadow packet, lane}; the core's writes
+//   come back here and are always taken. When a packet's writes are all back, its lanes go to the
+//   fetch in lane order: a hit to a shading request, then a material request (Ns through
+//   rc_fp_to_exp, 1 / ior through rc_fp_div: eta_enter), put back in order in FetchEntries
+//   entries, then to rc_hit_light with the packet's ray and weight; a miss below a mirror or
+//   refraction ray (depth > 0) to fix(bg x weight). A sample at light 0 adds the hit's ambient
+//   term; a present sample's ray goes into the light's shadow packet, which takes one of
+//   ShadowPackets entries (its slot, light and four terms) and goes to the core; a shadow ray's
+//   write without a hit and without its packet's error (colour 1) adds its term. The hits'
+//   geometry makes the packet's mirror and refraction packets (depth < max_bounces_i): the
+//   mirror packet becomes the slot's current packet, the refraction packet goes onto the slot's
+//   stack (MaxBounces entries), popped when a packet has no mirror packet; a packet that met an
+//   error adds nothing and has no children. The slot is done when no packet of its tree is left
+//   and all its terms are added; its lanes are then written, one per cycle, and it is freed.
 // - Status: idle_o = the core idle, no slot held and no write pending. error_o: the core's, and
 //   CoreStatusBadAddress on an error response of lshd_* or lmat_* (its hit is lit as black).
 // - Parameters: the core's (passed on); Slots >= 1 ([tracer] slots); FetchEntries a power of
-//   two >= 2 ([tracer] fetch_entries); MaxLights ([light] max_lights).
-// - Illegal input: light_count_i of 0 or above MaxLights; a packet kind other than primary
-//   (assertions catch both).
+//   two >= 2 ([tracer] fetch_entries); ShadowPackets >= 1 ([tracer] shadow_packets); MaxLights
+//   ([light] max_lights); MaxBounces ([light] bounce_limit).
+// - Illegal input: light_count_i of 0 or above MaxLights; max_bounces_i above MaxBounces; a
+//   packet kind other than primary (assertions catch all three).
 // - Reset: rst_ni (active low, asynchronous) clears control state.
 module rc_tracer #(
   parameter int unsigned ExpW           = rc_pkg::Fp24ExpW,
@@ -57,6 +65,8 @@ module rc_tracer #(
   parameter int unsigned Slots          = rc_pkg::TracerSlots,
   parameter int unsigned FetchEntries   = rc_pkg::TracerFetchEntries,
   parameter int unsigned MaxLights      = rc_pkg::LightMaxLights,
+  parameter int unsigned MaxBounces     = rc_pkg::LightBounceLimit,
+  parameter int unsigned ShadowPackets  = rc_pkg::TracerShadowPackets,
   // Derived (do not override).
   parameter int unsigned W              = 1 + ExpW + FracW,
   parameter int unsigned TagW           = rc_pkg::CoreTagBits,
@@ -65,6 +75,7 @@ module rc_tracer #(
   parameter int unsigned NodeRspW       = rc_pkg::CoreNodeRspRecords * NodeRecW,
   parameter int unsigned FetchW         = (FetchEntries > 1) ? $clog2(FetchEntries) : 1,
   parameter int unsigned CountW         = $clog2(MaxLights + 1),
+  parameter int unsigned DepthW         = $clog2(MaxBounces + 1),
   parameter int unsigned LMatW          =
       8 * (rc_pkg::ImageMaterialTransmit + 4 - rc_pkg::ImageMaterialKd)
 ) (
@@ -85,6 +96,8 @@ module rc_tracer #(
   input  logic [MaxLights-1:0]     light_dir_i,
   input  logic [MaxLights*3*W-1:0] light_pos_i,
   input  logic [MaxLights*3*W-1:0] light_col_i,
+  input  logic [DepthW-1:0]        max_bounces_i,
+  input  logic [3*W-1:0]           bg_i,          // the background as format values
 
   // Packet input (primary packets).
   input  logic                     pkt_valid_i,
@@ -109,6 +122,8 @@ module rc_tracer #(
   output logic [W-1:0]             fb_u_o,
   output logic [W-1:0]             fb_v_o,
   output logic [MaxLights-1:0]     fb_lights_o,   // bit l: light l reaches the hit
+  output logic [31:0]              fb_bounce_tri_o,
+  output logic [31:0]              fb_refract_tri_o,
 
   // The core's memory ports.
   output logic                     node_req_valid_o,
@@ -192,69 +207,102 @@ module rc_tracer #(
   ////////////////
 
   localparam int unsigned SlotW  = (Slots > 1) ? $clog2(Slots) : 1;
+  localparam int unsigned LaneW  = SlotW + 2;                  // {slot, lane}
   localparam int unsigned LightW = (MaxLights > 1) ? $clog2(MaxLights) : 1;
+  localparam int unsigned SpW    = (ShadowPackets > 1) ? $clog2(ShadowPackets) : 1;
   localparam int unsigned FW     = rc_pkg::LightFixedBits + 1;
   localparam int unsigned ExpB   = rc_pkg::LightExponentBits;
   localparam int unsigned SumW   = 32;
-  localparam int unsigned ShW    = $clog2(4 * MaxLights + 1);  // a slot's shadow rays out
-  localparam int unsigned HlTagW = SlotW + 2;                  // {slot, lane}
-  localparam int unsigned KdLsb  = 0;
+  localparam int unsigned ShW    = $clog2(4 * ShadowPackets + 1);  // a slot's shadow rays out
+  localparam int unsigned AddQ   = 8;                            // the add queue's entries
+  localparam int unsigned ApW    = $clog2(2 * AddQ + 1);         // a slot's adds pending
+  localparam int unsigned LpW    = $clog2(MaxBounces + 2);       // a slot's packets being lit
+  localparam int unsigned MissL  = rc_pkg::FpStagesMul + 1;      // the miss term's latency
   localparam int unsigned KsLsb  = 8 * (rc_pkg::ImageMaterialKs - rc_pkg::ImageMaterialKd);
   localparam int unsigned NsLsb  = 8 * (rc_pkg::ImageMaterialNs - rc_pkg::ImageMaterialKd);
+  localparam int unsigned IorLsb = 8 * (rc_pkg::ImageMaterialIor - rc_pkg::ImageMaterialKd);
+  localparam int unsigned MirLsb = 8 * (rc_pkg::ImageMaterialMirror - rc_pkg::ImageMaterialKd);
+  localparam int unsigned TrLsb  = 8 * (rc_pkg::ImageMaterialTransmit - rc_pkg::ImageMaterialKd);
   localparam int unsigned NrmLsb = 8 * rc_pkg::ImageShadingFirstValue +
                                    W * rc_pkg::ImageShadingNormal;
   localparam int unsigned MatLsb = 8 * rc_pkg::ImageShadingMaterial;
   localparam logic [W-1:0] FpOne = {1'b0, 1'b0, {(ExpW - 1){1'b1}}, {FracW{1'b0}}};
+  localparam logic [W-1:0] FpInf = {1'b0, {ExpW{1'b1}}, {FracW{1'b0}}};
 
   if (Slots < 1 || FetchEntries < 2 || (FetchEntries & (FetchEntries - 1)) != 0 ||
-      1 + SlotW + LightW + 2 > 32) begin : g_param_check
-    $error("rc_tracer: need Slots >= 1, FetchEntries a power of two >= 2, and the pixel id's fields within 32 bits");
+      ShadowPackets < 1 || MaxBounces < 1 || 1 + SlotW + 2 > 32 ||
+      1 + SpW + 2 > 32) begin : g_param_check
+    $error("rc_tracer: need Slots, ShadowPackets, MaxBounces >= 1, FetchEntries a power of two >= 2, pixel ids within 32 bits");
   end
 
-  // A field of 3 format values at [a*W +: W] from a 32-bit-slot material field.
+  // Three format values at [a*W +: W] from a material field of three 32-bit slots.
   function automatic logic [3*W-1:0] rgb_field(input logic [LMatW-1:0] d,
                                                 input int unsigned lsb);
     for (int a = 0; a < 3; a++) rgb_field[a*W +: W] = d[lsb + 32*a +: W];
   endfunction
 
-  // The pixel id of a packet's ray to the core.
-  function automatic logic [31:0] core_pixel(input logic shadow, input logic [SlotW-1:0] slot,
-                                            input logic [LightW-1:0] light,
-                                            input logic [1:0] lane);
-    core_pixel = '0;
-    core_pixel[31] = shadow;
-    core_pixel[2 + LightW +: SlotW] = slot;
-    core_pixel[2 +: LightW] = light;
-    core_pixel[1:0] = lane;
+  function automatic logic [2:0] count4(input logic [3:0] m);
+    count4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
   endfunction
 
-  //////////////////
-  // The slots    //
-  //////////////////
+  // The lowest lane of a mask.
+  function automatic logic [1:0] low_lane(input logic [3:0] m);
+    low_lane = 2'd0;
+    for (int r = 3; r >= 0; r--) if (m[r]) low_lane = 2'(r);
+  endfunction
 
-  logic [Slots-1:0]      busy_q;                 // held by a primary packet
-  logic [Slots-1:0]      lit_q;                  // its light samples are all made
-  logic [Slots-1:0]      fin_q;                  // its writes are being made
-  logic [Slots*3-1:0]    pend_q;                 // primary writes still due, slot s at [3s +: 3]
-  logic [Slots*ShW-1:0]  sh_q;                   // shadow rays out, slot s at [s*ShW +: ShW]
-  logic [3:0]            mask_q   [Slots];
-  // Per lane, at {slot, lane}; the terms at {slot, light, lane}.
-  logic [31:0]           pix_q    [Slots*4];
-  logic [7*W-1:0]        ray_q    [Slots*4];     // {inv_len, dir, org}
-  logic [Slots*4-1:0]    hit_q;                  // the primary hit records
-  logic [31:0]           tri_q    [Slots*4];
-  logic [W-1:0]          t_q      [Slots*4];
-  logic [W-1:0]          u_q      [Slots*4];
-  logic [W-1:0]          v_q      [Slots*4];
-  logic [W-1:0]          dz_q     [Slots*4];
-  logic [23:0]           rgb_q    [Slots*4];
-  logic [3*SumW-1:0]     sum_q    [Slots*4];
-  logic [MaxLights-1:0]  lm_q     [Slots*4];     // the lights that reach the hit
-  logic [3*FW-1:0]       term_q   [Slots*(1<<LightW)*4];
+  // A packet of the tree (a slot's mirror or refraction packet).
+  typedef struct packed {
+    logic [3:0]        mask;
+    logic              mirror;    // a mirror packet (else refraction)
+    logic [DepthW-1:0] depth;
+    logic [12*W-1:0]   org;
+    logic [12*W-1:0]   dir;
+    logic [4*W-1:0]    w;
+    logic [127:0]      stri;      // the rays' start triangles
+  } child_t;
 
-  ///////////////////////////////
-  // Packets into the core     //
-  ///////////////////////////////
+  ///////////////
+  // The slots //
+  ///////////////
+
+  logic [Slots-1:0]       busy_q;    // held by a primary packet
+  logic [Slots-1:0]       td_q;      // its tree has no packet left to trace or light
+  logic [Slots-1:0]       fin_q;     // its writes are being made
+  logic [Slots-1:0]       cf_q;      // the current packet failed (a secondary packet's colour 1)
+  logic [Slots-1:0]       cm_q;      // the current packet is a mirror packet
+  logic [Slots*3-1:0]     pend_q;    // the current packet's writes still due, [3s +: 3]
+  logic [Slots*DepthW-1:0] depth_q;  // the current packet's depth
+  logic [Slots*ShW-1:0]   sh_q;      // shadow rays out
+  logic [Slots*ApW-1:0]   ap_q;      // adds pending (ambient and miss terms)
+  logic [Slots*LpW-1:0]   lp_q;      // packets in rc_hit_light
+  logic [Slots*DepthW-1:0] sp_q;     // the stack's entries
+  logic [3:0]             pmask_q  [Slots];   // the primary packet's rays
+  logic [3:0]             cmask_q  [Slots];   // the current packet's rays
+  // Per lane, at {slot, lane}.
+  logic [31:0]            pix_q    [Slots*4];
+  logic [Slots*4-1:0]     phit_q;             // the primary hit records
+  logic [31:0]            ptri_q   [Slots*4];
+  logic [W-1:0]           pt_q     [Slots*4];
+  logic [W-1:0]           pu_q     [Slots*4];
+  logic [W-1:0]           pv_q     [Slots*4];
+  logic [23:0]            prgb_q   [Slots*4];
+  logic [7*W-1:0]         ray_q    [Slots*4];  // the current packet's {inv_len, dir, org}
+  logic [W-1:0]           w_q      [Slots*4];  // its weights
+  logic [Slots*4-1:0]     hit_q;               // its hits
+  logic [31:0]            tri_q    [Slots*4];
+  logic [W-1:0]           t_q      [Slots*4];
+  logic [W-1:0]           dz_q     [Slots*4];
+  logic [3*SumW-1:0]      sum_q    [Slots*4];
+  logic [MaxLights-1:0]   lm_q     [Slots*4];  // the lights that reach the primary hit
+  logic [31:0]            btri_q   [Slots*4];  // the first mirror ray's triangle
+  logic [31:0]            rtri_q   [Slots*4];  // the first refraction ray's triangle
+  // The stacks, at {slot, entry}.
+  child_t                 stk_q    [Slots*MaxBounces];
+
+  ///////////////////////////
+  // Packets into the core //
+  ///////////////////////////
 
   logic                     core_pkt_valid, core_pkt_ready;
   logic [3:0]               core_pkt_mask;
@@ -263,8 +311,9 @@ module rc_tracer #(
   logic [127:0]             core_pkt_pixel, core_pkt_start_tri;
   logic [rc_pkg::RayKindBits-1:0] core_pkt_kind;
 
-  // The shadow packet queue (two entries).
-  localparam int unsigned ShqW = 4 + 24 * W + 4 * W + 128 + SlotW + LightW;
+  // The shadow packet queue and the tree packet queue (two entries each).
+  localparam int unsigned ShqW = 4 + 24 * W + 4 * W + 128 + SpW;
+  localparam int unsigned BqW  = 1 + 4 + 24 * W + 128 + SlotW;
   logic            shq_push, shq_valid, shq_pop;
   logic [ShqW-1:0] shq_wdata, shq_rdata;
   logic [1:0]      shq_count;
@@ -272,8 +321,15 @@ module rc_tracer #(
   logic [12*W-1:0] shq_org, shq_dir;
   logic [4*W-1:0]  shq_t_hi;
   logic [127:0]    shq_tri;
-  logic [SlotW-1:0]  shq_slot;
-  logic [LightW-1:0] shq_light;
+  logic [SpW-1:0]  shq_sp;
+  logic            bq_push, bq_valid, bq_pop;
+  logic [BqW-1:0]  bq_wdata, bq_rdata;
+  logic [1:0]      bq_count;
+  logic            bq_mirror;
+  logic [3:0]      bq_mask;
+  logic [12*W-1:0] bq_org, bq_dir;
+  logic [127:0]    bq_tri;
+  logic [SlotW-1:0] bq_slot;
 
   rc_fifo #(
     .Width   (ShqW),
@@ -289,7 +345,23 @@ module rc_tracer #(
     .data_o (shq_rdata),
     .count_o(shq_count)
   );
-  assign {shq_mask, shq_org, shq_dir, shq_t_hi, shq_tri, shq_slot, shq_light} = shq_rdata;
+  assign {shq_mask, shq_org, shq_dir, shq_t_hi, shq_tri, shq_sp} = shq_rdata;
+
+  rc_fifo #(
+    .Width   (BqW),
+    .Depth   (2),
+    .MemArray(1'b0)
+  ) u_tree_q (
+    .clk_i,
+    .rst_ni,
+    .push_i (bq_push),
+    .data_i (bq_wdata),
+    .valid_o(bq_valid),
+    .ready_i(bq_pop),
+    .data_o (bq_rdata),
+    .count_o(bq_count)
+  );
+  assign {bq_mirror, bq_mask, bq_org, bq_dir, bq_tri, bq_slot} = bq_rdata;
 
   // A free slot: the lowest.
   logic             free_any;
@@ -305,34 +377,43 @@ module rc_tracer #(
     end
   end
 
+  // The controller's own packets first: shadow packets, then the trees' packets.
   logic ext_take;
-  assign pkt_ready_o    = core_pkt_ready && !shq_valid && free_any;
+  assign pkt_ready_o    = core_pkt_ready && !shq_valid && !bq_valid && free_any;
   assign ext_take       = pkt_valid_i && pkt_ready_o;
   assign shq_pop        = shq_valid && core_pkt_ready;
-  assign core_pkt_valid = shq_valid || (pkt_valid_i && free_any);
+  assign bq_pop         = bq_valid && !shq_valid && core_pkt_ready;
+  assign core_pkt_valid = shq_valid || bq_valid || (pkt_valid_i && free_any);
 
   always_comb begin
     core_pkt_mask      = pkt_mask_i;
     core_pkt_org       = pkt_org_i;
     core_pkt_dir       = pkt_dir_i;
+    core_pkt_inv_len   = pkt_inv_len_i;
     core_pkt_kind      = rc_pkg::RayKindBits'(rc_pkg::RayKindPrimary);
     core_pkt_t_hi      = '0;
     core_pkt_start_tri = '0;
-    for (int r = 0; r < 4; r++) begin
-      core_pkt_inv_len[r*W +: W] = pkt_inv_len_i[r*W +: W];
-      core_pkt_pixel[r*32 +: 32] = core_pixel(1'b0, free_idx, '0, 2'(r));
-    end
+    core_pkt_pixel     = '0;
+    for (int r = 0; r < 4; r++) core_pkt_pixel[r*32 +: 32] = 32'({free_idx, 2'(r)});
     if (shq_valid) begin
       core_pkt_mask      = shq_mask;
       core_pkt_org       = shq_org;
       core_pkt_dir       = shq_dir;
+      core_pkt_inv_len   = {4{FpOne}};
       core_pkt_kind      = rc_pkg::RayKindBits'(rc_pkg::RayKindShadow);
       core_pkt_t_hi      = shq_t_hi;
       core_pkt_start_tri = shq_tri;
-      for (int r = 0; r < 4; r++) begin
-        core_pkt_inv_len[r*W +: W] = FpOne;
-        core_pkt_pixel[r*32 +: 32] = core_pixel(1'b1, shq_slot, shq_light, 2'(r));
-      end
+      for (int r = 0; r < 4; r++) core_pkt_pixel[r*32 +: 32] = {1'b1, 31'({shq_sp, 2'(r)})};
+    end else if (bq_valid) begin
+      core_pkt_mask      = bq_mask;
+      core_pkt_org       = bq_org;
+      core_pkt_dir       = bq_dir;
+      core_pkt_inv_len   = {4{FpOne}};
+      core_pkt_kind      = rc_pkg::RayKindBits'(bq_mirror ? rc_pkg::RayKindBounce :
+                                                             rc_pkg::RayKindRefract);
+      core_pkt_t_hi      = {4{FpInf}};
+      core_pkt_start_tri = bq_tri;
+      for (int r = 0; r < 4; r++) core_pkt_pixel[r*32 +: 32] = 32'({bq_slot, 2'(r)});
     end
   end
 
@@ -441,29 +522,58 @@ module rc_tracer #(
     .dbg_thread_state_o
   );
 
-  // The core's write: which packet's ray it is.
-  logic              cw_shadow, cw_prim, cw_sh, cw_reached;
-  logic [SlotW-1:0]  cw_slot;
-  logic [LightW-1:0] cw_light;
+  // The core's write: a slot's current packet's ray, or a shadow packet's.
+  logic              cw_shadow, cw_cur, cw_sh, cw_reached, cw_d0, cw_d1;
+  logic [SlotW-1:0]  cw_slot;     // the current packet's slot
+  logic [SpW-1:0]    cw_sp;       // the shadow packet
   logic [1:0]        cw_lane;
+  logic [LaneW-1:0]  cw_ln;       // {slot, lane} of the current packet's ray
   assign cw_shadow  = core_fb_pixel[31];
-  assign cw_slot    = core_fb_pixel[2 + LightW +: SlotW];
-  assign cw_light   = core_fb_pixel[2 +: LightW];
+  assign cw_slot    = core_fb_pixel[2 +: SlotW];
+  assign cw_sp      = core_fb_pixel[2 +: SpW];
   assign cw_lane    = core_fb_pixel[1:0];
-  assign cw_prim    = core_fb_valid && !cw_shadow;
+  assign cw_ln      = {cw_slot, cw_lane};
+  assign cw_cur     = core_fb_valid && !cw_shadow;
   assign cw_sh      = core_fb_valid && cw_shadow;
+  assign cw_d0      = depth_q[cw_slot*DepthW +: DepthW] == '0;
+  assign cw_d1      = depth_q[cw_slot*DepthW +: DepthW] == DepthW'(1);
   // A shadow ray reached its light: no hit, and its packet met no error (colour 1).
   assign cw_reached = cw_sh && !core_fb_hit && !core_fb_rgb[0];
+
+  // The shadow packets in flight: slot, light, whether from a primary hit, rays out, terms.
+  logic [ShadowPackets-1:0] spb_q;
+  logic [SlotW-1:0]         sp_slot_q  [ShadowPackets];
+  logic [LightW-1:0]        sp_light_q [ShadowPackets];
+  logic [ShadowPackets-1:0] sp_d0_q;
+  logic [2:0]               sp_cnt_q   [ShadowPackets];
+  logic [3*FW-1:0]          term_q     [ShadowPackets*4];
+  logic [SlotW-1:0]         cws_slot;
+  logic [SpW+1:0]           cws_ln;
+  assign cws_slot = sp_slot_q[cw_sp];
+  assign cws_ln   = {cw_sp, cw_lane};
+
+  logic             sp_free_any;
+  logic [SpW-1:0]   sp_free;
+  always_comb begin
+    sp_free_any = 1'b0;
+    sp_free     = '0;
+    for (int k = ShadowPackets - 1; k >= 0; k--) begin
+      if (!spb_q[k]) begin
+        sp_free_any = 1'b1;
+        sp_free     = SpW'(k);
+      end
+    end
+  end
 
   ///////////////////////////////////////////
   // Fetch: shading record, then material  //
   ///////////////////////////////////////////
 
-  // Slots whose primary writes are all back, in order.
+  // Slots whose current packet's writes are all back, in order.
   logic             fq_push, fq_valid, fq_pop;
   logic [SlotW-1:0] fq_slot;
   logic [$clog2(Slots + 1)-1:0] fq_count;
-  assign fq_push = cw_prim && pend_q[cw_slot*3 +: 3] == 3'd1;
+  assign fq_push = cw_cur && pend_q[cw_slot*3 +: 3] == 3'd1;
 
   rc_fifo #(
     .Width   (SlotW),
@@ -480,39 +590,65 @@ module rc_tracer #(
     .count_o(fq_count)
   );
 
-  // The issue: the popped slot's hit lanes, one entry each.
-  logic             fs_busy_q;
+  // The popped packet's lanes: its hits (to the lighting) and, below the primary, its misses (to
+  // the miss term); none when it failed.
+  logic [3:0] fq_hits, fq_miss, fq_work;
+  logic       fq_deep;
+  assign fq_deep = depth_q[fq_slot*DepthW +: DepthW] != '0;
+  assign fq_hits = cf_q[fq_slot] ? 4'd0 : hit_q[fq_slot*4 +: 4] & cmask_q[fq_slot];
+  assign fq_miss = (cf_q[fq_slot] || !fq_deep) ? 4'd0 : ~hit_q[fq_slot*4 +: 4] & cmask_q[fq_slot];
+  assign fq_work = fq_hits | fq_miss;
+
+  // The decision on a packet's children: at its geometry's last record (dec_geo); for a packet
+  // without hits at its last miss's issue (dec_seq), or at its pop when it has no lane to fetch
+  // (a failed packet, a primary packet without hits); the last two wait for a cycle without
+  // dec_geo and for room in the tree packet queue.
+  logic dec_geo, dec_room;
+  logic fs_busy_q;
+  assign dec_room = bq_count == 2'd0;
+  assign fq_pop   = fq_valid && !fs_busy_q && (fq_work != 4'd0 || (dec_room && !dec_geo));
+
+  // The sequencer: the popped packet's lanes, one per cycle.
   logic [SlotW-1:0] fs_slot_q;
-  logic [3:0]       fs_lanes_q;
-  logic             fs_nohit;      // the popped slot has no hit: its samples are all made
-  assign fq_pop   = fq_valid && !fs_busy_q;
-  assign fs_nohit = fq_pop && hit_q[fq_slot*4 +: 4] == 4'd0;
+  logic [3:0]       fs_lanes_q, fs_hits_q;
+  logic [1:0]       fs_lane;
+  logic             fs_hit, fs_last, fs_step, fs_room_hit, fs_room_miss;
+  assign fs_lane = low_lane(fs_lanes_q);
+  assign fs_hit  = fs_hits_q[fs_lane];
+  assign fs_last = (fs_lanes_q & fs_hits_q & ~(4'd1 << fs_lane)) == 4'd0;  // its last hit
 
   // The entries: a ring, allocated in lane order, filled in any order, retired in order.
   logic [FetchW-1:0] fe_head_q, fe_tail_q;
   logic [FetchW:0]   fe_count_q;
   logic [FetchEntries-1:0] fe_done_q;
-  logic [SlotW-1:0]  fe_slot_q  [FetchEntries];
-  logic [1:0]        fe_lane_q  [FetchEntries];
+  logic [LaneW-1:0]  fe_ln_q    [FetchEntries];
   logic              fe_last_q  [FetchEntries];
   logic [3*W-1:0]    fe_n_q     [FetchEntries];
   logic [3*W-1:0]    fe_kd_q    [FetchEntries];
   logic [3*W-1:0]    fe_ks_q    [FetchEntries];
+  logic [W-1:0]      fe_ior_q   [FetchEntries];
+  logic [W-1:0]      fe_mir_q   [FetchEntries];
+  logic [W-1:0]      fe_tr_q    [FetchEntries];
   logic [ExpB-1:0]   fe_ns_q    [FetchEntries];
+  logic [W-1:0]      fe_eta_q   [FetchEntries];
 
-  logic        fs_lane_ok, fs_alloc;
-  logic [1:0]  fs_lane;
-  logic        fs_last;
-  logic        lshd_req_valid_q;
+  logic              lshd_req_valid_q;
   logic [FetchW-1:0] lshd_req_tag_q;
-  logic [31:0] lshd_req_index_q;
-  always_comb begin
-    fs_lane = 2'd0;
-    for (int r = 3; r >= 0; r--) if (fs_lanes_q[r]) fs_lane = 2'(r);
-  end
-  assign fs_last    = (fs_lanes_q & ~(4'd1 << fs_lane)) == 4'd0;
-  assign fs_lane_ok = fe_count_q != (FetchW + 1)'(FetchEntries);
-  assign fs_alloc   = fs_busy_q && fs_lane_ok && (!lshd_req_valid_q || lshd_req_ready_i);
+  logic [31:0]       lshd_req_index_q;
+  logic              mi_ok;       // room for a miss term
+  assign fs_room_hit  = fe_count_q != (FetchW + 1)'(FetchEntries) &&
+                        (!lshd_req_valid_q || lshd_req_ready_i);
+  assign fs_room_miss = mi_ok;
+  // A packet without hits is decided at its last miss's issue (dec_seq), after its weights are
+  // read.
+  logic fs_final, dec_seq;
+  assign fs_final     = fs_hits_q == 4'd0 && (fs_lanes_q & ~(4'd1 << fs_lane)) == 4'd0;
+  assign fs_step      = fs_busy_q && (fs_hit ? fs_room_hit : fs_room_miss) &&
+                        (!fs_final || (dec_room && !dec_geo));
+  assign dec_seq      = fs_step && fs_final;
+  logic fs_alloc, mi_issue;
+  assign fs_alloc = fs_step && fs_hit;
+  assign mi_issue = fs_step && !fs_hit;
 
   assign lshd_req_valid_o = lshd_req_valid_q;
   assign lshd_req_tag_o   = lshd_req_tag_q;
@@ -531,10 +667,15 @@ module rc_tracer #(
   assign lmat_rsp_ready_o = 1'b1;
   assign lmat_take        = lmat_rsp_valid_i;
 
-  // Ns as the integer exponent (one cycle), its entry beside it.
-  logic              ns_valid;
+  // Ns as the integer exponent (one cycle) and eta_enter = 1 / ior (FpStagesDiv cycles), the
+  // entry beside them; the entry is complete with eta_enter.
+  logic [W-1:0]      lmat_ns, lmat_ior;
+  logic              ns_valid, eta_valid;
   logic [ExpB-1:0]   ns_val;
-  logic [FetchW-1:0] ns_tag_q;
+  logic [W-1:0]      eta_val;
+  logic [FetchW-1:0] ns_tag_q, eta_tag;
+  assign lmat_ns  = lmat_rsp_error_i ? W'(0) : lmat_rsp_data_i[NsLsb +: W];
+  assign lmat_ior = lmat_rsp_error_i ? W'(0) : lmat_rsp_data_i[IorLsb +: W];
   rc_fp_to_exp #(
     .ExpW   (ExpW),
     .FracW  (FracW),
@@ -543,9 +684,29 @@ module rc_tracer #(
     .clk_i,
     .rst_ni,
     .valid_i(lmat_take),
-    .x_i    (lmat_rsp_error_i ? W'(0) : lmat_rsp_data_i[NsLsb +: W]),
+    .x_i    (lmat_ns),
     .valid_o(ns_valid),
     .ns_o   (ns_val)
+  );
+  rc_fp_div #(
+    .ExpW (ExpW),
+    .FracW(FracW)
+  ) u_eta (
+    .clk_i,
+    .rst_ni,
+    .valid_i(lmat_take),
+    .a_i    (FpOne),
+    .b_i    (lmat_ior),
+    .valid_o(eta_valid),
+    .res_o  (eta_val)
+  );
+  rc_delay #(
+    .Width (FetchW),
+    .Cycles(rc_pkg::FpStagesDiv)
+  ) u_eta_tag (
+    .clk_i,
+    .data_i(lmat_rsp_tag_i),
+    .data_o(eta_tag)
   );
 
   logic fetch_err;
@@ -556,6 +717,7 @@ module rc_tracer #(
       fs_busy_q        <= 1'b0;
       fs_slot_q        <= '0;
       fs_lanes_q       <= '0;
+      fs_hits_q        <= '0;
       lshd_req_valid_q <= 1'b0;
       lshd_req_tag_q   <= '0;
       lshd_req_index_q <= '0;
@@ -564,13 +726,14 @@ module rc_tracer #(
       lmat_req_index_q <= '0;
       ns_tag_q         <= '0;
     end else begin
-      if (fq_pop && !fs_nohit) begin
+      if (fq_pop && fq_work != 4'd0) begin
         fs_busy_q  <= 1'b1;
         fs_slot_q  <= fq_slot;
-        fs_lanes_q <= hit_q[fq_slot*4 +: 4];
-      end else if (fs_alloc) begin
+        fs_lanes_q <= fq_work;
+        fs_hits_q  <= fq_hits;
+      end else if (fs_step) begin
         fs_lanes_q <= fs_lanes_q & ~(4'd1 << fs_lane);
-        if (fs_last) fs_busy_q <= 1'b0;
+        if ((fs_lanes_q & ~(4'd1 << fs_lane)) == 4'd0) fs_busy_q <= 1'b0;
       end
       if (fs_alloc) begin
         lshd_req_valid_q <= 1'b1;
@@ -593,31 +756,37 @@ module rc_tracer #(
   // The entries' payload (no reset: written before it is read).
   always_ff @(posedge clk_i) begin
     if (fs_alloc) begin
-      fe_slot_q[fe_tail_q] <= fs_slot_q;
-      fe_lane_q[fe_tail_q] <= fs_lane;
+      fe_ln_q[fe_tail_q]   <= {fs_slot_q, fs_lane};
       fe_last_q[fe_tail_q] <= fs_last;
     end
     if (lshd_take) fe_n_q[lshd_rsp_tag_i] <= lshd_rsp_error_i ? '0 : lshd_rsp_data_i[NrmLsb +: 3*W];
     if (lmat_take) begin
-      fe_kd_q[lmat_rsp_tag_i] <= lmat_rsp_error_i ? '0 : rgb_field(lmat_rsp_data_i, KdLsb);
-      fe_ks_q[lmat_rsp_tag_i] <= lmat_rsp_error_i ? '0 : rgb_field(lmat_rsp_data_i, KsLsb);
+      fe_kd_q[lmat_rsp_tag_i]  <= lmat_rsp_error_i ? '0 : rgb_field(lmat_rsp_data_i, 0);
+      fe_ks_q[lmat_rsp_tag_i]  <= lmat_rsp_error_i ? '0 : rgb_field(lmat_rsp_data_i, KsLsb);
+      fe_ior_q[lmat_rsp_tag_i] <= lmat_ior;
+      fe_mir_q[lmat_rsp_tag_i] <= lmat_rsp_error_i ? '0 : lmat_rsp_data_i[MirLsb +: W];
+      fe_tr_q[lmat_rsp_tag_i]  <= lmat_rsp_error_i ? '0 : lmat_rsp_data_i[TrLsb +: W];
     end
     if (ns_valid) fe_ns_q[ns_tag_q] <= ns_val;
+    if (eta_valid) fe_eta_q[eta_tag] <= eta_val;
   end
 
   ////////////////////////////////
   // Lighting (rc_hit_light)    //
   ////////////////////////////////
 
+  // The tag through rc_hit_light: {start triangle, primary, last, slot, lane}.
+  localparam int unsigned HlTagW = 32 + 1 + 1 + LaneW;
   logic              hl_valid, hl_ready, hl_take;
-  logic [SlotW-1:0]  hl_slot;
-  logic [1:0]        hl_lane;
+  logic [LaneW-1:0]  hl_ln;
   logic [7*W-1:0]    hl_ray;
+  logic [HlTagW-1:0] hl_tag;
   assign hl_valid = fe_count_q != '0 && fe_done_q[fe_head_q];
   assign hl_take  = hl_valid && hl_ready;
-  assign hl_slot  = fe_slot_q[fe_head_q];
-  assign hl_lane  = fe_lane_q[fe_head_q];
-  assign hl_ray   = ray_q[{hl_slot, hl_lane}];
+  assign hl_ln    = fe_ln_q[fe_head_q];
+  assign hl_ray   = ray_q[hl_ln];
+  assign hl_tag   = {tri_q[hl_ln], depth_q[hl_ln[LaneW-1:2]*DepthW +: DepthW] == '0,
+                     fe_last_q[fe_head_q], hl_ln};
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -630,12 +799,16 @@ module rc_tracer #(
       if (hl_take) fe_head_q <= fe_head_q + 1'b1;
       fe_count_q <= fe_count_q + (FetchW + 1)'(fs_alloc) - (FetchW + 1)'(hl_take);
       for (int e = 0; e < FetchEntries; e++) begin
-        if (ns_valid && ns_tag_q == FetchW'(e)) fe_done_q[e] <= 1'b1;
+        if (eta_valid && eta_tag == FetchW'(e)) fe_done_q[e] <= 1'b1;
         else if (hl_take && fe_head_q == FetchW'(e)) fe_done_q[e] <= 1'b0;
       end
     end
   end
 
+  logic              geo_valid, geo_ready, geo_mirror, geo_refract;
+  logic [HlTagW-1:0] geo_tag;
+  logic [3*W-1:0]    geo_p, geo_r, geo_refr;
+  logic [W-1:0]      geo_w_mirror, geo_w_refract;
   logic              lt_valid, lt_ready, lt_take;
   logic [HlTagW-1:0] lt_tag;
   logic [LightW-1:0] lt_light;
@@ -643,11 +816,6 @@ module rc_tracer #(
   logic [3*W-1:0]    lt_org, lt_dir;
   logic [W-1:0]      lt_t_hi;
   logic [3*FW-1:0]   lt_term, lt_amb;
-
-  logic              geo_valid, geo_mirror, geo_refract;
-  logic [HlTagW-1:0] geo_tag;
-  logic [3*W-1:0]    geo_p, geo_r, geo_refr;
-  logic [W-1:0]      geo_w_mirror, geo_w_refract;
 
   rc_hit_light #(
     .ExpW     (ExpW),
@@ -664,24 +832,24 @@ module rc_tracer #(
     .light_col_i,
     .valid_i         (hl_valid),
     .ready_o         (hl_ready),
-    .tag_i           ({hl_slot, hl_lane}),
+    .tag_i           (hl_tag),
     .last_i          (fe_last_q[fe_head_q]),
     .org_i           (hl_ray[0 +: 3*W]),
     .dir_i           (hl_ray[3*W +: 3*W]),
     .inv_len_i       (hl_ray[6*W +: W]),
-    .t_i             (t_q[{hl_slot, hl_lane}]),
-    .dz_i            (dz_q[{hl_slot, hl_lane}]),
+    .t_i             (t_q[hl_ln]),
+    .dz_i            (dz_q[hl_ln]),
     .n_i             (fe_n_q[fe_head_q]),
-    .eta_enter_i     (W'(0)),  // no refraction rays at max_bounces 0
-    .eta_leave_i     (W'(0)),
-    .w_i             (FpOne),  // a primary ray's weight
-    .mirror_i        (W'(0)),
-    .transmit_i      (W'(0)),
+    .eta_enter_i     (fe_eta_q[fe_head_q]),
+    .eta_leave_i     (fe_ior_q[fe_head_q]),
+    .w_i             (w_q[hl_ln]),
+    .mirror_i        (fe_mir_q[fe_head_q]),
+    .transmit_i      (fe_tr_q[fe_head_q]),
     .kd_i            (fe_kd_q[fe_head_q]),
     .ks_i            (fe_ks_q[fe_head_q]),
     .ns_i            (fe_ns_q[fe_head_q]),
     .geo_valid_o     (geo_valid),
-    .geo_ready_i     (1'b1),   // the children's geometry is not used at max_bounces 0
+    .geo_ready_i     (geo_ready),
     .geo_tag_o       (geo_tag),
     .geo_p_o         (geo_p),
     .geo_r_o         (geo_r),
@@ -704,39 +872,215 @@ module rc_tracer #(
     .lt_amb_o        (lt_amb)
   );
 
-  // A light's shadow packet, assembled from its samples.
+  ////////////////////////////////////////////
+  // Children: mirror and refraction packets //
+  ////////////////////////////////////////////
+
+  // A packet's geometry records come in lane order, its last hit's flagged; each makes its
+  // lane's mirror and refraction rays while the packet's depth is below max_bounces_i.
+  logic              geo_take, geo_last, geo_deeper;
+  logic [LaneW-1:0]  geo_ln;
+  logic [SlotW-1:0]  geo_slot;
+  logic [1:0]        geo_lane;
+  logic [31:0]       geo_tri;
+  logic [DepthW-1:0] geo_depth;
+  child_t            gm_q, gr_q, gm, gr;
+  assign {geo_tri, geo_last, geo_ln} = {geo_tag[HlTagW-1 -: 32], geo_tag[LaneW],
+                                        geo_tag[LaneW-1:0]};
+  assign geo_slot   = geo_ln[LaneW-1:2];
+  assign geo_lane   = geo_ln[1:0];
+  assign geo_depth  = depth_q[geo_slot*DepthW +: DepthW];
+  assign geo_deeper = geo_depth < max_bounces_i;
+  // The decision waits while the sequencer still issues the packet's misses (it reads the
+  // packet's weights, which the decision replaces).
+  assign geo_ready  = !geo_last || (dec_room && !(fs_busy_q && fs_slot_q == geo_slot));
+  assign geo_take   = geo_valid && geo_ready;
+  assign dec_geo    = geo_take && geo_last;
+
+  always_comb begin
+    gm = gm_q;
+    gr = gr_q;
+    gm.mirror = 1'b1;
+    gr.mirror = 1'b0;
+    gm.depth  = geo_depth + 1'b1;
+    gr.depth  = geo_depth + 1'b1;
+    if (geo_take && geo_deeper && geo_mirror) begin
+      gm.mask[geo_lane]         = 1'b1;
+      gm.org[geo_lane*3*W +: 3*W] = geo_p;
+      gm.dir[geo_lane*3*W +: 3*W] = geo_r;
+      gm.w[geo_lane*W +: W]     = geo_w_mirror;
+      gm.stri[geo_lane*32 +: 32] = geo_tri;
+    end
+    if (geo_take && geo_deeper && geo_refract) begin
+      gr.mask[geo_lane]         = 1'b1;
+      gr.org[geo_lane*3*W +: 3*W] = geo_p;
+      gr.dir[geo_lane*3*W +: 3*W] = geo_refr;
+      gr.w[geo_lane*W +: W]     = geo_w_refract;
+      gr.stri[geo_lane*32 +: 32] = geo_tri;
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      gm_q <= '0;
+      gr_q <= '0;
+    end else if (geo_take) begin
+      gm_q <= gm;
+      gr_q <= gr;
+      if (geo_last) begin
+        gm_q.mask <= 4'd0;
+        gr_q.mask <= 4'd0;
+      end
+    end
+  end
+
+  // The decision: the mirror packet becomes the slot's current packet and the refraction packet
+  // goes onto its stack; without a mirror packet the refraction packet is sent, or the stack's
+  // top; with neither the tree is done.
+  logic              dec, dec_send, dec_push, dec_pop, dec_done;
+  logic [SlotW-1:0]  dec_slot;
+  child_t            dec_m, dec_r, dec_top, dec_pkt;
+  logic [DepthW-1:0] dec_sp;
+  assign dec      = dec_geo || dec_seq || (fq_pop && fq_work == 4'd0);
+  assign dec_slot = dec_geo ? geo_slot : dec_seq ? fs_slot_q : fq_slot;
+  assign dec_m    = dec_geo ? gm : '0;
+  assign dec_r    = dec_geo ? gr : '0;
+  assign dec_sp   = sp_q[dec_slot*DepthW +: DepthW];
+  localparam int unsigned StkIdxW = $clog2(Slots * MaxBounces);
+  logic [StkIdxW-1:0] dec_top_idx;
+  assign dec_top_idx = StkIdxW'(dec_slot * MaxBounces + 32'(dec_sp) - 1);
+  assign dec_top  = stk_q[dec_top_idx];
+  assign dec_push = dec && dec_m.mask != 4'd0 && dec_r.mask != 4'd0;
+  assign dec_pop  = dec && dec_m.mask == 4'd0 && dec_r.mask == 4'd0 && dec_sp != '0;
+  assign dec_send = dec && (dec_m.mask != 4'd0 || dec_r.mask != 4'd0 || dec_sp != '0);
+  assign dec_done = dec && !dec_send;
+  assign dec_pkt  = dec_m.mask != 4'd0 ? dec_m : dec_r.mask != 4'd0 ? dec_r : dec_top;
+  assign bq_push  = dec_send;
+  assign bq_wdata = {dec_pkt.mirror, dec_pkt.mask, dec_pkt.org, dec_pkt.dir, dec_pkt.stri,
+                     dec_slot};
+
+  /////////////////////////////
+  // Light samples and terms //
+  /////////////////////////////
+
+  // The add queue: ambient terms and miss terms on their way to the sums, applied in a cycle
+  // without a reached shadow ray (which adds at once).
+  localparam int unsigned AqW = LaneW + 3 * FW;
+  logic             aq_push, aq_valid, aq_pop;
+  logic [AqW-1:0]   aq_wdata, aq_rdata;
+  logic [$clog2(AddQ + 1)-1:0] aq_count;
+  logic [$clog2(MissL + 1)-1:0] mi_count_q;
+  logic             mo_valid;
+  logic [3*FW-1:0]  mo_term;
+  logic [LaneW-1:0] mo_ln;
+  logic [LaneW-1:0] aq_ln;
+  logic [3*FW-1:0]  aq_term;
+
+  rc_fifo #(
+    .Width   (AqW),
+    .Depth   (AddQ),
+    .MemArray(1'b1)
+  ) u_add_q (
+    .clk_i,
+    .rst_ni,
+    .push_i (aq_push),
+    .data_i (aq_wdata),
+    .valid_o(aq_valid),
+    .ready_i(aq_pop),
+    .data_o (aq_rdata),
+    .count_o(aq_count)
+  );
+  assign {aq_ln, aq_term} = aq_rdata;
+  assign aq_pop = aq_valid && !cw_reached;
+
+  // The miss term: fix(bg_c * w) per channel, MissL cycles; issued only while the add queue has
+  // room for it beside the ones in flight and an ambient term.
+  assign mi_ok = 32'(aq_count) + 32'(mi_count_q) + 2 <= AddQ;
+  logic [2:0] mo_valid_c;
+  for (genvar c = 0; c < 3; c++) begin : g_miss
+    logic          mm_valid;
+    logic [W-1:0]  mm_res;
+    rc_fp_mul #(
+      .ExpW (ExpW),
+      .FracW(FracW)
+    ) u_mul (
+      .clk_i,
+      .rst_ni,
+      .valid_i(mi_issue),
+      .a_i    (bg_i[c*W +: W]),
+      .b_i    (w_q[{fs_slot_q, fs_lane}]),
+      .valid_o(mm_valid),
+      .res_o  (mm_res)
+    );
+    rc_fp_to_fix #(
+      .ExpW   (ExpW),
+      .FracW  (FracW),
+      .FixBits(rc_pkg::LightFixedBits)
+    ) u_fix (
+      .clk_i,
+      .rst_ni,
+      .valid_i(mm_valid),
+      .x_i    (mm_res),
+      .valid_o(mo_valid_c[c]),
+      .out_o  (mo_term[c*FW +: FW])
+    );
+  end
+  assign mo_valid = mo_valid_c[0];
+  rc_delay #(
+    .Width (LaneW),
+    .Cycles(MissL)
+  ) u_miss_tag (
+    .clk_i,
+    .data_i({fs_slot_q, fs_lane}),
+    .data_o(mo_ln)
+  );
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) mi_count_q <= '0;
+    else mi_count_q <= mi_count_q + $bits(mi_count_q)'(mi_issue) - $bits(mi_count_q)'(mo_valid);
+  end
+
+  // A light's samples: the ambient term at light 0 (to the add queue, after a miss term in the
+  // same cycle), the light's shadow packet assembled from the present ones.
+  logic [LaneW-1:0]  lt_ln;
   logic [SlotW-1:0]  lt_slot;
   logic [1:0]        lt_lane;
+  logic [31:0]       lt_tri;
+  logic              lt_d0, lt_close, lt_amb_push;
+  assign {lt_tri, lt_d0, lt_ln} = {lt_tag[HlTagW-1 -: 32], lt_tag[LaneW + 1], lt_tag[LaneW-1:0]};
+  assign lt_slot     = lt_ln[LaneW-1:2];
+  assign lt_lane     = lt_ln[1:0];
+  assign lt_ready    = shq_count != 2'd2 && sp_free_any && !mo_valid &&
+                       32'(aq_count) + 32'(mi_count_q) + 1 <= AddQ;
+  assign lt_take     = lt_valid && lt_ready;
+  assign lt_close    = lt_take && lt_lane_last;
+  assign lt_amb_push = lt_take && lt_light == '0;
+  assign aq_push     = mo_valid || lt_amb_push;
+  assign aq_wdata    = mo_valid ? {mo_ln, mo_term} : {lt_ln, lt_amb};
+
   logic [3:0]        as_mask_q, as_mask;
   logic [12*W-1:0]   as_org_q, as_dir_q, as_org, as_dir;
   logic [4*W-1:0]    as_t_hi_q, as_t_hi;
   logic [127:0]      as_tri_q, as_tri;
-  logic              lt_close;   // the light's last sample of the packet
-  logic [ShW-1:0]    sh_inc;
-  assign lt_slot  = lt_tag[2 +: SlotW];
-  assign lt_lane  = lt_tag[1:0];
-  assign lt_ready = shq_count != 2'd2;
-  assign lt_take  = lt_valid && lt_ready;
-  assign lt_close = lt_take && lt_lane_last;
-
+  logic [12*FW-1:0]  as_term_q, as_term;
   always_comb begin
     as_mask = as_mask_q;
     as_org  = as_org_q;
     as_dir  = as_dir_q;
     as_t_hi = as_t_hi_q;
     as_tri  = as_tri_q;
+    as_term = as_term_q;
     if (lt_take && lt_present) begin
-      as_mask[lt_lane]           = 1'b1;
-      as_org[lt_lane*3*W +: 3*W] = lt_org;
-      as_dir[lt_lane*3*W +: 3*W] = lt_dir;
-      as_t_hi[lt_lane*W +: W]    = lt_t_hi;
-      as_tri[lt_lane*32 +: 32]   = tri_q[{lt_slot, lt_lane}];
+      as_mask[lt_lane]              = 1'b1;
+      as_org[lt_lane*3*W +: 3*W]    = lt_org;
+      as_dir[lt_lane*3*W +: 3*W]    = lt_dir;
+      as_t_hi[lt_lane*W +: W]       = lt_t_hi;
+      as_tri[lt_lane*32 +: 32]      = lt_tri;
+      as_term[lt_lane*3*FW +: 3*FW] = lt_term;
     end
-    sh_inc = '0;
-    for (int r = 0; r < 4; r++) sh_inc = sh_inc + ShW'(as_mask[r]);
   end
   assign shq_push  = lt_close && as_mask != 4'd0;
-  assign shq_wdata = {as_mask, as_org, as_dir, as_t_hi, as_tri, lt_slot, lt_light};
+  assign shq_wdata = {as_mask, as_org, as_dir, as_t_hi, as_tri, sp_free};
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -751,6 +1095,32 @@ module rc_tracer #(
       as_dir_q  <= as_dir;
       as_t_hi_q <= as_t_hi;
       as_tri_q  <= as_tri;
+      as_term_q <= as_term;
+    end
+  end
+
+  // The shadow packets' entries.
+  logic cws_free;
+  assign cws_free = cw_sh && sp_cnt_q[cw_sp] == 3'd1;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      spb_q   <= '0;
+      sp_d0_q <= '0;
+    end else begin
+      if (cws_free) spb_q[cw_sp] <= 1'b0;
+      if (shq_push) begin
+        spb_q[sp_free]   <= 1'b1;
+        sp_d0_q[sp_free] <= lt_d0;
+      end
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (cw_sh) sp_cnt_q[cw_sp] <= sp_cnt_q[cw_sp] - 1'b1;
+    if (shq_push) begin
+      sp_slot_q[sp_free]  <= lt_slot;
+      sp_light_q[sp_free] <= lt_light;
+      sp_cnt_q[sp_free]   <= count4(as_mask);
+      for (int r = 0; r < 4; r++) term_q[{sp_free, 2'(r)}] <= as_term[r*3*FW +: 3*FW];
     end
   end
 
@@ -766,7 +1136,11 @@ module rc_tracer #(
     dn_any = 1'b0;
     dn_idx = '0;
     for (int s = Slots - 1; s >= 0; s--) begin
-      done_vec[s] = busy_q[s] && lit_q[s] && sh_q[s*ShW +: ShW] == '0 && !fin_q[s];
+      // Not while the sequencer still issues the last packet's misses (their adds are counted
+      // from the issue).
+      done_vec[s] = busy_q[s] && td_q[s] && !fin_q[s] && sh_q[s*ShW +: ShW] == '0 &&
+                    ap_q[s*ApW +: ApW] == '0 && lp_q[s*LpW +: LpW] == '0 &&
+                    !(fs_busy_q && fs_slot_q == SlotW'(s));
       if (done_vec[s]) begin
         dn_any = 1'b1;
         dn_idx = SlotW'(s);
@@ -774,21 +1148,23 @@ module rc_tracer #(
     end
   end
 
-  localparam int unsigned OutW = 32 + 24 + 1 + 32 + 3 * W + MaxLights;
+  localparam int unsigned OutW = 32 + 24 + 1 + 32 + 3 * W + MaxLights + 64;
   logic             fw_busy_q, fw_issue, fw_room, fw_free, fw_write;
   logic [SlotW-1:0] fw_slot_q;
   logic [1:0]       fw_lane_q;
+  logic [LaneW-1:0] fw_ln;
   logic             st_valid_q, st_hit_q;
-  logic [OutW-1:0]  st_rec_q;    // {pixel, rgb, hit, tri, t, u, v, lights}
+  logic [OutW-1:0]  st_rec_q;    // {pixel, rgb, hit, tri, t, u, v, lights, bounce, refract}
   logic [2:0]       oq_count;
   logic             oq_valid;
   logic [OutW-1:0]  oq_wdata, oq_rdata;
   logic [2:0]       lb_valid;
   logic [23:0]      lb_rgb;
 
+  assign fw_ln    = {fw_slot_q, fw_lane_q};
   assign fw_room  = oq_count + 3'(st_valid_q) < 3'd4;
   assign fw_issue = fw_busy_q && fw_room;
-  assign fw_write = fw_issue && mask_q[fw_slot_q][fw_lane_q];
+  assign fw_write = fw_issue && pmask_q[fw_slot_q][fw_lane_q];
   assign fw_free  = fw_issue && fw_lane_q == 2'd3;
 
   for (genvar c = 0; c < 3; c++) begin : g_byte
@@ -799,7 +1175,7 @@ module rc_tracer #(
       .clk_i,
       .rst_ni,
       .valid_i(fw_write),
-      .sum_i  (sum_q[{fw_slot_q, fw_lane_q}][c*SumW +: SumW]),
+      .sum_i  (sum_q[fw_ln][c*SumW +: SumW]),
       .valid_o(lb_valid[c]),
       .byte_o (lb_rgb[c*8 +: 8])
     );
@@ -824,12 +1200,10 @@ module rc_tracer #(
       end
       st_valid_q <= fw_write;
       if (fw_write) begin
-        st_hit_q <= hit_q[{fw_slot_q, fw_lane_q}];
-        st_rec_q <= {pix_q[{fw_slot_q, fw_lane_q}], rgb_q[{fw_slot_q, fw_lane_q}],
-                     hit_q[{fw_slot_q, fw_lane_q}], tri_q[{fw_slot_q, fw_lane_q}],
-                     t_q[{fw_slot_q, fw_lane_q}], u_q[{fw_slot_q, fw_lane_q}],
-                     v_q[{fw_slot_q, fw_lane_q}],
-                     hit_q[{fw_slot_q, fw_lane_q}] ? lm_q[{fw_slot_q, fw_lane_q}] : '0};
+        st_hit_q <= phit_q[fw_ln];
+        st_rec_q <= {pix_q[fw_ln], prgb_q[fw_ln], phit_q[fw_ln], ptri_q[fw_ln], pt_q[fw_ln],
+                     pu_q[fw_ln], pv_q[fw_ln], phit_q[fw_ln] ? lm_q[fw_ln] : '0, btri_q[fw_ln],
+                     rtri_q[fw_ln]};
       end
     end
   end
@@ -855,40 +1229,73 @@ module rc_tracer #(
     .count_o(oq_count)
   );
   assign fb_valid_o = oq_valid;
-  assign {fb_pixel_o, fb_rgb_o, fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o, fb_lights_o} = oq_rdata;
+  assign {fb_pixel_o, fb_rgb_o, fb_hit_o, fb_tri_o, fb_t_o, fb_u_o, fb_v_o, fb_lights_o,
+          fb_bounce_tri_o, fb_refract_tri_o} = oq_rdata;
 
-  //////////////////////////
-  // The slots' state     //
-  //////////////////////////
+  //////////////////////
+  // The slots' state //
+  //////////////////////
 
-  logic [SlotW-1:0] fs_done_slot;
-  assign fs_done_slot = fq_slot;
+  logic [SlotW-1:0] mi_slot, aq_slot;
+  assign mi_slot = fs_slot_q;
+  assign aq_slot = aq_ln[LaneW-1:2];
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      busy_q <= '0;
-      lit_q  <= '0;
-      fin_q  <= '0;
-      pend_q <= '0;
-      sh_q   <= '0;
+      busy_q  <= '0;
+      td_q    <= '0;
+      fin_q   <= '0;
+      cf_q    <= '0;
+      cm_q    <= '0;
+      pend_q  <= '0;
+      depth_q <= '0;
+      sh_q    <= '0;
+      ap_q    <= '0;
+      lp_q    <= '0;
+      sp_q    <= '0;
     end else begin
       for (int s = 0; s < Slots; s++) begin
         logic [ShW-1:0] sh_d;
+        logic [ApW-1:0] ap_d;
+        logic [LpW-1:0] lp_d;
         sh_d = sh_q[s*ShW +: ShW];
-        if (shq_push && lt_slot == SlotW'(s)) sh_d = sh_d + sh_inc;
-        if (cw_sh && cw_slot == SlotW'(s)) sh_d = sh_d - 1'b1;
+        if (shq_push && lt_slot == SlotW'(s)) sh_d = sh_d + ShW'(count4(as_mask));
+        if (cw_sh && cws_slot == SlotW'(s)) sh_d = sh_d - 1'b1;
         sh_q[s*ShW +: ShW] <= sh_d;
+        ap_d = ap_q[s*ApW +: ApW];
+        if (mi_issue && mi_slot == SlotW'(s)) ap_d = ap_d + 1'b1;
+        if (lt_amb_push && lt_slot == SlotW'(s)) ap_d = ap_d + 1'b1;
+        if (aq_pop && aq_slot == SlotW'(s)) ap_d = ap_d - 1'b1;
+        ap_q[s*ApW +: ApW] <= ap_d;
+        lp_d = lp_q[s*LpW +: LpW];
+        if (fq_pop && fq_hits != 4'd0 && fq_slot == SlotW'(s)) lp_d = lp_d + 1'b1;
+        if (lt_take && lt_lane_last && lt_light_last && lt_slot == SlotW'(s)) lp_d = lp_d - 1'b1;
+        lp_q[s*LpW +: LpW] <= lp_d;
         if (ext_take && pkt_mask_i != 4'd0 && free_idx == SlotW'(s)) begin
           busy_q[s] <= 1'b1;
-          lit_q[s]  <= 1'b0;
+          td_q[s]   <= 1'b0;
           fin_q[s]  <= 1'b0;
-          pend_q[s*3 +: 3] <= 3'(pkt_mask_i[0]) + 3'(pkt_mask_i[1]) + 3'(pkt_mask_i[2]) +
-                       3'(pkt_mask_i[3]);
+          cf_q[s]   <= 1'b0;
+          cm_q[s]   <= 1'b0;
+          pend_q[s*3 +: 3] <= count4(pkt_mask_i);
+          depth_q[s*DepthW +: DepthW] <= '0;
+          sp_q[s*DepthW +: DepthW] <= '0;
         end else begin
-          if (cw_prim && cw_slot == SlotW'(s)) pend_q[s*3 +: 3] <= pend_q[s*3 +: 3] - 1'b1;
-          if ((fs_nohit && fs_done_slot == SlotW'(s)) ||
-              (lt_take && lt_lane_last && lt_light_last && lt_slot == SlotW'(s)))
-            lit_q[s] <= 1'b1;
+          if (cw_cur && cw_slot == SlotW'(s)) begin
+            pend_q[s*3 +: 3] <= pend_q[s*3 +: 3] - 1'b1;
+            if (!cw_d0 && core_fb_rgb[0]) cf_q[s] <= 1'b1;
+          end
+          if (dec && dec_slot == SlotW'(s)) begin
+            if (dec_send) begin
+              pend_q[s*3 +: 3] <= count4(dec_pkt.mask);
+              depth_q[s*DepthW +: DepthW] <= dec_pkt.depth;
+              cm_q[s] <= dec_pkt.mirror;
+              cf_q[s] <= 1'b0;
+            end
+            if (dec_push) sp_q[s*DepthW +: DepthW] <= dec_sp + 1'b1;
+            if (dec_pop) sp_q[s*DepthW +: DepthW] <= dec_sp - 1'b1;
+            if (dec_done) td_q[s] <= 1'b1;
+          end
           if (!fw_busy_q && dn_any && dn_idx == SlotW'(s)) fin_q[s] <= 1'b1;
           if (fw_free && fw_slot_q == SlotW'(s)) busy_q[s] <= 1'b0;
         end
@@ -899,36 +1306,61 @@ module rc_tracer #(
   // The slots' payload (no reset: written before it is read).
   always_ff @(posedge clk_i) begin
     if (ext_take) begin
-      mask_q[free_idx] <= pkt_mask_i;
+      pmask_q[free_idx] <= pkt_mask_i;
+      cmask_q[free_idx] <= pkt_mask_i;
       for (int r = 0; r < 4; r++) begin
-        pix_q[(SlotW + 2)'(4 * free_idx + r)] <= pkt_pixel_i[r*32 +: 32];
-        ray_q[(SlotW + 2)'(4 * free_idx + r)] <= {pkt_inv_len_i[r*W +: W], pkt_dir_i[r*3*W +: 3*W],
-                                               pkt_org_i[r*3*W +: 3*W]};
+        pix_q[(SlotW + 2)'(4 * free_idx + r)]  <= pkt_pixel_i[r*32 +: 32];
+        ray_q[(SlotW + 2)'(4 * free_idx + r)]  <= {pkt_inv_len_i[r*W +: W],
+                                                   pkt_dir_i[r*3*W +: 3*W],
+                                                   pkt_org_i[r*3*W +: 3*W]};
+        w_q[(SlotW + 2)'(4 * free_idx + r)]    <= FpOne;  // a primary ray's weight
+        sum_q[(SlotW + 2)'(4 * free_idx + r)]  <= '0;
+        lm_q[(SlotW + 2)'(4 * free_idx + r)]   <= '0;
+        btri_q[(SlotW + 2)'(4 * free_idx + r)] <= -32'sd2;
+        rtri_q[(SlotW + 2)'(4 * free_idx + r)] <= -32'sd2;
       end
     end
-    if (cw_prim) begin
-      hit_q[{cw_slot, cw_lane}] <= core_fb_hit;
-      tri_q[{cw_slot, cw_lane}] <= core_fb_tri;
-      t_q[{cw_slot, cw_lane}]   <= core_fb_t;
-      u_q[{cw_slot, cw_lane}]   <= core_fb_u;
-      v_q[{cw_slot, cw_lane}]   <= core_fb_v;
-      dz_q[{cw_slot, cw_lane}]  <= core_fb_dz;
-      rgb_q[{cw_slot, cw_lane}] <= core_fb_rgb;
+    // A tree packet becomes the slot's current packet: its rays and weights.
+    if (dec_send) begin
+      cmask_q[dec_slot] <= dec_pkt.mask;
+      for (int r = 0; r < 4; r++) begin
+        if (dec_pkt.mask[r]) begin
+          ray_q[(SlotW + 2)'(4 * dec_slot + r)] <= {FpOne, dec_pkt.dir[r*3*W +: 3*W],
+                                                    dec_pkt.org[r*3*W +: 3*W]};
+          w_q[(SlotW + 2)'(4 * dec_slot + r)]   <= dec_pkt.w[r*W +: W];
+        end
+      end
     end
-    // The lane's sums: the ambient term at light 0, a reached shadow ray's term (never the same
-    // lane in one cycle: a light's shadow packet leaves after its samples).
-    if (lt_take && lt_light == '0) begin
-      for (int c = 0; c < 3; c++)
-        sum_q[{lt_slot, lt_lane}][c*SumW +: SumW] <= SumW'(lt_amb[c*FW +: FW]);
-      lm_q[{lt_slot, lt_lane}] <= '0;
+    if (dec_push) stk_q[dec_slot*MaxBounces + 32'(dec_sp)] <= dec_r;
+    // The current packet's writes; the primary's are kept for the pixel's write, the first
+    // mirror and refraction rays' triangles for the report.
+    if (cw_cur) begin
+      hit_q[cw_ln] <= core_fb_hit;
+      tri_q[cw_ln] <= core_fb_tri;
+      t_q[cw_ln]   <= core_fb_t;
+      dz_q[cw_ln]  <= core_fb_dz;
+      if (cw_d0) begin
+        phit_q[cw_ln] <= core_fb_hit;
+        ptri_q[cw_ln] <= core_fb_tri;
+        pt_q[cw_ln]   <= core_fb_t;
+        pu_q[cw_ln]   <= core_fb_u;
+        pv_q[cw_ln]   <= core_fb_v;
+        prgb_q[cw_ln] <= core_fb_rgb;
+      end
+      if (cw_d1 && cm_q[cw_slot]) btri_q[cw_ln] <= core_fb_hit ? core_fb_tri : -32'sd1;
+      if (cw_d1 && !cm_q[cw_slot]) rtri_q[cw_ln] <= core_fb_hit ? core_fb_tri : -32'sd1;
     end
+    // The sums: a reached shadow ray's term at once, else the add queue's head.
     if (cw_reached) begin
-      lm_q[{cw_slot, cw_lane}][cw_light] <= 1'b1;
       for (int c = 0; c < 3; c++)
-        sum_q[{cw_slot, cw_lane}][c*SumW +: SumW] <= sum_q[{cw_slot, cw_lane}][c*SumW +: SumW] +
-            SumW'(term_q[{cw_slot, cw_light, cw_lane}][c*FW +: FW]);
+        sum_q[{cws_slot, cw_lane}][c*SumW +: SumW] <=
+            sum_q[{cws_slot, cw_lane}][c*SumW +: SumW] + SumW'(term_q[cws_ln][c*FW +: FW]);
+      if (sp_d0_q[cw_sp]) lm_q[{cws_slot, cw_lane}][sp_light_q[cw_sp]] <= 1'b1;
+    end else if (aq_pop) begin
+      for (int c = 0; c < 3; c++)
+        sum_q[aq_ln][c*SumW +: SumW] <= sum_q[aq_ln][c*SumW +: SumW] +
+                                         SumW'(aq_term[c*FW +: FW]);
     end
-    if (lt_take && lt_present) term_q[{lt_slot, lt_light, lt_lane}] <= lt_term;
   end
 
   ////////////
@@ -947,14 +1379,13 @@ module rc_tracer #(
   end
   assign idle_o = core_idle && busy_q == '0 && !st_valid_q && !oq_valid;
 
-  // Not read: the controller makes the secondary packets.
-  // Not read: the geometry of the children (none at max_bounces 0); the fields of the records the
-  // lighting does not use; the pixel id bits above the controller's fields; counts only there for
-  // the FIFO contract.
+  // Not read: the primary packets' kind, limits and start triangles (the controller makes the
+  // secondary packets); the fields of the records the lighting does not use; the valid bits of
+  // units whose latency is known; the fetch queue's count (it never overflows: one entry per
+  // slot); the pixel id bits above the fields.
   logic unused;
   assign unused = ^{pkt_t_hi_i, pkt_start_tri_i, lb_valid, lmat_rsp_data_i, lshd_rsp_data_i,
-                    geo_valid, geo_mirror, geo_refract, geo_tag, geo_p, geo_r, geo_refr,
-                    geo_w_mirror, geo_w_refract, core_fb_pixel, fq_count};
+                    mo_valid_c, fq_count, core_fb_pixel};
 
   ////////////////
   // Assertions //
@@ -967,23 +1398,32 @@ module rc_tracer #(
     .rst_ni,
     .on_o (checks_on)
   );
+  logic cw_expected, fs_held, mo_matches;
+  assign cw_expected = cw_shadow ? spb_q[cw_sp] && sp_cnt_q[cw_sp] != '0 :
+                                   busy_q[cw_slot] && pend_q[cw_slot*3 +: 3] != '0;
+  assign fs_held     = busy_q[fs_slot_q];
+  assign mo_matches  = mo_valid_c == {3{mo_valid}};
   // The controller makes the secondary packets itself.
   PrimaryOnly_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   pkt_valid_i |-> pkt_kind_i ==
                                   rc_pkg::RayKindBits'(rc_pkg::RayKindPrimary));
-  // Every lit hit has at least one light's samples (its sums start at light 0).
+  // Every hit has at least one light's samples (its ambient term comes with light 0).
   LightCount_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  light_count_i != '0 && light_count_i <= CountW'(MaxLights));
-  logic cw_expected, fs_held;
-  assign cw_expected = busy_q[cw_slot] &&
-                       (cw_shadow ? sh_q[cw_slot*ShW +: ShW] != '0 : pend_q[cw_slot*3 +: 3] != '0);
-  assign fs_held     = busy_q[fs_slot_q];
-  // A write of the core belongs to a held slot that expects it.
+  // The trees fit the stacks.
+  Bounces_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              max_bounces_i <= DepthW'(MaxBounces));
+  // A write of the core belongs to a packet that expects it.
   CoreWrite_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 core_fb_valid |-> cw_expected);
   // A slot is not freed while the fetch still issues for it.
   FetchSlot_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 fs_busy_q |-> fs_held);
+  // The three channels' miss terms leave together.
+  MissTerm_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1) mo_matches);
+  // The add queue never overflows (its pushes are counted ahead).
+  AddQueue_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               aq_push |-> 32'(aq_count) < AddQ || aq_pop);
 `endif
 
 endmodule

@@ -145,9 +145,9 @@ struct CoreSimResult {
   // on the host (the core has no light unit yet).
   bool lit = false;
   SecondaryPasses shadow, bounce, refract;
-  // A tree controller's run (rc_tracer, at max_bounces 0): the frame is lit on chip (rgb,
-  // light_mask; bounce_tri and refract_tri all -2), its counters are the core's totals over every
-  // kind (perf), and bit k set: kind k's packets were made on chip (not fed).
+  // A tree controller's run (rc_tracer): the frame is lit on chip (rgb, light_mask, bounce_tri,
+  // refract_tri from its writes), its counters are the core's totals over every kind (perf), and
+  // bit k set: kind k's packets were made on chip (not fed).
   uint32_t on_chip_kinds = 0;
 };
 
@@ -223,6 +223,7 @@ class CoreSim {
     std::function<void(uint64_t, CorePacket&)> packet;
     std::array<uint8_t, 3> background{};
     fp24 t_eps = fp24::zero();
+    uint32_t max_bounces = 0;  // a tree controller's depth (render())
   };
   CoreSimResult run(const Feed& feed);
   struct State;

@@ -166,6 +166,7 @@ CoreSimResult CoreSim<Model>::render(const RenderOptions& render) {
   feed.height = render.height;
   feed.packets = static_cast<uint64_t>(pw) * ph;
   feed.background = render.background;
+  feed.max_bounces = render.max_bounces;
   feed.packet = [&](uint64_t k, CorePacket& p) {
     const auto px = static_cast<uint32_t>(k % pw), py = static_cast<uint32_t>(k / pw);
     p.mask = gen.packet(px, py, p.rays);
@@ -234,6 +235,13 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
       }
     }
     m.t_eps_i = g.t_eps.bits();
+    if (feed.max_bounces > static_cast<uint32_t>(spec::kLightBounceLimit))
+      throw std::invalid_argument("CoreSim: the tree controller traces to depth " +
+                                  std::to_string(spec::kLightBounceLimit) + " at most, not " +
+                                  std::to_string(feed.max_bounces));
+    m.max_bounces_i = static_cast<uint8_t>(feed.max_bounces);
+    const LitParams<T> lp = lit_params<T>(feed.max_bounces, feed.background);
+    for (unsigned c = 0; c < 3; ++c) set_field(m.bg_i, c * W, W, lp.background[c].bits());
   }
   m.pkt_kind_i = static_cast<uint8_t>(spec::kRayKindPrimary);
   m.pkt_valid_i = 0;
@@ -287,7 +295,7 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
   res.pixel_cycle.assign(slots, 0);
   if constexpr (kTracer) {
     f.light_mask.assign(slots, 0);
-    f.bounce_tri.assign(slots, -2);  // max_bounces 0: no mirror or refraction rays
+    f.bounce_tri.assign(slots, -2);
     f.refract_tri.assign(slots, -2);
   }
 
@@ -443,7 +451,11 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
         ++s.miss_payload;  // a miss must report zeros; t, u, v stay as reported (they differ)
       }
       f.hits[pix] = h;
-      if constexpr (kTracer) f.light_mask[pix] = m.fb_lights_o;
+      if constexpr (kTracer) {
+        f.light_mask[pix] = m.fb_lights_o;
+        f.bounce_tri[pix] = static_cast<int32_t>(m.fb_bounce_tri_o);
+        f.refract_tri[pix] = static_cast<int32_t>(m.fb_refract_tri_o);
+      }
     }
     checked([&] { tb.check(); });
 
@@ -523,7 +535,9 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
   f.counters = counters_from_perf(res.perf, res.error_bits);
   if constexpr (kTracer) {
     res.lit = true;
-    res.on_chip_kinds = 1u << static_cast<unsigned>(spec::kRayKindShadow);
+    res.on_chip_kinds = 1u << static_cast<unsigned>(spec::kRayKindShadow) |
+                        1u << static_cast<unsigned>(spec::kRayKindBounce) |
+                        1u << static_cast<unsigned>(spec::kRayKindRefract);
   }
   tb.flush_trace();
   if (!s.opt.trace_path.empty() && !tb.tracing())

@@ -1,10 +1,12 @@
-// The tree controller (rtl/core/rc_tracer.sv): scene lighting made on chip at max_bounces 0 (local
-// shading and one shadow ray per light and hit, no mirror or refraction rays), verilated and run
+// The tree controller (rtl/core/rc_tracer.sv): scene lighting made on chip (local shading, one
+// shadow ray per light and hit, mirror and refraction rays to max_bounces), verilated and run
 // through the harness, against the golden model's lit frame at the same depth, bit for bit: every
-// pixel's colour, hit record and lights that reach it; the counters of all packets (the core's
-// totals against the golden model's primary plus shadow counters) and per ray kind. Scenes with one
-// and two point lights and a directional light, at the default memory latency and with seeded
-// random stalls on every port (the two lighting ports included) and on the framebuffer port.
+// pixel's colour, hit record, the lights that reach it and what its first mirror and refraction
+// rays hit; the counters of all packets (the core's totals against the golden model's primary,
+// shadow, mirror and refraction counters summed) and per ray kind. Scenes with one point light,
+// four lights (point and directional, coloured), a directional light, mirrors and glass, at depth
+// 0, the default 3 and the limit, at the default memory latency and with seeded random stalls on
+// every port (the two lighting ports included) and on the framebuffer port.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -33,9 +35,14 @@ const std::string kRoot = RC_SOURCE_DIR;
 struct TracerCase {
   const char* scene;  // under scenes/
   uint32_t width, height;
+  uint32_t bounces;
   uint64_t stall_seed;
   bool four_lights;  // three more lights (point and directional, coloured): MaxLights in all
 };
+
+void PrintTo(const TracerCase& c, std::ostream* os) {
+  *os << c.scene << " bounces " << c.bounces << " stall " << c.stall_seed;
+}
 
 // The case's scene, with its extra lights when asked for.
 RenderInput case_input(const TracerCase& c) {
@@ -60,11 +67,16 @@ RenderInput case_input(const TracerCase& c) {
   return RenderInput{s.name, s, scene::SceneImage::from_bytes(cc.image, s.name), std::nullopt};
 }
 
-void PrintTo(const TracerCase& c, std::ostream* os) { *os << c.scene << " stall " << c.stall_seed; }
+uint64_t differ(const std::vector<int32_t>& a, const std::vector<int32_t>& b) {
+  if (a.size() != b.size()) return std::max(a.size(), b.size());
+  uint64_t n = 0;
+  for (size_t i = 0; i < a.size(); ++i) n += a[i] != b[i] ? 1 : 0;
+  return n;
+}
 
 class TracerRtl : public testing::TestWithParam<TracerCase> {};
 
-TEST_P(TracerRtl, MatchesGoldenAtDepthZero) {
+TEST_P(TracerRtl, MatchesGoldenBitForBit) {
   const TracerCase c = GetParam();
   const RenderInput in = case_input(c);
   ASSERT_GT(in.image.light_count(), 0u) << c.scene << ": a lit case needs a scene with lights";
@@ -73,7 +85,7 @@ TEST_P(TracerRtl, MatchesGoldenAtDepthZero) {
   opt.height = c.height;
   opt.progress = false;
   opt.lighting = Lighting::kScene;
-  opt.max_bounces = 0;
+  opt.max_bounces = c.bounces;
   const Frame gold = render_golden(load_geometry<fp24>(in.image), opt);
 
   CoreSimOptions so;
@@ -89,42 +101,50 @@ TEST_P(TracerRtl, MatchesGoldenAtDepthZero) {
     light_differ += gold.light_mask[i] != f.light_mask[i] ? 1 : 0;
     lit_pairs += static_cast<uint64_t>(__builtin_popcount(gold.light_mask[i]));
   }
-  EXPECT_EQ(gold.bounce_tri, f.bounce_tri) << "max_bounces 0: no mirror rays";
-  EXPECT_EQ(gold.refract_tri, f.refract_tri) << "max_bounces 0: no refraction rays";
+  const uint64_t bounce_differ = differ(gold.bounce_tri, f.bounce_tri);
+  const uint64_t refract_differ = differ(gold.refract_tri, f.refract_tri);
 
-  // The core's counters count every packet it traced: the primary and the shadow packets.
+  // The core's counters count every packet it traced: the primary packets and the ones the
+  // controller made.
   Counters all = gold.counters;
   all.add(gold.shadow_counters);
+  all.add(gold.bounce_counters);
+  all.add(gold.refract_counters);
   std::vector<std::string> counters;
   for (const CounterDifference& d : counter_differences(all, f.counters))
     counters.push_back(d.text());
   const auto kinds = harness::kind_counters(r.perf);
-  const harness::KindCounters& kp = kinds[static_cast<size_t>(spec::kRayKindPrimary)];
-  const harness::KindCounters& ks = kinds[static_cast<size_t>(spec::kRayKindShadow)];
-  const auto expect_kind = [&](const char* kind, const harness::KindCounters& k,
+  const auto kind = [&kinds](int64_t k) -> const harness::KindCounters& {
+    return kinds[static_cast<size_t>(k)];
+  };
+  const auto expect_kind = [&](const char* name, const harness::KindCounters& k,
                                const Counters& g) {
     if (k.rays != g.rays || k.traversal_steps != g.traversal_steps ||
         k.triangle_tests != g.triangle_tests)
-      counters.push_back(std::string(kind) + ": rays " + std::to_string(k.rays) + " (golden " +
+      counters.push_back(std::string(name) + ": rays " + std::to_string(k.rays) + " (golden " +
                          std::to_string(g.rays) + "), steps " + std::to_string(k.traversal_steps) +
                          " (" + std::to_string(g.traversal_steps) + "), tests " +
                          std::to_string(k.triangle_tests) + " (" +
                          std::to_string(g.triangle_tests) + ")");
   };
-  expect_kind("primary", kp, gold.counters);
-  expect_kind("shadow", ks, gold.shadow_counters);
+  expect_kind("primary", kind(spec::kRayKindPrimary), gold.counters);
+  expect_kind("shadow", kind(spec::kRayKindShadow), gold.shadow_counters);
+  expect_kind("mirror", kind(spec::kRayKindBounce), gold.bounce_counters);
+  expect_kind("refraction", kind(spec::kRayKindRefract), gold.refract_counters);
 
+  const auto u = [](uint64_t v) { return static_cast<unsigned long long>(v); };
+  const uint64_t rays = f.counters.rays;
   std::printf(
-      "[cases] tracer rtl %s stall %llu %ux%u: %llu cases, %llu mismatches (%llu cycles, %llu "
-      "primary and %llu shadow rays, %.3f rays/cycle, %llu lit pixel-light pairs, %.0f "
-      "cycles/s)\n",
-      c.scene, static_cast<unsigned long long>(c.stall_seed), f.width, f.height,
-      static_cast<unsigned long long>(cmp.pixels),
-      static_cast<unsigned long long>(cmp.differing + light_differ + counters.size()),
-      static_cast<unsigned long long>(r.cycles), static_cast<unsigned long long>(kp.rays),
-      static_cast<unsigned long long>(ks.rays),
-      r.cycles ? static_cast<double>(kp.rays + ks.rays) / static_cast<double>(r.cycles) : 0.0,
-      static_cast<unsigned long long>(lit_pairs), r.cycles_per_second);
+      "[cases] tracer rtl %s%s bounces %u stall %llu %ux%u: %llu cases, %llu mismatches (%llu "
+      "cycles; rays: %llu primary, %llu shadow, %llu mirror, %llu refraction; %.3f rays/cycle; "
+      "%.0f cycles/s)\n",
+      c.scene, c.four_lights ? " (4 lights)" : "", c.bounces, u(c.stall_seed), f.width, f.height,
+      u(cmp.pixels),
+      u(cmp.differing + light_differ + bounce_differ + refract_differ + counters.size()),
+      u(r.cycles), u(kind(spec::kRayKindPrimary).rays), u(kind(spec::kRayKindShadow).rays),
+      u(kind(spec::kRayKindBounce).rays), u(kind(spec::kRayKindRefract).rays),
+      r.cycles ? static_cast<double>(rays) / static_cast<double>(r.cycles) : 0.0,
+      r.cycles_per_second);
   if (!cmp.equal()) {
     const auto pix = static_cast<size_t>(cmp.first);
     ADD_FAILURE() << c.scene << ": " << cmp.differing << " of " << cmp.pixels << " pixels differ ("
@@ -136,20 +156,39 @@ TEST_P(TracerRtl, MatchesGoldenAtDepthZero) {
                   << int(f.rgb[3 * pix + 2]) << " tri " << f.hits[pix].tri;
   }
   EXPECT_EQ(light_differ, 0u) << "pixels whose lights differ";
+  EXPECT_EQ(bounce_differ, 0u) << "pixels whose first mirror ray's hit differs";
+  EXPECT_EQ(refract_differ, 0u) << "pixels whose first refraction ray's hit differs";
   for (const std::string& d : counters) ADD_FAILURE() << c.scene << ": counter " << d;
   for (const std::string& p : harness::run_problems(r)) ADD_FAILURE() << c.scene << ": " << p;
-  // The case must test something: shadow rays, some of them occluded.
-  EXPECT_GT(ks.rays, 0u);
+  // The case must test something: shadow rays (some occluded, except under the terrain's
+  // directional light), and the mirror and glass rays of the scenes that have them.
+  EXPECT_GT(gold.shadow_counters.rays, 0u);
   EXPECT_GT(lit_pairs, 0u);
+  if (std::string(c.scene) != "scenes/terrain.json") {
+    EXPECT_LT(lit_pairs, gold.shadow_counters.rays) << "no shadow ray occluded";
+  }
+  if (c.bounces > 0 && std::string(c.scene) != "scenes/default.json" &&
+      std::string(c.scene) != "scenes/terrain.json") {
+    EXPECT_GT(gold.bounce_counters.rays, 0u) << "the mirrors send mirror rays";
+  }
+  if (c.bounces > 0 && std::string(c.scene) == "scenes/spheres.json") {
+    EXPECT_GT(gold.refract_counters.rays, 0u) << "the glass sends refraction rays";
+  }
 }
 
+const uint32_t kDefaultDepth = static_cast<uint32_t>(spec::kLightMaxBounces);
+const uint32_t kLimit = static_cast<uint32_t>(spec::kLightBounceLimit);
+
 const TracerCase kCases[] = {
-    {"scenes/default.json", 64, 48, 0, false},         // one point light under the ceiling
-    {"scenes/default.json", 48, 36, 1, false},         // with stalls
-    {"scenes/default.json", 40, 30, 4, true},          // four lights, with stalls
-    {"scenes/cornell-mirror.json", 48, 36, 2, false},  // mirror materials, lit locally only
-    {"scenes/terrain.json", 48, 36, 0, false},         // a directional light: t_hi = +inf
-    {"scenes/spheres.json", 48, 36, 3, false},
+    {"scenes/default.json", 64, 48, kDefaultDepth, 0, false},         // one point light
+    {"scenes/default.json", 48, 36, kDefaultDepth, 1, false},         // with stalls
+    {"scenes/default.json", 40, 30, kDefaultDepth, 4, true},          // four lights, with stalls
+    {"scenes/terrain.json", 48, 36, kDefaultDepth, 0, false},         // a directional light: +inf
+    {"scenes/cornell-mirror.json", 48, 36, kDefaultDepth, 2, false},  // a mirror block
+    {"scenes/spheres.json", 48, 36, kDefaultDepth, 0, false},         // mirror and glass spheres
+    {"scenes/spheres.json", 40, 30, kDefaultDepth, 3, false},         // with stalls
+    {"scenes/spheres.json", 32, 24, 0, 5, false},                     // local shading only
+    {"scenes/spheres.json", 32, 24, kLimit, 6, false},                // the deepest trees
 };
 
 std::string case_name(const testing::TestParamInfo<TracerCase>& info) {
@@ -159,7 +198,8 @@ std::string case_name(const testing::TestParamInfo<TracerCase>& info) {
   for (char& ch : n)
     if (ch == '-') ch = '_';
   return n + (info.param.four_lights ? "_4lights_" : "_") + std::to_string(info.param.width) +
-         "_stall" + std::to_string(info.param.stall_seed);
+         "_depth" + std::to_string(info.param.bounces) + "_stall" +
+         std::to_string(info.param.stall_seed);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, TracerRtl, testing::ValuesIn(kCases), case_name);
