@@ -91,8 +91,8 @@ std::array<KindCounters, kRayKinds> kind_counters(const std::array<uint64_t, kCo
 // the rays of the packets of that kind fed to the core (`rays_fed`, by kind), a kind without rays
 // must have no traversal steps or triangle tests, and each event's kinds must sum to the core's
 // total of it.
-// A kind whose bit is set in `on_chip_kinds` is made on chip (rc_tracer's shadow packets): its
-// rays are not fed, so only its other checks apply.
+// A kind whose bit is set in `on_chip_kinds` is made on chip (rc_tracer's shadow, mirror and
+// refraction packets): its rays are not fed, so only its other checks apply.
 std::vector<std::string> kind_problems(const std::array<uint64_t, kCorePerfCount>& perf,
                                        const std::array<uint64_t, kRayKinds>& rays_fed,
                                        uint32_t on_chip_kinds = 0);
@@ -142,7 +142,7 @@ struct CoreSimResult {
   // the pixels' ray trees, and traced by the core in passes of their own: each level's shadow
   // packets, then its mirror packets, then its refraction packets (their figures here, summed per
   // kind); the light terms, the directions and the pixel sums are the golden model's functions,
-  // on the host (the core has no light unit yet).
+  // on the host (rc_core has no light unit; rc_tracer, below, has one).
   bool lit = false;
   SecondaryPasses shadow, bounce, refract;
   // A tree controller's run (rc_tracer): the frame is lit on chip (rgb, light_mask, bounce_tri,

@@ -37,6 +37,25 @@ void apply_stall_recipe(std::array<MemoryParams, kCorePorts>& memory, uint64_t s
   }
 }
 
+namespace {
+
+// A port of the materials' fields from [image_material] kd on: `bytes` bytes of each record.
+std::unique_ptr<MemoryPort> material_port(const scene::SceneImage& image, uint32_t bytes,
+                                          const MemoryParams& params, const std::string& name) {
+  const scene::SectionInfo& mat =
+      image.section(static_cast<uint32_t>(spec::kImageSectionIdMaterials));
+  const auto kd = static_cast<size_t>(spec::kImageMaterialKd);
+  const size_t stride = mat.stride;
+  std::vector<uint8_t> data(static_cast<size_t>(mat.count) * stride, 0);
+  const size_t avail = static_cast<size_t>(mat.count) * stride;
+  const uint8_t* first = image.bytes().data() + mat.offset;
+  if (avail > kd) std::copy(first + kd, first + avail, data.begin());  // the rest stays zero
+  return std::make_unique<MemoryPort>(std::move(data), mat.count, static_cast<uint32_t>(stride),
+                                      bytes, params, image.name() + ":" + name);
+}
+
+}  // namespace
+
 std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
     const scene::SceneImage& image, const std::array<MemoryParams, kCorePorts>& memory) {
   std::vector<std::unique_ptr<MemoryPort>> ports;
@@ -50,17 +69,7 @@ std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
     ports.push_back(std::make_unique<MemoryPort>(
         image, ids[i], memory[static_cast<size_t>(i)],
         i == kPortNodes ? static_cast<uint32_t>(spec::kCoreNodeRspRecords) : 1u));
-  const scene::SectionInfo& mat =
-      image.section(static_cast<uint32_t>(spec::kImageSectionIdMaterials));
-  const auto kd = static_cast<size_t>(spec::kImageMaterialKd);
-  const size_t stride = mat.stride;
-  std::vector<uint8_t> bytes(static_cast<size_t>(mat.count) * stride, 0);
-  const size_t avail = static_cast<size_t>(mat.count) * stride;
-  const uint8_t* first = image.bytes().data() + mat.offset;
-  if (avail > kd) std::copy(first + kd, first + avail, bytes.begin());  // the rest stays zero
-  ports.push_back(
-      std::make_unique<MemoryPort>(std::move(bytes), mat.count, static_cast<uint32_t>(stride), 12u,
-                                   memory[kPortMaterials], image.name() + ":materials.kd"));
+  ports.push_back(material_port(image, 12u, memory[kPortMaterials], "materials.kd"));
   return ports;
 }
 
@@ -73,18 +82,8 @@ std::vector<std::unique_ptr<MemoryPort>> make_light_ports(const scene::SceneImag
   mp.seed = mix_seed(mp.seed ^ 0x11648u);
   ports.push_back(std::make_unique<MemoryPort>(
       image, static_cast<uint32_t>(spec::kImageSectionIdShading), sp, 1u));
-  const scene::SectionInfo& mat =
-      image.section(static_cast<uint32_t>(spec::kImageSectionIdMaterials));
-  const auto kd = static_cast<size_t>(spec::kImageMaterialKd);
   const auto len = static_cast<uint32_t>(spec::kImageMaterialTransmit + 4 - spec::kImageMaterialKd);
-  const size_t stride = mat.stride;
-  std::vector<uint8_t> bytes(static_cast<size_t>(mat.count) * stride, 0);
-  const size_t avail = static_cast<size_t>(mat.count) * stride;
-  const uint8_t* first = image.bytes().data() + mat.offset;
-  if (avail > kd) std::copy(first + kd, first + avail, bytes.begin());  // the rest stays zero
-  ports.push_back(std::make_unique<MemoryPort>(std::move(bytes), mat.count,
-                                               static_cast<uint32_t>(stride), len, mp,
-                                               image.name() + ":materials.lit"));
+  ports.push_back(material_port(image, len, mp, "materials.lit"));
   return ports;
 }
 
