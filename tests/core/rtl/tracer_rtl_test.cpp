@@ -6,7 +6,8 @@
 // shadow, mirror and refraction counters summed) and per ray kind. Scenes with one point light,
 // four lights (point and directional, coloured), a directional light, mirrors and glass, at depth
 // 0, the default 3 and the limit, at the default memory latency and with seeded random stalls on
-// every port (the two lighting ports included) and on the framebuffer port.
+// every port (the two lighting ports included) and on the framebuffer port; and around a core
+// with one thread.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "Vrc_tracer.h"
+#include "Vrc_tracer_t1.h"
 #include "compare.hpp"
 #include "compiler.hpp"
 #include "core_sim_impl.hpp"
@@ -22,7 +24,8 @@
 
 namespace rc::harness {
 template class CoreSim<Vrc_tracer>;
-}
+template class CoreSim<Vrc_tracer_t1>;
+}  // namespace rc::harness
 
 namespace rc::test {
 namespace {
@@ -38,10 +41,12 @@ struct TracerCase {
   uint32_t bounces;
   uint64_t stall_seed;
   bool four_lights;  // three more lights (point and directional, coloured): MaxLights in all
+  bool t1 = false;   // around a core with one thread (Vrc_tracer_t1)
 };
 
 void PrintTo(const TracerCase& c, std::ostream* os) {
-  *os << c.scene << " bounces " << c.bounces << " stall " << c.stall_seed;
+  *os << c.scene << " bounces " << c.bounces << " stall " << c.stall_seed
+      << (c.t1 ? " threads 1" : "");
 }
 
 // The case's scene, with its extra lights when asked for.
@@ -90,7 +95,8 @@ TEST_P(TracerRtl, MatchesGoldenBitForBit) {
 
   CoreSimOptions so;
   so.stall_seed = c.stall_seed;
-  const CoreSimResult r = harness::CoreSim<Vrc_tracer>(in.image, so).render(opt);
+  const CoreSimResult r = c.t1 ? harness::CoreSim<Vrc_tracer_t1>(in.image, so).render(opt)
+                               : harness::CoreSim<Vrc_tracer>(in.image, so).render(opt);
   const Frame& f = r.frame;
   ASSERT_TRUE(r.lit);
 
@@ -135,11 +141,11 @@ TEST_P(TracerRtl, MatchesGoldenBitForBit) {
   const auto u = [](uint64_t v) { return static_cast<unsigned long long>(v); };
   const uint64_t rays = f.counters.rays;
   std::printf(
-      "[cases] tracer rtl %s%s bounces %u stall %llu %ux%u: %llu cases, %llu mismatches (%llu "
+      "[cases] tracer rtl %s%s%s bounces %u stall %llu %ux%u: %llu cases, %llu mismatches (%llu "
       "cycles; rays: %llu primary, %llu shadow, %llu mirror, %llu refraction; %.3f rays/cycle; "
       "%.0f cycles/s)\n",
-      c.scene, c.four_lights ? " (4 lights)" : "", c.bounces, u(c.stall_seed), f.width, f.height,
-      u(cmp.pixels),
+      c.scene, c.four_lights ? " (4 lights)" : "", c.t1 ? " threads 1" : "", c.bounces,
+      u(c.stall_seed), f.width, f.height, u(cmp.pixels),
       u(cmp.differing + light_differ + bounce_differ + refract_differ + counters.size()),
       u(r.cycles), u(kind(spec::kRayKindPrimary).rays), u(kind(spec::kRayKindShadow).rays),
       u(kind(spec::kRayKindBounce).rays), u(kind(spec::kRayKindRefract).rays),
@@ -189,6 +195,9 @@ const TracerCase kCases[] = {
     {"scenes/spheres.json", 40, 30, kDefaultDepth, 3, false},         // with stalls
     {"scenes/spheres.json", 32, 24, 0, 5, false},                     // local shading only
     {"scenes/spheres.json", 32, 24, kLimit, 6, false},                // the deepest trees
+    // Around a core with one thread: every packet of every tree through it, one at a time.
+    {"scenes/default.json", 32, 24, kDefaultDepth, 7, false, true},
+    {"scenes/spheres.json", 24, 18, kDefaultDepth, 8, false, true},
 };
 
 std::string case_name(const testing::TestParamInfo<TracerCase>& info) {
@@ -199,7 +208,7 @@ std::string case_name(const testing::TestParamInfo<TracerCase>& info) {
     if (ch == '-') ch = '_';
   return n + (info.param.four_lights ? "_4lights_" : "_") + std::to_string(info.param.width) +
          "_depth" + std::to_string(info.param.bounces) + "_stall" +
-         std::to_string(info.param.stall_seed);
+         std::to_string(info.param.stall_seed) + (info.param.t1 ? "_t1" : "");
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, TracerRtl, testing::ValuesIn(kCases), case_name);
