@@ -241,16 +241,6 @@ module rc_tracer #(
     for (int a = 0; a < 3; a++) rgb_field[a*W +: W] = d[lsb + 32*a +: W];
   endfunction
 
-  function automatic logic [2:0] count4(input logic [3:0] m);
-    count4 = 3'(m[0]) + 3'(m[1]) + 3'(m[2]) + 3'(m[3]);
-  endfunction
-
-  // The lowest lane of a mask.
-  function automatic logic [1:0] low_lane(input logic [3:0] m);
-    low_lane = 2'd0;
-    for (int r = 3; r >= 0; r--) if (m[r]) low_lane = 2'(r);
-  endfunction
-
   // A packet of the tree (a slot's mirror or refraction packet).
   typedef struct packed {
     logic [3:0]        mask;
@@ -613,7 +603,7 @@ module rc_tracer #(
   logic [3:0]       fs_lanes_q, fs_hits_q;
   logic [1:0]       fs_lane;
   logic             fs_hit, fs_last, fs_step, fs_room_hit, fs_room_miss;
-  assign fs_lane = low_lane(fs_lanes_q);
+  assign fs_lane = rc_pkg::ray_lowest(fs_lanes_q);
   assign fs_hit  = fs_hits_q[fs_lane];
   assign fs_last = (fs_lanes_q & fs_hits_q & ~(4'd1 << fs_lane)) == 4'd0;  // its last hit
 
@@ -1119,7 +1109,7 @@ module rc_tracer #(
     if (shq_push) begin
       sp_slot_q[sp_free]  <= lt_slot;
       sp_light_q[sp_free] <= lt_light;
-      sp_cnt_q[sp_free]   <= count4(as_mask);
+      sp_cnt_q[sp_free]   <= rc_pkg::ray_count(as_mask);
       for (int r = 0; r < 4; r++) term_q[{sp_free, 2'(r)}] <= as_term[r*3*FW +: 3*FW];
     end
   end
@@ -1259,7 +1249,7 @@ module rc_tracer #(
         logic [ApW-1:0] ap_d;
         logic [LpW-1:0] lp_d;
         sh_d = sh_q[s*ShW +: ShW];
-        if (shq_push && lt_slot == SlotW'(s)) sh_d = sh_d + ShW'(count4(as_mask));
+        if (shq_push && lt_slot == SlotW'(s)) sh_d = sh_d + ShW'(rc_pkg::ray_count(as_mask));
         if (cw_sh && cws_slot == SlotW'(s)) sh_d = sh_d - 1'b1;
         sh_q[s*ShW +: ShW] <= sh_d;
         ap_d = ap_q[s*ApW +: ApW];
@@ -1277,7 +1267,7 @@ module rc_tracer #(
           fin_q[s]  <= 1'b0;
           cf_q[s]   <= 1'b0;
           cm_q[s]   <= 1'b0;
-          pend_q[s*3 +: 3] <= count4(pkt_mask_i);
+          pend_q[s*3 +: 3] <= rc_pkg::ray_count(pkt_mask_i);
           depth_q[s*DepthW +: DepthW] <= '0;
           sp_q[s*DepthW +: DepthW] <= '0;
         end else begin
@@ -1287,7 +1277,7 @@ module rc_tracer #(
           end
           if (dec && dec_slot == SlotW'(s)) begin
             if (dec_send) begin
-              pend_q[s*3 +: 3] <= count4(dec_pkt.mask);
+              pend_q[s*3 +: 3] <= rc_pkg::ray_count(dec_pkt.mask);
               depth_q[s*DepthW +: DepthW] <= dec_pkt.depth;
               cm_q[s] <= dec_pkt.mirror;
               cf_q[s] <= 1'b0;
