@@ -82,9 +82,10 @@ configure-tests: configure
 build: configure-tests
 	cmake --build $(BUILD) -j$(JOBS)
 
-# The raycore command alone (and what it links): all that `make render` and `make fpga-ecp5` need.
+# The raycore command (and what it links) and the tree controller's module (rc_tracer: a lit
+# frame's secondary rays on chip): all that `make render` and `make fpga-ecp5` need.
 raycore: configure
-	cmake --build $(BUILD) -j$(JOBS) --target raycore
+	cmake --build $(BUILD) -j$(JOBS) --target raycore rc_tracer
 
 # ctest writes this run's results to a JUnit file of its own (another ctest call cannot overwrite
 # it); tests/ctest_summary.py prints the [cases] lines from it and a last line "ctest: N passed,

@@ -44,6 +44,8 @@ struct RenderArgs {
   uint64_t stall_seed = 0;
   uint64_t watchdog = 200000;
   std::string threads_rtl = "default", isect_interval_rtl = "default", setup_units_rtl = "default";
+  std::string secondary = "chip";  // --lighting scene: secondary rays on chip or host passes
+  bool secondary_given = false;
   std::string trace, trace_window;
   std::vector<std::string> rtl_options_given;  // the --engine rtl options on the command line
 };
@@ -186,6 +188,13 @@ harness::CoreModel rtl_model(const RenderArgs& a) {
   return harness::CoreModel::kDefault;
 }
 
+// --secondary: where --engine rtl makes a lit frame's secondary rays.
+harness::SecondaryPath parse_secondary(const std::string& text) {
+  if (text == "chip") return harness::SecondaryPath::kOnChip;
+  if (text == "host") return harness::SecondaryPath::kHost;
+  throw Error("--secondary: expected chip or host, got '" + text + "'");
+}
+
 // The RTL run's figures: for --stats and for the summary on stdout.
 nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
   const auto perf = [&r](int64_t k) { return r.perf[static_cast<size_t>(k)]; };
@@ -262,14 +271,23 @@ nlohmann::json rtl_json(const harness::CoreSimResult& r, const RenderArgs& a) {
   const uint32_t interval = harness::isect_interval(rtl_model(a));
   nlohmann::json kinds = nlohmann::json::object();
   for (size_t i = 0; i < kc.size(); ++i) {
+    Counters kind_work;
+    kind_work.traversal_steps = kc[i].traversal_steps;
+    kind_work.triangle_tests = kc[i].triangle_tests;
     kinds[harness::ray_kind_name(static_cast<int>(i))] = {
         {"rays", kc[i].rays},
         {"traversal_steps", kc[i].traversal_steps},
         {"triangle_tests", kc[i].triangle_tests},
+        {"rays_per_cycle", share(kc[i].rays, frame_cycles)},
         {"trav_utilisation", share(kc[i].traversal_steps, 4 * frame_cycles)},
-        {"isect_utilisation", share(kc[i].triangle_tests * interval, frame_cycles)}};
+        {"isect_utilisation", share(kc[i].triangle_tests * interval, frame_cycles)},
+        {"efficiency", share(harness::ideal_cycles(kind_work, interval), frame_cycles)}};
   }
   return {{"cycles", r.cycles},
+          {"secondary", !r.lit            ? "none"
+                        : r.on_chip_kinds ? "chip"
+                                          : "host"},
+          {"frame_cycles", frame_cycles},
           {"core_cycles_counter", perf(spec::kCorePerfCycles)},
           {"rays", c.rays},
           {"rays_per_cycle", share(c.rays, r.cycles)},
@@ -324,20 +342,27 @@ void print_rtl_summary(const nlohmann::json& j) {
               j["simulated_cycles_per_second"].get<double>(), j["wall_seconds"].get<double>());
   // The core's own counters per kind, once secondary rays were traced.
   const auto& jk = j["kinds"];
+  if (j["secondary"] == "chip")
+    std::printf(
+        "  secondary rays made on chip (rc_tracer): the figures above are the whole lit "
+        "frame's, every kind's packets in the core together\n");
   if (jk["shadow"]["rays"].get<uint64_t>() + jk["bounce"]["rays"].get<uint64_t>() +
           jk["refract"]["rays"].get<uint64_t>() >
       0) {
     std::printf(
-        "  the core's counters per ray kind (rays, traversal steps, triangle tests; share of "
-        "the frame's traversal and intersection capacity):\n");
+        "  the core's counters per ray kind over the frame's %llu cycles (rays, traversal "
+        "steps, triangle tests; rays/cycle; share of the traversal and intersection capacity; "
+        "efficiency):\n",
+        j["frame_cycles"].get<unsigned long long>());
     for (int i = 0; i < harness::kRayKinds; ++i) {
       const std::string name = harness::ray_kind_name(i);
       const auto& k = jk[name];
-      std::printf("    %-8s %llu, %llu, %llu; trav %.3f, isect %.3f\n", name.c_str(),
-                  k["rays"].get<unsigned long long>(),
+      std::printf("    %-8s %llu, %llu, %llu; %.4f rays/cycle; trav %.3f, isect %.3f; eff %.3f\n",
+                  name.c_str(), k["rays"].get<unsigned long long>(),
                   k["traversal_steps"].get<unsigned long long>(),
-                  k["triangle_tests"].get<unsigned long long>(),
-                  k["trav_utilisation"].get<double>(), k["isect_utilisation"].get<double>());
+                  k["triangle_tests"].get<unsigned long long>(), k["rays_per_cycle"].get<double>(),
+                  k["trav_utilisation"].get<double>(), k["isect_utilisation"].get<double>(),
+                  k["efficiency"].get<double>());
     }
   }
   const std::pair<const char*, const char*> kinds[] = {
@@ -368,6 +393,7 @@ harness::CoreSimResult run_rtl(const RenderArgs& a, const RenderInput& in,
   so.trace_path = a.trace;
   if (!a.trace_window.empty()) parse_window(a.trace_window, so.trace_first, so.trace_last);
   so.progress = !a.quiet;
+  so.secondary = parse_secondary(a.secondary);
   return harness::render_rtl(in.image, opt, so, rtl_model(a));
 }
 
@@ -386,10 +412,14 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   const Frame gold = render_golden(load_geometry<fp24>(in.image), gopt);
   const ExactComparison cmp = compare_exact(gold, rtl);
   std::vector<std::string> counters, allowed;  // differences that fail the check, and not
-  for (const CounterDifference& d : counter_differences(gold.counters, rtl.counters))
+  // The board's run has no CoreSimResult: a frame without lighting (the board refuses it).
+  harness::CoreSimResult board_frame;
+  if (!sim) board_frame.frame = rtl;
+  for (const CounterDifference& d :
+       harness::frame_counter_differences(gold, sim ? *sim : board_frame))
     (d.required ? counters : allowed).push_back(d.text());
-  // Scene lighting: which lights reach each pixel, what its first mirror and refraction rays hit,
-  // and the secondary rays' counters.
+  // Scene lighting: which lights reach each pixel, what its first mirror and refraction rays hit
+  // (the secondary rays' counters are frame_counter_differences()' above).
   const auto differ = [](const auto& x, const auto& y) -> uint64_t {
     if (x.size() != y.size()) return std::max(x.size(), y.size());
     uint64_t n = 0;
@@ -399,17 +429,6 @@ bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& 
   const uint64_t light_differ = differ(gold.light_mask, rtl.light_mask);
   const uint64_t bounce_differ = differ(gold.bounce_tri, rtl.bounce_tri);
   const uint64_t refract_differ = differ(gold.refract_tri, rtl.refract_tri);
-  if (!gold.light_mask.empty() || !rtl.light_mask.empty()) {
-    for (const CounterDifference& d :
-         counter_differences(gold.shadow_counters, rtl.shadow_counters))
-      (d.required ? counters : allowed).push_back("shadow " + d.text());
-    for (const CounterDifference& d :
-         counter_differences(gold.bounce_counters, rtl.bounce_counters))
-      (d.required ? counters : allowed).push_back("bounce " + d.text());
-    for (const CounterDifference& d :
-         counter_differences(gold.refract_counters, rtl.refract_counters))
-      (d.required ? counters : allowed).push_back("refract " + d.text());
-  }
   // The run itself: idle at the end, misses without a hit record, one write per pixel, no
   // watchdog (the regression tests judge a run by the same function).
   const std::vector<std::string> run =
@@ -543,7 +562,10 @@ int run_render(const RenderArgs& a) {
   if (a.engine != "rtl" && !a.rtl_options_given.empty())
     throw Error(a.rtl_options_given.front() + " needs --engine rtl");
   if (!a.trace_window.empty() && a.trace.empty()) throw Error("--trace-window needs --trace");
-  if (a.engine == "rtl") (void)rtl_model(a);   // the model options (--threads-rtl, ...)
+  if (a.engine == "rtl") (void)rtl_model(a);  // the model options (--threads-rtl, ...)
+  if (a.engine == "rtl") (void)parse_secondary(a.secondary);
+  if (a.secondary_given && lighting != Lighting::kScene)
+    throw Error("--secondary needs --lighting scene (the headlight traces no secondary rays)");
   uint64_t window_first = 0, window_last = 0;  // checked here, used by run_rtl()
   if (!a.trace_window.empty()) parse_window(a.trace_window, window_first, window_last);
   const RaySource ray_source = a.ray_source.empty()
@@ -584,6 +606,11 @@ int run_render(const RenderArgs& a) {
   opt.lighting = lighting;
   opt.max_bounces = a.bounces;
 
+  // Secondary rays on chip: a model and an image the tree controller can take, before any work.
+  if (a.engine == "rtl" && parse_secondary(a.secondary) == harness::SecondaryPath::kOnChip)
+    if (const std::string why = harness::on_chip_problem(in.image, opt, rtl_model(a)); !why.empty())
+      throw Error(why);
+
   std::optional<harness::CoreSimResult> rtl;
   std::optional<harness::BoardSimResult> board;
   if (a.engine == "rtl") rtl = run_rtl(a, in, opt);
@@ -606,7 +633,11 @@ int run_render(const RenderArgs& a) {
                        {"lighting", lighting_name(opt.lighting)},
                        {"counters", counters_json(f.counters)}};
   if (!f.light_mask.empty()) js["max_bounces"] = opt.max_bounces;
-  if (!f.light_mask.empty() && a.engine != "embree") {
+  // Secondary rays on chip: the frame's counters are the core's over every kind (rtl.kinds
+  // splits rays, traversal steps and triangle tests by kind).
+  const bool on_chip = rtl && rtl->on_chip_kinds != 0;
+  if (on_chip) js["counters_kinds"] = "all";
+  if (!f.light_mask.empty() && a.engine != "embree" && !on_chip) {
     js["shadow_counters"] = counters_json(f.shadow_counters);
     js["bounce_counters"] = counters_json(f.bounce_counters);
     js["refract_counters"] = counters_json(f.refract_counters);
@@ -618,14 +649,14 @@ int run_render(const RenderArgs& a) {
     if (a.engine != "embree") {
       const Counters& c = f.counters;
       std::printf(
-          "  packets %llu, traversal steps %llu, triangle tests %llu, leaves %llu, "
+          "  %spackets %llu, traversal steps %llu, triangle tests %llu, leaves %llu, "
           "max stack %llu, failed packets %llu\n",
-          static_cast<unsigned long long>(c.packets),
+          on_chip ? "every kind: " : "", static_cast<unsigned long long>(c.packets),
           static_cast<unsigned long long>(c.traversal_steps),
           static_cast<unsigned long long>(c.triangle_tests),
           static_cast<unsigned long long>(c.leaf_visits),
           static_cast<unsigned long long>(c.max_stack), static_cast<unsigned long long>(c.errors));
-      if (!f.light_mask.empty()) {
+      if (!f.light_mask.empty() && !on_chip) {
         const Counters& sc = f.shadow_counters;
         std::printf(
             "  shadow rays %llu in %llu packets, traversal steps %llu, triangle tests %llu, "
@@ -893,6 +924,15 @@ void add_render_commands(CLI::App& app, Action* action) {
                   "rtl: the core's ray set-up units: default (docs/spec.toml [core] setup_units), "
                   "1 or 2 (models `make bench-core` builds)")
       ->capture_default_str();
+  cmd->add_option("--secondary", args->secondary,
+                  "rtl with --lighting scene: chip (the tree controller rc_tracer makes the "
+                  "shadow, mirror and refraction rays and sums the colours on chip; the default "
+                  "core and --threads-rtl 1, at most " +
+                      std::to_string(spec::kLightMaxLights) +
+                      " lights) or host (the core alone traces them in passes, the light terms "
+                      "and directions on the host; every model)")
+      ->capture_default_str()
+      ->each([args](const std::string&) { args->secondary_given = true; });
   cmd->add_option("--trace", args->trace, "rtl: write an FST waveform");
   cmd->add_option("--trace-window", args->trace_window, "rtl: trace only cycles FIRST:LAST");
   cmd->add_option("--watchdog", args->watchdog,
@@ -902,7 +942,7 @@ void add_render_commands(CLI::App& app, Action* action) {
       ->check(kDigits & CLI::Range(uint64_t{1}, uint64_t{1} << 40));
   cmd->callback([cmd, args, action] {
     for (const char* name : {"--latency", "--stall-seed", "--threads-rtl", "--isect-interval-rtl",
-                             "--setup-units-rtl", "--trace", "--trace-window"})
+                             "--setup-units-rtl", "--secondary", "--trace", "--trace-window"})
       if (cmd->get_option(name)->count() > 0) args->rtl_options_given.push_back(name);
     *action = [args] { return run_render(*args); };
   });

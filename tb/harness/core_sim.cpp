@@ -1,6 +1,7 @@
 // The harness around the verilated core: the default model is linked in; the other
-// configurations (Threads = 1, 16, 64, IsectInterval = 1, SetupUnits = 1, 2) are modules loaded
-// when a run asks for them (model_module.hpp, core_module.cpp).
+// configurations (Threads = 1, 16, 64, IsectInterval = 1, SetupUnits = 1, 2) and the tree
+// controller around the default core and the one-thread core (rc_tracer, rc_tracer_t1) are
+// modules loaded when a run asks for them (model_module.hpp, core_module.cpp).
 #include "core_sim.hpp"
 
 #include <algorithm>
@@ -57,6 +58,15 @@ const char* model_module(CoreModel model) {
     case CoreModel::kIsect1: return "rc_core_i1";
     case CoreModel::kSetup1: return "rc_core_s1";
     case CoreModel::kSetup2: return "rc_core_s2";
+    default: return nullptr;
+  }
+}
+
+// The tree controller's module around a model's core (nullptr: none is built).
+const char* tracer_module(CoreModel model) {
+  switch (model) {
+    case CoreModel::kDefault: return "rc_tracer";
+    case CoreModel::kThreads1: return "rc_tracer_t1";
     default: return nullptr;
   }
 }
@@ -228,13 +238,33 @@ CorePacket secondary_packet(RayKind kind, uint32_t mask,
   return p;
 }
 
+std::string on_chip_problem(const scene::SceneImage& image, const RenderOptions& render,
+                            CoreModel model) {
+  if (render.lighting != Lighting::kScene || image.light_count() == 0) return "";
+  if (!tracer_module(model))
+    return "secondary rays on chip: the tree controller (rc_tracer) is built around the default "
+           "core and the core with one thread only, not this model (trace them on the host: "
+           "--secondary host)";
+  if (image.light_count() > static_cast<size_t>(spec::kLightMaxLights))
+    return "secondary rays on chip: the tree controller holds " +
+           std::to_string(spec::kLightMaxLights) + " lights ([light] max_lights), " + image.name() +
+           " has " + std::to_string(image.light_count()) +
+           " (trace them on the host: --secondary host)";
+  return "";
+}
+
 CoreSimResult render_rtl(const scene::SceneImage& image, const RenderOptions& render,
                          const CoreSimOptions& options, CoreModel model) {
+  const bool lit = render.lighting == Lighting::kScene && image.light_count() > 0;
+  if (lit && options.secondary == SecondaryPath::kOnChip) {
+    if (const std::string why = on_chip_problem(image, render, model); !why.empty())
+      throw scene::Error(why);
+    return render_module(tracer_module(model), image, render, options);
+  }
   const char* module = model_module(model);
   CoreSimResult r = module ? render_module(module, image, render, options)
                            : CoreSim<Vrc_core>(image, options).render(render);
-  if (render.lighting == Lighting::kScene && image.light_count() > 0)
-    light_rtl(image, render, options, model, r);
+  if (lit) light_rtl(image, render, options, model, r);
   return r;
 }
 

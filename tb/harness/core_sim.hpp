@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "compare.hpp"
 #include "image.hpp"
 #include "memory_model.hpp"
 #include "rc_constants.hpp"
@@ -31,7 +32,14 @@ const char* core_port_name(int port);
 
 constexpr int kCorePerfCount = static_cast<int>(spec::kCorePerfCount);
 
+// Where render_rtl() makes a lit frame's secondary rays (RenderOptions::lighting kScene, an
+// image with lights): on chip, by the tree controller around the core (rtl/core/rc_tracer.sv,
+// the default), or on the host in passes of the core alone (light_rtl(): each level's shadow,
+// mirror and refraction packets a pass of their own, with each pass's figures).
+enum class SecondaryPath { kOnChip, kHost };
+
 struct CoreSimOptions {
+  SecondaryPath secondary = SecondaryPath::kOnChip;
   // Per port timing (latency, rate limits, random stalls with their seeds).
   std::array<MemoryParams, kCorePorts> memory{};
   // Non-zero: a fixed recipe of seeded random stalls on every port (request stalls, extra delays,
@@ -273,8 +281,26 @@ struct UnitUtilisation {
 UnitUtilisation unit_utilisation(const std::array<uint64_t, kCorePerfCount>& perf, uint64_t cycles,
                                  uint32_t isect_interval, uint32_t setup_units);
 
-// Renders an fp24 image through the verilated core. Throws scene::Error for an image in another
-// format and CoreSimError for a failed run.
+// Why render_rtl() cannot make the frame's secondary rays on chip (empty: it can, or the frame
+// has none): the tree controller is built around the default core and the core with one thread
+// (the modules rc_tracer and rc_tracer_t1), and lights [light] max_lights lights at most.
+std::string on_chip_problem(const scene::SceneImage& image, const RenderOptions& render,
+                            CoreModel model);
+
+// The golden model's frame's counters against a run's (counter_differences(): `required` marks
+// the ones that must match). A frame without scene lighting: its counters. Lit with host passes
+// (CoreSimResult::shadow ..): each kind's counters against the golden model's, the names
+// prefixed by the kind ("shadow rays"). Lit on chip (on_chip_kinds): the core's counters
+// count every packet it traced, so they are compared with the golden model's four kinds summed
+// ("all kinds rays"), and each kind's rays, traversal steps and triangle tests from the core's
+// per-kind counters with the golden model's ("shadow rays"); the other counters (node fetches,
+// stack operations ..) are not counted per kind.
+std::vector<CounterDifference> frame_counter_differences(const Frame& gold, const CoreSimResult& r);
+
+// Renders an fp24 image through the verilated core; with scene lighting, its secondary rays on
+// chip (rc_tracer) or in host passes (CoreSimOptions::secondary). Throws scene::Error for an
+// image in another format or secondary rays on chip that on_chip_problem() refuses, and
+// CoreSimError for a failed run.
 CoreSimResult render_rtl(const scene::SceneImage& image, const RenderOptions& render,
                          const CoreSimOptions& options, CoreModel model = CoreModel::kDefault);
 

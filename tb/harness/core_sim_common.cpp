@@ -173,6 +173,50 @@ std::vector<std::string> run_problems(const CoreSimResult& r) {
   return out;
 }
 
+std::vector<CounterDifference> frame_counter_differences(const Frame& gold,
+                                                         const CoreSimResult& r) {
+  const Frame& f = r.frame;
+  const auto prefixed = [](const std::string& prefix, std::vector<CounterDifference> d) {
+    for (CounterDifference& x : d) x.name = prefix + x.name;
+    return d;
+  };
+  const auto append = [](std::vector<CounterDifference>& to, std::vector<CounterDifference> d) {
+    to.insert(to.end(), d.begin(), d.end());
+  };
+  if (gold.light_mask.empty()) return counter_differences(gold.counters, f.counters);
+  std::vector<CounterDifference> out;
+  const std::array<const Counters*, kRayKinds> gold_kind = {
+      &gold.counters, &gold.shadow_counters, &gold.bounce_counters, &gold.refract_counters};
+  if (r.on_chip_kinds == 0) {
+    const std::array<const Counters*, kRayKinds> rtl_kind = {
+        &f.counters, &f.shadow_counters, &f.bounce_counters, &f.refract_counters};
+    for (int k = 0; k < kRayKinds; ++k) {
+      const auto i = static_cast<size_t>(k);
+      append(out, prefixed(k == 0 ? "" : ray_kind_name(k) + " ",
+                           counter_differences(*gold_kind[i], *rtl_kind[i])));
+    }
+    return out;
+  }
+  Counters all;
+  for (const Counters* c : gold_kind) all.add(*c);
+  append(out, prefixed("all kinds ", counter_differences(all, f.counters)));
+  const std::array<KindCounters, kRayKinds> kc = kind_counters(r.perf);
+  for (int k = 0; k < kRayKinds; ++k) {
+    const auto i = static_cast<size_t>(k);
+    const Counters& g = *gold_kind[i];
+    // After an error only the rays must match (counter_differences()'s rule).
+    const bool exact = all.errors == 0;
+    const std::string name = ray_kind_name(k) + " ";
+    const auto check = [&](const char* what, uint64_t e, uint64_t a, bool always) {
+      if (e != a) out.push_back({name + what, e, a, always || exact});
+    };
+    check("rays", g.rays, kc[i].rays, true);
+    check("traversal_steps", g.traversal_steps, kc[i].traversal_steps, false);
+    check("triangle_tests", g.triangle_tests, kc[i].triangle_tests, false);
+  }
+  return out;
+}
+
 Hit<fp24> hit_from_record(const Geometry<fp24>& g, const Ray<fp24>& ray, const HitRecord& rec) {
   Hit<fp24> h;
   h.tri = rec.tri;

@@ -3,14 +3,17 @@
 several memory latencies and thread counts, and at latency 16 with one and two ray set-up units,
 bit for bit against the golden model, and prints one table: cycles, rays per cycle, efficiency
 (ideal cycles / cycles), the utilisation of each unit and of the busiest one
-(docs/architecture.md, "Counters"), and the simulation's speed. A second table lights the scenes
-with their own lights (--lighting scene, mirror and refraction rays to the default depth) and
-gives each ray kind's figures: the primary frame, the shadow passes, the mirror passes and the
-refraction passes (the secondary packets the core traces after it, docs/architecture.md
-"Lighting", "Reflection" and "Refraction"), and what they add to the frame's cycles. It measures; it judges nothing but the
-bit-exact check (a run that differs from the golden model fails it).
+(docs/architecture.md, "Counters"), and the simulation's speed. Two more tables light the scenes
+with their own lights (--lighting scene, mirror and refraction rays to the default depth): the
+frame with its secondary rays made on chip (the tree controller rc_tracer, docs/architecture.md
+"The tracer") against the same frame's primary rays alone and against the host's passes
+(--secondary host: the core alone traces each level's shadow, mirror and refraction packets after
+the primary frame), and each ray kind's figures in the on-chip frame: rays, rays per cycle, its
+share of the traversal and intersection units, its efficiency (its ideal cycles over the frame's
+cycles). It measures; it judges nothing but the bit-exact check (a run that differs from the
+golden model fails it).
 
-Usage: bench_core.py RAYCORE [--models DIR] [--jobs N] [--markdown FILE] [--quick]
+Usage: bench_core.py RAYCORE [--models DIR] [--jobs N] [--markdown FILE] [--quick] [--lit-only]
 """
 import argparse
 import concurrent.futures
@@ -49,7 +52,7 @@ SETUP_UNITS = ["1", "2"]
 SAARCOR = "SaarCOR (simulated, 64-ray packets): 16 threads 70-80% of the ideal rate, 32 threads 80-90%"
 
 
-def run(raycore, root, models, scene, latency, threads, setup_units="default", lit=False):
+def run(raycore, root, models, scene, latency, threads, setup_units="default", lit=None):
     label, inp, size, extra = scene
     inp = inp.format(models=models)
     with tempfile.TemporaryDirectory() as tmp:
@@ -58,8 +61,8 @@ def run(raycore, root, models, scene, latency, threads, setup_units="default", l
                "--latency", str(latency), "--threads-rtl", threads,
                "--setup-units-rtl", setup_units, "-q",
                "-o", os.path.join(tmp, "i.png"), "--stats", stats] + extra
-        if lit:
-            cmd += ["--lighting", "scene"]
+        if lit:  # where the secondary rays are made: chip or host
+            cmd += ["--lighting", "scene", "--secondary", lit]
         if models:
             cmd += ["--models-path", models]
         start = time.monotonic()
@@ -78,37 +81,55 @@ def run(raycore, root, models, scene, latency, threads, setup_units="default", l
             "efficiency": r["efficiency"], "util": r["utilisation"],
             "busiest": r["busiest_unit"], "pass": d["check"]["pass"],
             "speed": r["simulated_cycles_per_second"], "wall": wall,
+            "frame_cycles": r.get("frame_cycles", r["cycles"]), "kinds": r.get("kinds"),
             "shadow": r.get("shadow_pass"), "bounce": r.get("bounce_pass"),
             "refract": r.get("refract_pass")}
 
 
-def lit_table(rows):
-    head = ("| scene | size | kind | packets | rays | cycles | rays/cycle | efficiency "
-            "| busiest unit | frame cycles / primary | bit-exact |")
+KINDS = (("primary", "primary"), ("shadow", "shadow"), ("bounce", "mirror"),
+         ("refract", "refraction"))
+
+
+def failed(x):
+    return "error" in x or not x["pass"]
+
+
+def lit_frame_table(lit):
+    """Per scene: the primary frame alone, the lit frame on chip, and with the host's passes."""
+    head = ("| scene | size | primary only | on chip | on chip / primary | host passes "
+            "| host / primary | on chip: rays/cycle | efficiency | busiest unit | bit-exact |")
     lines = [head, "|" + "---|" * 11]
-    for x in rows:
-        if "error" in x:
-            lines.append(f"| {x['label']} | | failed: {' '.join(x['error'])} |" + " |" * 8)
+    for p, c, h in lit:
+        if failed(p) or failed(c) or failed(h):
+            why = " ".join((x.get("error") or ["not bit-exact"])[0] for x in (p, c, h) if failed(x))
+            lines.append(f"| {c['label']} | | failed: {why} |" + " |" * 8)
             continue
-        none = {"packets": 0, "rays": 0, "cycles": 0, "rays_per_cycle": 0.0,
-                "efficiency": 0.0, "busiest_unit": {"unit": "-", "utilisation": 0.0}}
-        ok = "yes" if x["pass"] else "NO"
         lines.append(
-            f"| {x['label']} | {x['size']} | primary | | | {x['cycles']:,} | "
-            f"{x['rays_per_cycle']:.3f} | {x['efficiency']:.3f} | {x['busiest']['unit']} "
-            f"{x['busiest']['utilisation']:.3f} | 1.00 | {ok} |")
-        total = x["cycles"]
-        for kind, name in (("shadow", "shadow"), ("bounce", "mirror"), ("refract", "refraction")):
-            s = x[kind] or none
-            if kind != "shadow" and s["rays"] == 0:
+            f"| {c['label']} | {c['size']} | {p['cycles']:,} | {c['cycles']:,} | "
+            f"{c['cycles'] / p['cycles']:.2f} | {h['frame_cycles']:,} | "
+            f"{h['frame_cycles'] / p['cycles']:.2f} | {c['rays_per_cycle']:.3f} | "
+            f"{c['efficiency']:.3f} | {c['busiest']['unit']} {c['busiest']['utilisation']:.3f} "
+            f"| yes |")
+    return "\n".join(lines)
+
+
+def lit_kind_table(lit):
+    """Per scene and ray kind, in the on-chip frame (every kind in the core together)."""
+    head = ("| scene | kind | rays | traversal steps | triangle tests | rays/cycle "
+            "| trav share | isect share | efficiency |")
+    lines = [head, "|" + "---|" * 9]
+    for _, c, _ in lit:
+        if failed(c):
+            continue
+        for key, name in KINDS:
+            k = c["kinds"][key]
+            if key != "primary" and key != "shadow" and k["rays"] == 0:
                 continue
-            total += s["cycles"]
-            ratio = total / x["cycles"] if x["cycles"] else 0.0
             lines.append(
-                f"| {x['label']} | {x['size']} | {name} | {s['packets']:,} | {s['rays']:,} | "
-                f"{s['cycles']:,} | {s['rays_per_cycle']:.3f} | {s['efficiency']:.3f} | "
-                f"{s['busiest_unit']['unit']} {s['busiest_unit']['utilisation']:.3f} | "
-                f"{ratio:.2f} | {ok} |")
+                f"| {c['label']} | {name} | {k['rays']:,} | {k['traversal_steps']:,} | "
+                f"{k['triangle_tests']:,} | {k['rays_per_cycle']:.4f} | "
+                f"{k['trav_utilisation']:.3f} | {k['isect_utilisation']:.3f} | "
+                f"{k['efficiency']:.3f} |")
     return "\n".join(lines)
 
 
@@ -140,6 +161,7 @@ def main():
     ap.add_argument("--markdown", help="also write the table to this file")
     ap.add_argument("--quick", action="store_true",
                     help="latency 16, the default threads and set-up units only")
+    ap.add_argument("--lit-only", action="store_true", help="the lit tables only")
     a = ap.parse_args()
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     models = os.path.abspath(a.models) if a.models else ""
@@ -148,20 +170,29 @@ def main():
         print("bench-core: no shared models directory: bunny left out", file=sys.stderr)
     lats = [16] if a.quick else LATENCIES
     thrs = ["default"] if a.quick else THREADS
-    jobs = [(s, l, t) for s in scenes for t in thrs for l in lats]
-    if not a.quick:
+    jobs = [] if a.lit_only else [(s, l, t) for s in scenes for t in thrs for l in lats]
+    if not a.quick and not a.lit_only:
         jobs += [(s, 16, "default", n) for s in scenes for n in SETUP_UNITS]
-    lit_jobs = [s for s in scenes if s[0] in LIT_SCENES] + LIT_EXTRA
+    lit_scenes = [s for s in scenes if s[0] in LIT_SCENES] + LIT_EXTRA
+    # Per lit scene three runs: its primary rays alone (headlight), on chip, host passes.
+    lit_jobs = [(s, lit) for s in lit_scenes for lit in (None, "chip", "host")]
     start = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
         rows = list(ex.map(lambda j: run(a.raycore, root, models, *j), jobs))
-        lit_rows = list(ex.map(lambda s: run(a.raycore, root, models, s, 16, "default",
-                                             lit=True), lit_jobs))
-    text = table(rows)
-    text += ("\n\nLit by the scenes' own lights (--lighting scene), latency 16, the default "
-             "threads: per ray kind; the secondary passes follow the primary frame (frame "
-             "cycles / primary: the sum so far)\n\n" +
-             lit_table(lit_rows))
+        lit_runs = list(ex.map(lambda j: run(a.raycore, root, models, j[0], 16, "default",
+                                             lit=j[1]), lit_jobs))
+    lit = [tuple(lit_runs[i:i + 3]) for i in range(0, len(lit_runs), 3)]
+    lit_rows = lit_runs
+    text = table(rows) if rows else ""
+    text += ("\n\nLit by the scenes' own lights (--lighting scene, mirror and refraction rays to "
+             "the default depth), latency 16, the default threads: cycles of the primary rays "
+             "alone (the headlight), of the lit frame with its secondary rays made on chip "
+             "(rc_tracer) and with the host's passes (--secondary host: the primary frame, then "
+             "each level's shadow, mirror and refraction packets, summed)\n\n" +
+             lit_frame_table(lit) +
+             "\n\nPer ray kind in the on-chip frame: rays/cycle, each unit's share and the "
+             "efficiency are over the whole frame's cycles (the kinds share the core)\n\n" +
+             lit_kind_table(lit))
     print(text)
     print()
     print(SAARCOR)

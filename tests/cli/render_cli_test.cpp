@@ -88,6 +88,14 @@ TEST(RenderCli, BadOptionsAndOutputs) {
   write_temp("tri.mtl", "newmtl red\nKd 1 0 0\n");
   write_temp("tri.json", R"({"meshes": [{"path": "tri.obj"}]})");
   const std::string obj = dir + "/tri.obj", mtl = dir + "/tri.mtl", tri_scene = dir + "/tri.json";
+  // The default scene with five lights: one more than the tree controller holds.
+  const std::string img5 = dir + "/five_lights.rcimg";
+  {
+    scene::Scene s5 = scene::load_scene(kRoot + "/scenes/default.json", {});
+    while (s5.lights.size() < static_cast<size_t>(spec::kLightMaxLights) + 1)
+      s5.lights.push_back(s5.lights.front());
+    write_file(img5, scene::compile_scene(s5, {}).image);
+  }
   const std::string png = "OUT/x.png";
   const std::vector<std::string> rtl = {"render", img, "--engine", "rtl", "--size", "4x4", "-q"};
   const auto with = [](std::vector<std::string> base, std::vector<std::string> more) {
@@ -126,6 +134,22 @@ TEST(RenderCli, BadOptionsAndOutputs) {
        {"render", img, "-o", png, "--engine", "board", "--lighting", "scene"},
        1,
        "--lighting scene: the board traces primary rays only so far"},
+      {"unknown secondary", with(rtl, {"-o", png, "--lighting", "scene", "--secondary", "gpu"}), 1,
+       "--secondary: expected chip or host, got 'gpu'"},
+      {"secondary with the headlight", with(rtl, {"-o", png, "--secondary", "host"}), 1,
+       "--secondary needs --lighting scene"},
+      {"secondary with golden",
+       {"render", img, "-o", png, "--lighting", "scene", "--secondary", "host"},
+       1,
+       "--secondary needs --engine rtl"},
+      {"on chip around a core without a tracer",
+       with(rtl, {"-o", png, "--lighting", "scene", "--threads-rtl", "16"}), 1,
+       "the tree controller (rc_tracer) is built around the default core and the core with one "
+       "thread only, not this model (trace them on the host: --secondary host)"},
+      {"on chip with five lights",
+       {"render", img5, "--engine", "rtl", "--size", "4x4", "-q", "-o", png, "--lighting", "scene"},
+       1,
+       "the tree controller holds 4 lights ([light] max_lights), "},
       {"bounces beyond the limit",
        {"render", img, "-o", png, "--lighting", "scene", "--bounces", "9"},
        1,

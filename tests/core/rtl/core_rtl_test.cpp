@@ -53,7 +53,7 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
   const Frame& f = r.frame;
   const ExactComparison cmp = compare_exact(gold, f);
   std::vector<std::string> counters;
-  for (const CounterDifference& d : counter_differences(gold.counters, f.counters)) {
+  for (const CounterDifference& d : harness::frame_counter_differences(gold, r)) {
     if (d.required)
       counters.push_back(d.text());
     else
@@ -72,15 +72,6 @@ void expect_bit_exact(const std::string& what, const Frame& gold, const CoreSimR
   EXPECT_EQ(gold.refract_tri.size(), f.refract_tri.size()) << what << ": lit in one engine only";
   for (size_t i = 0; i < std::min(gold.refract_tri.size(), f.refract_tri.size()); ++i)
     light_differ += gold.refract_tri[i] != f.refract_tri[i] ? 1 : 0;
-  if (!gold.light_mask.empty()) {
-    for (const CounterDifference& d : counter_differences(gold.shadow_counters, f.shadow_counters))
-      if (d.required) counters.push_back("shadow " + d.text());
-    for (const CounterDifference& d : counter_differences(gold.bounce_counters, f.bounce_counters))
-      if (d.required) counters.push_back("bounce " + d.text());
-    for (const CounterDifference& d :
-         counter_differences(gold.refract_counters, f.refract_counters))
-      if (d.required) counters.push_back("refract " + d.text());
-  }
   std::printf(
       "[cases] core rtl %s %ux%u: %llu cases, %llu mismatches (%llu cycles, %.3f rays/cycle, "
       "efficiency %.3f, %.0f cycles/s)\n",
@@ -248,19 +239,28 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CoreRtl,
 // Scene lighting: shadow packets in the core   //
 //////////////////////////////////////////////////
 
-// The scenes' own lights (docs/architecture.md, "Lighting"): the core traces the primary frame,
-// then the shadow packets made from its hits (harness::render_rtl); the colours, the lights per
-// pixel and both passes' counters must be the golden model's.
-class CoreRtlLit : public testing::TestWithParam<std::tuple<SceneCase, int>> {};
+// The scenes' own lights (docs/architecture.md, "Lighting", "The tracer"): on chip, the tree
+// controller around the core (rc_tracer) makes each pixel's shadow, mirror and refraction packets
+// from the core's hits and sums its colour; on the host (SecondaryPath::kHost), the core traces
+// the primary frame, then each level's secondary packets in passes of their own
+// (harness::render_rtl). The colours, the lights per pixel, the first mirror and refraction hits
+// and the counters must be the golden model's. The one-thread tracer runs at half the size (each
+// tree's packets go through the core one at a time).
+class CoreRtlLit : public testing::TestWithParam<std::tuple<SceneCase, int, bool>> {};
 
 // The lit case whose view has no occluder (the terrain under its directional light at 64x48:
 // every shadow ray reaches the light); it covers the directional light's limit, +inf.
 const char* const kUnshadowed = "scenes/terrain.json";
 
 TEST_P(CoreRtlLit, MatchesGoldenBitForBit) {
-  const SceneCase c = std::get<0>(GetParam());
+  SceneCase c = std::get<0>(GetParam());
   const Mode& mode = kModes[std::get<1>(GetParam())];
+  const bool host = std::get<2>(GetParam());
   RC_SKIP_WITHOUT_MODELS(c);
+  if (!host && mode.model == CoreModel::kThreads1) {
+    c.width = (c.width + 1) / 2;
+    c.height = (c.height + 1) / 2;
+  }
   const RenderInput in = case_input(c);
   ASSERT_GT(in.image.light_count(), 0u) << c.input << ": a lit case needs a scene with lights";
   RenderOptions opt = case_options(c, in);
@@ -268,32 +268,46 @@ TEST_P(CoreRtlLit, MatchesGoldenBitForBit) {
   const Frame gold = render_golden(load_geometry<fp24>(in.image), opt);
   CoreSimOptions so;
   so.stall_seed = mode.stall_seed;
+  so.secondary = host ? harness::SecondaryPath::kHost : harness::SecondaryPath::kOnChip;
   const CoreSimResult r = harness::render_rtl(in.image, opt, so, mode.model);
   ASSERT_TRUE(r.lit);
+  EXPECT_EQ(r.on_chip_kinds != 0, !host) << "the secondary rays were made where asked";
   const std::string repro =
       "./build/tb/app/raycore render " + cli_input(c) +
       " --engine rtl --lighting scene --check -o /tmp/rc_case.png --size " +
       std::to_string(c.width) + "x" + std::to_string(c.height) +
       (c.auto_camera ? " --auto-camera" : "") +
       (mode.stall_seed ? " --stall-seed " + std::to_string(mode.stall_seed) : "") +
-      (mode.model == CoreModel::kThreads1 ? " --threads-rtl 1" : "");
-  expect_bit_exact(std::string(c.input) + " lit " + mode.name, gold, r, repro, mode.model);
+      (mode.model == CoreModel::kThreads1 ? " --threads-rtl 1" : "") +
+      (host ? " --secondary host" : "");
+  expect_bit_exact(std::string(c.input) + " lit " + (host ? "host " : "chip ") + mode.name, gold, r,
+                   repro, mode.model);
   const Counters& sc = gold.shadow_counters;
-  std::printf(
-      "  shadow passes: %llu packets, %llu rays, %llu cycles (primary %llu); golden: %llu shadow "
-      "rays, %llu culled pops; bounce passes: %llu packets, %llu rays, %llu cycles; refract "
-      "passes: %llu packets, %llu rays, %llu cycles\n",
-      static_cast<unsigned long long>(r.shadow.packets),
-      static_cast<unsigned long long>(r.frame.shadow_counters.rays),
-      static_cast<unsigned long long>(r.shadow.cycles), static_cast<unsigned long long>(r.cycles),
-      static_cast<unsigned long long>(sc.rays), static_cast<unsigned long long>(sc.culled_pops),
-      static_cast<unsigned long long>(r.bounce.packets),
-      static_cast<unsigned long long>(r.frame.bounce_counters.rays),
-      static_cast<unsigned long long>(r.bounce.cycles),
-      static_cast<unsigned long long>(r.refract.packets),
-      static_cast<unsigned long long>(r.frame.refract_counters.rays),
-      static_cast<unsigned long long>(r.refract.cycles));
+  if (host)
+    std::printf(
+        "  shadow passes: %llu packets, %llu rays, %llu cycles (primary %llu); golden: %llu shadow "
+        "rays, %llu culled pops; bounce passes: %llu packets, %llu rays, %llu cycles; refract "
+        "passes: %llu packets, %llu rays, %llu cycles\n",
+        static_cast<unsigned long long>(r.shadow.packets),
+        static_cast<unsigned long long>(r.frame.shadow_counters.rays),
+        static_cast<unsigned long long>(r.shadow.cycles), static_cast<unsigned long long>(r.cycles),
+        static_cast<unsigned long long>(sc.rays), static_cast<unsigned long long>(sc.culled_pops),
+        static_cast<unsigned long long>(r.bounce.packets),
+        static_cast<unsigned long long>(r.frame.bounce_counters.rays),
+        static_cast<unsigned long long>(r.bounce.cycles),
+        static_cast<unsigned long long>(r.refract.packets),
+        static_cast<unsigned long long>(r.frame.refract_counters.rays),
+        static_cast<unsigned long long>(r.refract.cycles));
   EXPECT_GT(sc.rays, 0u) << "shadow rays were traced";
+  if (!host) {
+    const auto kc = harness::kind_counters(r.perf);
+    std::printf(
+        "  on chip: %llu cycles; rays: %llu primary, %llu shadow, %llu mirror, %llu "
+        "refraction\n",
+        static_cast<unsigned long long>(r.cycles), static_cast<unsigned long long>(kc[0].rays),
+        static_cast<unsigned long long>(kc[1].rays), static_cast<unsigned long long>(kc[2].rays),
+        static_cast<unsigned long long>(kc[3].rays));
+  }
   if (std::string(c.input) == "scenes/spheres.json" ||
       std::string(c.input) == "scenes/cornell-mirror.json") {
     EXPECT_GT(gold.bounce_counters.rays, 0u) << "the mirrors send mirror rays";
@@ -321,13 +335,23 @@ const SceneCase kLitScenes[] = {
     {"scenes/cornell-glass.json", false, true, 64, 48},  // a mirror sphere and a glass sphere
 };
 
-std::string lit_case_name(const testing::TestParamInfo<std::tuple<SceneCase, int>>& info) {
-  return case_name(info);
+std::string lit_case_name(const testing::TestParamInfo<std::tuple<SceneCase, int, bool>>& info) {
+  std::string n = std::get<0>(info.param).input;
+  n += std::string(std::get<2>(info.param) ? "_host_" : "_chip_") +
+       kModes[std::get<1>(info.param)].name;
+  for (char& ch : n)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return n;
 }
 
-// lat16, stall1, t1 (kModes 0, 1, 3).
-INSTANTIATE_TEST_SUITE_P(Scenes, CoreRtlLit,
-                         testing::Combine(testing::ValuesIn(kLitScenes), testing::Values(0, 1, 3)),
+// On chip: lat16, stall1, t1 (kModes 0, 1, 3); host passes: lat16 and t1.
+INSTANTIATE_TEST_SUITE_P(OnChip, CoreRtlLit,
+                         testing::Combine(testing::ValuesIn(kLitScenes), testing::Values(0, 1, 3),
+                                          testing::Values(false)),
+                         lit_case_name);
+INSTANTIATE_TEST_SUITE_P(Host, CoreRtlLit,
+                         testing::Combine(testing::ValuesIn(kLitScenes), testing::Values(0, 3),
+                                          testing::Values(true)),
                          lit_case_name);
 
 // A point light between a floor (y = 0) and a ceiling (y = 2), all in one leaf (a tree of depth
@@ -378,7 +402,10 @@ TEST(CoreRtlLitDirected, QuadBeyondTheLightInTheSameLeafDoesNotShadow) {
   EXPECT_GT(floor, 0u);
   EXPECT_GT(ceiling, 0u);
   EXPECT_EQ(lit_pairs, floor + ceiling) << "every hit sees the light";
-  EXPECT_EQ(r.frame.shadow_counters.rays, floor + ceiling);
+  // On chip (the default): the core's own count of shadow rays.
+  ASSERT_NE(r.on_chip_kinds, 0u);
+  EXPECT_EQ(harness::kind_counters(r.perf)[static_cast<size_t>(spec::kRayKindShadow)].rays,
+            floor + ceiling);
 }
 
 //////////////////////////////////////////////

@@ -1,31 +1,22 @@
-// The tree controller (rtl/core/rc_tracer.sv): scene lighting made on chip (local shading, one
-// shadow ray per light and hit, mirror and refraction rays to max_bounces), verilated and run
-// through the harness, against the golden model's lit frame at the same depth, bit for bit: every
+// The tree controller (rtl/core/rc_tracer.sv) through render_rtl() (the modules rc_tracer and
+// rc_tracer_t1): the cases the lit scenes of core_rtl_test (CoreRtlLit, on chip) do not cover:
+// four lights (point and directional, coloured), depth 0 and the limit, and a core with one
+// thread under seeded random stalls on every port (the two lighting ports included) and on the
+// framebuffer port. Against the golden model's lit frame at the same depth, bit for bit: every
 // pixel's colour, hit record, the lights that reach it and what its first mirror and refraction
-// rays hit; the counters of all packets (the core's totals against the golden model's primary,
-// shadow, mirror and refraction counters summed) and per ray kind. Scenes with one point light,
-// four lights (point and directional, coloured), a directional light, mirrors and glass, at depth
-// 0, the default 3 and the limit, at the default memory latency and with seeded random stalls on
-// every port (the two lighting ports included) and on the framebuffer port; and around a core
-// with one thread.
+// rays hit; the counters of all packets (the core's totals against the golden model's four kinds
+// summed) and per ray kind.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include "Vrc_tracer.h"
-#include "Vrc_tracer_t1.h"
 #include "compare.hpp"
 #include "compiler.hpp"
-#include "core_sim_impl.hpp"
+#include "core_sim.hpp"
 #include "geometry.hpp"
 #include "job.hpp"
-
-namespace rc::harness {
-template class CoreSim<Vrc_tracer>;
-template class CoreSim<Vrc_tracer_t1>;
-}  // namespace rc::harness
 
 namespace rc::test {
 namespace {
@@ -95,10 +86,11 @@ TEST_P(TracerRtl, MatchesGoldenBitForBit) {
 
   CoreSimOptions so;
   so.stall_seed = c.stall_seed;
-  const CoreSimResult r = c.t1 ? harness::CoreSim<Vrc_tracer_t1>(in.image, so).render(opt)
-                               : harness::CoreSim<Vrc_tracer>(in.image, so).render(opt);
+  const CoreSimResult r = harness::render_rtl(
+      in.image, opt, so, c.t1 ? harness::CoreModel::kThreads1 : harness::CoreModel::kDefault);
   const Frame& f = r.frame;
   ASSERT_TRUE(r.lit);
+  ASSERT_NE(r.on_chip_kinds, 0u) << "the secondary rays were made on chip";
 
   const ExactComparison cmp = compare_exact(gold, f);
   uint64_t light_differ = 0, lit_pairs = 0;
@@ -110,33 +102,16 @@ TEST_P(TracerRtl, MatchesGoldenBitForBit) {
   const uint64_t bounce_differ = differ(gold.bounce_tri, f.bounce_tri);
   const uint64_t refract_differ = differ(gold.refract_tri, f.refract_tri);
 
-  // The core's counters count every packet it traced: the primary packets and the ones the
-  // controller made.
-  Counters all = gold.counters;
-  all.add(gold.shadow_counters);
-  all.add(gold.bounce_counters);
-  all.add(gold.refract_counters);
+  // The core's counters count every packet it traced (the primary packets and the ones the
+  // controller made): against the golden model's four kinds summed, and per kind its rays,
+  // traversal steps and triangle tests.
   std::vector<std::string> counters;
-  for (const CounterDifference& d : counter_differences(all, f.counters))
+  for (const CounterDifference& d : harness::frame_counter_differences(gold, r))
     counters.push_back(d.text());
   const auto kinds = harness::kind_counters(r.perf);
   const auto kind = [&kinds](int64_t k) -> const harness::KindCounters& {
     return kinds[static_cast<size_t>(k)];
   };
-  const auto expect_kind = [&](const char* name, const harness::KindCounters& k,
-                               const Counters& g) {
-    if (k.rays != g.rays || k.traversal_steps != g.traversal_steps ||
-        k.triangle_tests != g.triangle_tests)
-      counters.push_back(std::string(name) + ": rays " + std::to_string(k.rays) + " (golden " +
-                         std::to_string(g.rays) + "), steps " + std::to_string(k.traversal_steps) +
-                         " (" + std::to_string(g.traversal_steps) + "), tests " +
-                         std::to_string(k.triangle_tests) + " (" +
-                         std::to_string(g.triangle_tests) + ")");
-  };
-  expect_kind("primary", kind(spec::kRayKindPrimary), gold.counters);
-  expect_kind("shadow", kind(spec::kRayKindShadow), gold.shadow_counters);
-  expect_kind("mirror", kind(spec::kRayKindBounce), gold.bounce_counters);
-  expect_kind("refraction", kind(spec::kRayKindRefract), gold.refract_counters);
 
   const auto u = [](uint64_t v) { return static_cast<unsigned long long>(v); };
   const uint64_t rays = f.counters.rays;
@@ -185,17 +160,14 @@ TEST_P(TracerRtl, MatchesGoldenBitForBit) {
 const uint32_t kDefaultDepth = static_cast<uint32_t>(spec::kLightMaxBounces);
 const uint32_t kLimit = static_cast<uint32_t>(spec::kLightBounceLimit);
 
+// The cases CoreRtlLit (core_rtl_test.cpp) does not have: every lit scene runs there on chip at
+// the default memory latency, with stalls and with one thread.
 const TracerCase kCases[] = {
-    {"scenes/default.json", 64, 48, kDefaultDepth, 0, false},         // one point light
-    {"scenes/default.json", 48, 36, kDefaultDepth, 1, false},         // with stalls
-    {"scenes/default.json", 40, 30, kDefaultDepth, 4, true},          // four lights, with stalls
-    {"scenes/terrain.json", 48, 36, kDefaultDepth, 0, false},         // a directional light: +inf
-    {"scenes/cornell-mirror.json", 48, 36, kDefaultDepth, 2, false},  // a mirror block
-    {"scenes/spheres.json", 48, 36, kDefaultDepth, 0, false},         // mirror and glass spheres
-    {"scenes/spheres.json", 40, 30, kDefaultDepth, 3, false},         // with stalls
-    {"scenes/spheres.json", 32, 24, 0, 5, false},                     // local shading only
-    {"scenes/spheres.json", 32, 24, kLimit, 6, false},                // the deepest trees
-    // Around a core with one thread: every packet of every tree through it, one at a time.
+    {"scenes/default.json", 40, 30, kDefaultDepth, 4, true},  // four lights, with stalls
+    {"scenes/spheres.json", 32, 24, 0, 5, false},             // local shading only
+    {"scenes/spheres.json", 32, 24, kLimit, 6, false},        // the deepest trees
+    // Around a core with one thread, with stalls: every packet of every tree through it, one at
+    // a time.
     {"scenes/default.json", 32, 24, kDefaultDepth, 7, false, true},
     {"scenes/spheres.json", 24, 18, kDefaultDepth, 8, false, true},
 };
