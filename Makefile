@@ -243,14 +243,15 @@ include tests/fuzz/fuzz.mk
 # The core's benchmark: every regression scene through the verilated core at memory latencies 1, 16
 # and 64 and 16, 64 and the default threads, and with one and two ray set-up units, bit for bit:
 # cycles, rays/cycle, efficiency and each unit's utilisation in one table
-# (tests/bench/bench_core.py; build/bench/core.md keeps it).
+# (tests/bench/bench_core.py; build/bench/core.md keeps it). BENCH_ARGS passes more options, e.g.
+# BENCH_ARGS="--lit-only --scenes conference,sponza,spheres --no-host".
 MODELS_DIR ?= $(or $(RAYCORE_MODELS_PATH),../shared/models)
 .PHONY: bench-core
 bench-core: raycore
 	cmake --build $(BUILD) -j$(JOBS) --target rc_core_bench_modules
 	@mkdir -p $(BUILD)/bench
 	$(PYTHON) tests/bench/bench_core.py $(BUILD)/tb/app/raycore --models $(MODELS_DIR) \
-	  --jobs $(JOBS) --markdown $(BUILD)/bench/core.md
+	  --jobs $(JOBS) --markdown $(BUILD)/bench/core.md $(BENCH_ARGS)
 
 # Scene compiler benchmark: build time and SAH cost for bunny, Sponza and the conference room.
 .PHONY: bench-scene

@@ -42,7 +42,8 @@
 //   write without a hit and without its packet's error (colour 1) adds its term. The hits'
 //   geometry makes the packet's mirror and refraction packets (depth < max_bounces_i): the
 //   mirror packet becomes the slot's current packet, the refraction packet goes onto the slot's
-//   stack (MaxBounces entries), popped when a packet has no mirror packet; a packet that met an
+//   stack (MaxBounces entries of a block RAM), popped when a packet has no mirror packet (the
+//   popped packet is sent a cycle after the decision); a packet that met an
 //   error adds nothing and has no children. The slot is done when no packet of its tree is left
 //   and all its terms are added; its lanes are then written, one per cycle, and it is freed.
 // - Status: idle_o = the core idle, no slot held and no write pending. error_o: the core's, and
@@ -287,8 +288,7 @@ module rc_tracer #(
   logic [MaxLights-1:0]   lm_q     [Slots*4];  // the lights that reach the primary hit
   logic [31:0]            btri_q   [Slots*4];  // the first mirror ray's triangle
   logic [31:0]            rtri_q   [Slots*4];  // the first refraction ray's triangle
-  // The stacks, at {slot, entry}.
-  child_t                 stk_q    [Slots*MaxBounces];
+  // The stacks are a block RAM (u_stack, below), at {slot, entry}.
 
   ///////////////////////////
   // Packets into the core //
@@ -595,7 +595,8 @@ module rc_tracer #(
   // dec_geo and for room in the tree packet queue.
   logic dec_geo, dec_room;
   logic fs_busy_q;
-  assign dec_room = bq_count == 2'd0;
+  logic pop_q;  // a stack pop's read: its packet is sent in this cycle, no decision is made
+  assign dec_room = bq_count == 2'd0 && !pop_q;
   assign fq_pop   = fq_valid && !fs_busy_q && (fq_work != 4'd0 || (dec_room && !dec_geo));
 
   // The sequencer: the popped packet's lanes, one per cycle.
@@ -926,28 +927,65 @@ module rc_tracer #(
 
   // The decision: the mirror packet becomes the slot's current packet and the refraction packet
   // goes onto its stack; without a mirror packet the refraction packet is sent, or the stack's
-  // top; with neither the tree is done.
-  logic              dec, dec_send, dec_push, dec_pop, dec_done;
-  logic [SlotW-1:0]  dec_slot;
-  child_t            dec_m, dec_r, dec_top, dec_pkt;
+  // top; with neither the tree is done. A pop reads the stack's block RAM in the decision's cycle
+  // and sends the packet in the next (pop_q), in which no decision is made (dec_room), so the
+  // tree packet queue, empty at the decision, has room for it.
+  logic              dec, dec_now, dec_push, dec_pop, dec_done;
+  logic [SlotW-1:0]  dec_slot, pop_slot_q;
+  child_t            dec_m, dec_r, stk_top;
   logic [DepthW-1:0] dec_sp;
   assign dec      = dec_geo || dec_seq || (fq_pop && fq_work == 4'd0);
   assign dec_slot = dec_geo ? geo_slot : dec_seq ? fs_slot_q : fq_slot;
   assign dec_m    = dec_geo ? gm : '0;
   assign dec_r    = dec_geo ? gr : '0;
   assign dec_sp   = sp_q[dec_slot*DepthW +: DepthW];
-  localparam int unsigned StkIdxW = $clog2(Slots * MaxBounces);
-  logic [StkIdxW-1:0] dec_top_idx;
-  assign dec_top_idx = StkIdxW'(dec_slot * MaxBounces + 32'(dec_sp) - 1);
-  assign dec_top  = stk_q[dec_top_idx];
+  assign dec_now  = dec && (dec_m.mask != 4'd0 || dec_r.mask != 4'd0);
   assign dec_push = dec && dec_m.mask != 4'd0 && dec_r.mask != 4'd0;
-  assign dec_pop  = dec && dec_m.mask == 4'd0 && dec_r.mask == 4'd0 && dec_sp != '0;
-  assign dec_send = dec && (dec_m.mask != 4'd0 || dec_r.mask != 4'd0 || dec_sp != '0);
-  assign dec_done = dec && !dec_send;
-  assign dec_pkt  = dec_m.mask != 4'd0 ? dec_m : dec_r.mask != 4'd0 ? dec_r : dec_top;
-  assign bq_push  = dec_send;
-  assign bq_wdata = {dec_pkt.mirror, dec_pkt.mask, dec_pkt.org, dec_pkt.dir, dec_pkt.stri,
-                     dec_slot};
+  assign dec_pop  = dec && !dec_now && dec_sp != '0;
+  assign dec_done = dec && !dec_now && dec_sp == '0;
+
+  // One decision per cycle, and none in a pop's second cycle: a word is never read in the cycle
+  // it is written.
+  localparam int unsigned StkDepth = Slots * MaxBounces;
+  localparam int unsigned ChildW   = 4 + 1 + DepthW + 24 * W + 4 * W + 128;  // child_t's bits
+  localparam int unsigned StkIdxW  = (StkDepth > 1) ? $clog2(StkDepth) : 1;
+  logic [StkIdxW-1:0] stk_waddr, stk_raddr;
+  assign stk_waddr = StkIdxW'(dec_slot * MaxBounces + 32'(dec_sp));
+  assign stk_raddr = StkIdxW'(dec_slot * MaxBounces + 32'(dec_sp) - 1);
+  rc_ram #(
+    .Width (ChildW),
+    .Depth (StkDepth),
+    .OutReg(1'b0)
+  ) u_stack (
+    .clk_i,
+    .we_i   (dec_push),
+    .waddr_i(stk_waddr),
+    .wdata_i(dec_r),
+    .re_i   (dec_pop),
+    .raddr_i(stk_raddr),
+    .rdata_o(stk_top)
+  );
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pop_q      <= 1'b0;
+      pop_slot_q <= '0;
+    end else begin
+      pop_q <= dec_pop;
+      if (dec_pop) pop_slot_q <= dec_slot;
+    end
+  end
+
+  // A packet of the tree is sent: it becomes its slot's current packet.
+  logic             snd;
+  logic [SlotW-1:0] snd_slot;
+  child_t           snd_pkt;
+  assign snd      = dec_now || pop_q;
+  assign snd_slot = pop_q ? pop_slot_q : dec_slot;
+  assign snd_pkt  = pop_q ? stk_top : dec_m.mask != 4'd0 ? dec_m : dec_r;
+  assign bq_push  = snd;
+  assign bq_wdata = {snd_pkt.mirror, snd_pkt.mask, snd_pkt.org, snd_pkt.dir, snd_pkt.stri,
+                     snd_slot};
 
   /////////////////////////////
   // Light samples and terms //
@@ -1275,13 +1313,13 @@ module rc_tracer #(
             pend_q[s*3 +: 3] <= pend_q[s*3 +: 3] - 1'b1;
             if (!cw_d0 && core_fb_rgb[0]) cf_q[s] <= 1'b1;
           end
+          if (snd && snd_slot == SlotW'(s)) begin
+            pend_q[s*3 +: 3] <= rc_pkg::ray_count(snd_pkt.mask);
+            depth_q[s*DepthW +: DepthW] <= snd_pkt.depth;
+            cm_q[s] <= snd_pkt.mirror;
+            cf_q[s] <= 1'b0;
+          end
           if (dec && dec_slot == SlotW'(s)) begin
-            if (dec_send) begin
-              pend_q[s*3 +: 3] <= rc_pkg::ray_count(dec_pkt.mask);
-              depth_q[s*DepthW +: DepthW] <= dec_pkt.depth;
-              cm_q[s] <= dec_pkt.mirror;
-              cf_q[s] <= 1'b0;
-            end
             if (dec_push) sp_q[s*DepthW +: DepthW] <= dec_sp + 1'b1;
             if (dec_pop) sp_q[s*DepthW +: DepthW] <= dec_sp - 1'b1;
             if (dec_done) td_q[s] <= 1'b1;
@@ -1311,17 +1349,16 @@ module rc_tracer #(
       end
     end
     // A tree packet becomes the slot's current packet: its rays and weights.
-    if (dec_send) begin
-      cmask_q[dec_slot] <= dec_pkt.mask;
+    if (snd) begin
+      cmask_q[snd_slot] <= snd_pkt.mask;
       for (int r = 0; r < 4; r++) begin
-        if (dec_pkt.mask[r]) begin
-          ray_q[(SlotW + 2)'(4 * dec_slot + r)] <= {FpOne, dec_pkt.dir[r*3*W +: 3*W],
-                                                    dec_pkt.org[r*3*W +: 3*W]};
-          w_q[(SlotW + 2)'(4 * dec_slot + r)]   <= dec_pkt.w[r*W +: W];
+        if (snd_pkt.mask[r]) begin
+          ray_q[(SlotW + 2)'(4 * snd_slot + r)] <= {FpOne, snd_pkt.dir[r*3*W +: 3*W],
+                                                    snd_pkt.org[r*3*W +: 3*W]};
+          w_q[(SlotW + 2)'(4 * snd_slot + r)]   <= snd_pkt.w[r*W +: W];
         end
       end
     end
-    if (dec_push) stk_q[dec_slot*MaxBounces + 32'(dec_sp)] <= dec_r;
     // The current packet's writes; the primary's are kept for the pixel's write, the first
     // mirror and refraction rays' triangles for the report.
     if (cw_cur) begin

@@ -100,14 +100,16 @@ def lit_frame_table(lit):
             "| host / primary | on chip: rays/cycle | efficiency | busiest unit | bit-exact |")
     lines = [head, "|" + "---|" * 11]
     for p, c, h in lit:
-        if failed(p) or failed(c) or failed(h):
-            why = " ".join((x.get("error") or ["not bit-exact"])[0] for x in (p, c, h) if failed(x))
+        runs = [x for x in (p, c, h) if x is not None]
+        if any(failed(x) for x in runs):
+            why = " ".join((x.get("error") or ["not bit-exact"])[0] for x in runs if failed(x))
             lines.append(f"| {c['label']} | | failed: {why} |" + " |" * 8)
             continue
+        host = (f"{h['frame_cycles']:,} | {h['frame_cycles'] / p['cycles']:.2f}" if h else
+                "not run | ")
         lines.append(
             f"| {c['label']} | {c['size']} | {p['cycles']:,} | {c['cycles']:,} | "
-            f"{c['cycles'] / p['cycles']:.2f} | {h['frame_cycles']:,} | "
-            f"{h['frame_cycles'] / p['cycles']:.2f} | {c['rays_per_cycle']:.3f} | "
+            f"{c['cycles'] / p['cycles']:.2f} | {host} | {c['rays_per_cycle']:.3f} | "
             f"{c['efficiency']:.3f} | {c['busiest']['unit']} {c['busiest']['utilisation']:.3f} "
             f"| yes |")
     return "\n".join(lines)
@@ -162,26 +164,40 @@ def main():
     ap.add_argument("--quick", action="store_true",
                     help="latency 16, the default threads and set-up units only")
     ap.add_argument("--lit-only", action="store_true", help="the lit tables only")
+    ap.add_argument("--scenes", help="only these scenes (labels, comma-separated)")
+    ap.add_argument("--no-host", action="store_true",
+                    help="lit scenes: no run with the host's passes (--secondary host)")
     a = ap.parse_args()
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     models = os.path.abspath(a.models) if a.models else ""
     scenes = [s for s in SCENES if models or "{models}" not in s[1]]
     if len(scenes) < len(SCENES):
         print("bench-core: no shared models directory: bunny left out", file=sys.stderr)
+    lit_extra = LIT_EXTRA
+    if a.scenes:
+        only = a.scenes.split(",")
+        known = {s[0] for s in SCENES + LIT_EXTRA}
+        unknown = [x for x in only if x not in known]
+        if unknown:
+            ap.error(f"unknown scene {', '.join(unknown)} (known: {', '.join(sorted(known))})")
+        scenes = [s for s in scenes if s[0] in only]
+        lit_extra = [s for s in LIT_EXTRA if s[0] in only]
     lats = [16] if a.quick else LATENCIES
     thrs = ["default"] if a.quick else THREADS
     jobs = [] if a.lit_only else [(s, l, t) for s in scenes for t in thrs for l in lats]
     if not a.quick and not a.lit_only:
         jobs += [(s, 16, "default", n) for s in scenes for n in SETUP_UNITS]
-    lit_scenes = [s for s in scenes if s[0] in LIT_SCENES] + LIT_EXTRA
+    lit_scenes = [s for s in scenes if s[0] in LIT_SCENES] + lit_extra
     # Per lit scene three runs: its primary rays alone (headlight), on chip, host passes.
-    lit_jobs = [(s, lit) for s in lit_scenes for lit in (None, "chip", "host")]
+    lit_modes = (None, "chip") if a.no_host else (None, "chip", "host")
+    lit_jobs = [(s, lit) for s in lit_scenes for lit in lit_modes]
     start = time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
         rows = list(ex.map(lambda j: run(a.raycore, root, models, *j), jobs))
         lit_runs = list(ex.map(lambda j: run(a.raycore, root, models, j[0], 16, "default",
                                              lit=j[1]), lit_jobs))
-    lit = [tuple(lit_runs[i:i + 3]) for i in range(0, len(lit_runs), 3)]
+    n = len(lit_modes)
+    lit = [tuple(lit_runs[i:i + n]) + (None,) * (3 - n) for i in range(0, len(lit_runs), n)]
     lit_rows = lit_runs
     text = table(rows) if rows else ""
     text += ("\n\nLit by the scenes' own lights (--lighting scene, mirror and refraction rays to "
