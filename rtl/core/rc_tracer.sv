@@ -39,7 +39,8 @@
 //   refraction ray (depth > 0) to fix(bg x weight). A sample at light 0 adds the hit's ambient
 //   term; a present sample's ray goes into the light's shadow packet, which takes one of
 //   ShadowPackets entries (its slot, light and four terms) and goes to the core; a shadow ray's
-//   write without a hit and without its packet's error (colour 1) adds its term. The hits'
+//   write without a hit and without its packet's error (colour 1) adds its term (a cycle later;
+//   the packets' terms are a block RAM). The hits'
 //   geometry makes the packet's mirror and refraction packets (depth < max_bounces_i): the
 //   mirror packet becomes the slot's current packet, the refraction packet goes onto the slot's
 //   stack (MaxBounces entries of a block RAM), popped when a packet has no mirror packet (the
@@ -530,17 +531,15 @@ module rc_tracer #(
   // A shadow ray reached its light: no hit, and its packet met no error (colour 1).
   assign cw_reached = cw_sh && !core_fb_hit && !core_fb_rgb[0];
 
-  // The shadow packets in flight: slot, light, whether from a primary hit, rays out, terms.
+  // The shadow packets in flight: slot, light, whether from a primary hit, rays out (the four
+  // terms are a block RAM, u_terms, below).
   logic [ShadowPackets-1:0] spb_q;
   logic [SlotW-1:0]         sp_slot_q  [ShadowPackets];
   logic [LightW-1:0]        sp_light_q [ShadowPackets];
   logic [ShadowPackets-1:0] sp_d0_q;
   logic [2:0]               sp_cnt_q   [ShadowPackets];
-  logic [3*FW-1:0]          term_q     [ShadowPackets*4];
   logic [SlotW-1:0]         cws_slot;
-  logic [SpW+1:0]           cws_ln;
   assign cws_slot = sp_slot_q[cw_sp];
-  assign cws_ln   = {cw_sp, cw_lane};
 
   logic             sp_free_any;
   logic [SpW-1:0]   sp_free;
@@ -1019,7 +1018,8 @@ module rc_tracer #(
     .count_o(aq_count)
   );
   assign {aq_ln, aq_term} = aq_rdata;
-  assign aq_pop = aq_valid && !cw_reached;
+  logic rs_q;  // a reached shadow ray's term is added in this cycle
+  assign aq_pop = aq_valid && !rs_q;
 
   // The miss term: fix(bg_c * w) per channel, MissL cycles; issued only while the add queue has
   // room for it beside the ones in flight and an ambient term.
@@ -1148,7 +1148,45 @@ module rc_tracer #(
       sp_slot_q[sp_free]  <= lt_slot;
       sp_light_q[sp_free] <= lt_light;
       sp_cnt_q[sp_free]   <= rc_pkg::ray_count(as_mask);
-      for (int r = 0; r < 4; r++) term_q[{sp_free, 2'(r)}] <= as_term[r*3*FW +: 3*FW];
+    end
+  end
+
+  // The shadow packets' terms, a word of four per packet: written with the packet, read at a
+  // reached ray's write and added a cycle later (rs_q). The word read belongs to a packet in
+  // flight and the word written to a free one, so a word is never read in the cycle it is
+  // written.
+  logic [12*FW-1:0] term_word;
+  rc_ram #(
+    .Width (12 * FW),
+    .Depth (ShadowPackets),
+    .OutReg(1'b0)
+  ) u_terms (
+    .clk_i,
+    .we_i   (shq_push),
+    .waddr_i(sp_free),
+    .wdata_i(as_term),
+    .re_i   (cw_reached),
+    .raddr_i(cw_sp),
+    .rdata_o(term_word)
+  );
+
+  // The reached ray's lane, light and whether from a primary hit, for its add.
+  logic [SlotW-1:0]  rs_slot_q;
+  logic [1:0]        rs_lane_q;
+  logic              rs_d0_q;
+  logic [LightW-1:0] rs_light_q;
+  logic [3*FW-1:0]   rs_term;
+  assign rs_term = term_word[rs_lane_q*3*FW +: 3*FW];
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) rs_q <= 1'b0;
+    else rs_q <= cw_reached;
+  end
+  always_ff @(posedge clk_i) begin
+    if (cw_reached) begin
+      rs_slot_q  <= cws_slot;
+      rs_lane_q  <= cw_lane;
+      rs_d0_q    <= sp_d0_q[cw_sp];
+      rs_light_q <= sp_light_q[cw_sp];
     end
   end
 
@@ -1165,10 +1203,11 @@ module rc_tracer #(
     dn_idx = '0;
     for (int s = Slots - 1; s >= 0; s--) begin
       // Not while the sequencer still issues the last packet's misses (their adds are counted
-      // from the issue).
+      // from the issue), nor while a reached shadow ray's term is still to be added (rs_q).
       done_vec[s] = busy_q[s] && td_q[s] && !fin_q[s] && sh_q[s*ShW +: ShW] == '0 &&
                     ap_q[s*ApW +: ApW] == '0 && lp_q[s*LpW +: LpW] == '0 &&
-                    !(fs_busy_q && fs_slot_q == SlotW'(s));
+                    !(fs_busy_q && fs_slot_q == SlotW'(s)) &&
+                    !(rs_q && rs_slot_q == SlotW'(s));
       if (done_vec[s]) begin
         dn_any = 1'b1;
         dn_idx = SlotW'(s);
@@ -1377,12 +1416,12 @@ module rc_tracer #(
       if (cw_d1 && cm_q[cw_slot]) btri_q[cw_ln] <= core_fb_hit ? core_fb_tri : -32'sd1;
       if (cw_d1 && !cm_q[cw_slot]) rtri_q[cw_ln] <= core_fb_hit ? core_fb_tri : -32'sd1;
     end
-    // The sums: a reached shadow ray's term at once, else the add queue's head.
-    if (cw_reached) begin
+    // The sums: a reached shadow ray's term a cycle after its write, else the add queue's head.
+    if (rs_q) begin
       for (int c = 0; c < 3; c++)
-        sum_q[{cws_slot, cw_lane}][c*SumW +: SumW] <=
-            sum_q[{cws_slot, cw_lane}][c*SumW +: SumW] + SumW'(term_q[cws_ln][c*FW +: FW]);
-      if (sp_d0_q[cw_sp]) lm_q[{cws_slot, cw_lane}][sp_light_q[cw_sp]] <= 1'b1;
+        sum_q[{rs_slot_q, rs_lane_q}][c*SumW +: SumW] <=
+            sum_q[{rs_slot_q, rs_lane_q}][c*SumW +: SumW] + SumW'(rs_term[c*FW +: FW]);
+      if (rs_d0_q) lm_q[{rs_slot_q, rs_lane_q}][rs_light_q] <= 1'b1;
     end else if (aq_pop) begin
       for (int c = 0; c < 3; c++)
         sum_q[aq_ln][c*SumW +: SumW] <= sum_q[aq_ln][c*SumW +: SumW] +
@@ -1451,6 +1490,13 @@ module rc_tracer #(
   // The add queue never overflows (its pushes are counted ahead).
   AddQueue_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                aq_push |-> 32'(aq_count) < AddQ || aq_pop);
+  // A pop's packet is sent alone: no decision beside it (the stack RAM's word and the tree
+  // packet queue's room are the pop's).
+  PopAlone_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               pop_q |-> !dec);
+  // A push has room in its slot's MaxBounces entries (a tree pushes at most once per level).
+  PushRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               dec_push |-> 32'(dec_sp) < MaxBounces);
 `endif
 
 endmodule
