@@ -49,6 +49,7 @@ rtl/core/rc_kind_perf.sv
 rtl/core/rc_core_status.sv
 rtl/core/rc_thread_mon.sv
 rtl/core/rc_core.sv
+rtl/core/rc_lane_store.sv
 rtl/core/rc_tracer.sv
 rtl/board/rc_ray_gen.sv
 rtl/board/rc_board_rom.sv

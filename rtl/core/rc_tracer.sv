@@ -271,25 +271,14 @@ module rc_tracer #(
   logic [Slots*DepthW-1:0] sp_q;     // the stack's entries
   logic [3:0]             pmask_q  [Slots];   // the primary packet's rays
   logic [3:0]             cmask_q  [Slots];   // the current packet's rays
-  // Per lane, at {slot, lane}.
-  logic [31:0]            pix_q    [Slots*4];
-  logic [Slots*4-1:0]     phit_q;             // the primary hit records
-  logic [31:0]            ptri_q   [Slots*4];
-  logic [W-1:0]           pt_q     [Slots*4];
-  logic [W-1:0]           pu_q     [Slots*4];
-  logic [W-1:0]           pv_q     [Slots*4];
-  logic [23:0]            prgb_q   [Slots*4];
-  logic [7*W-1:0]         ray_q    [Slots*4];  // the current packet's {inv_len, dir, org}
-  logic [W-1:0]           w_q      [Slots*4];  // its weights
-  logic [Slots*4-1:0]     hit_q;               // its hits
-  logic [31:0]            tri_q    [Slots*4];
-  logic [W-1:0]           t_q      [Slots*4];
-  logic [W-1:0]           dz_q     [Slots*4];
-  logic [3*SumW-1:0]      sum_q    [Slots*4];
-  logic [MaxLights-1:0]   lm_q     [Slots*4];  // the lights that reach the primary hit
-  logic [31:0]            btri_q   [Slots*4];  // the first mirror ray's triangle
-  logic [31:0]            rtri_q   [Slots*4];  // the first refraction ray's triangle
-  // The stacks are a block RAM (u_stack, below), at {slot, entry}.
+  logic [Slots*4-1:0]     hit_q;               // its hits, at {slot, lane}
+  // The per-lane records are block RAMs (u_lanes, below), the stacks too (u_stack).
+  // The adds to the lanes' sums (u_lanes): an add is read in one cycle, written in the next.
+  logic                   ln_add, ln_add_pend;
+  logic [LaneW-1:0]       ln_add_ln;
+  logic [SlotW-1:0]       ln_add_slot;
+  logic [3*FW-1:0]        aq_term_q, ln_add_term;
+  logic [MaxLights-1:0]   ln_add_lights;
 
   ///////////////////////////
   // Packets into the core //
@@ -304,7 +293,7 @@ module rc_tracer #(
 
   // The shadow packet queue and the tree packet queue (two entries each).
   localparam int unsigned ShqW = 4 + 24 * W + 4 * W + 128 + SpW;
-  localparam int unsigned BqW  = 1 + 4 + 24 * W + 128 + SlotW;
+  localparam int unsigned BqW  = 1 + 4 + 28 * W + 128 + SlotW;
   logic            shq_push, shq_valid, shq_pop;
   logic [ShqW-1:0] shq_wdata, shq_rdata;
   logic [1:0]      shq_count;
@@ -319,6 +308,7 @@ module rc_tracer #(
   logic            bq_mirror;
   logic [3:0]      bq_mask;
   logic [12*W-1:0] bq_org, bq_dir;
+  logic [4*W-1:0]  bq_w;
   logic [127:0]    bq_tri;
   logic [SlotW-1:0] bq_slot;
 
@@ -352,7 +342,7 @@ module rc_tracer #(
     .data_o (bq_rdata),
     .count_o(bq_count)
   );
-  assign {bq_mirror, bq_mask, bq_org, bq_dir, bq_tri, bq_slot} = bq_rdata;
+  assign {bq_mirror, bq_mask, bq_org, bq_dir, bq_w, bq_tri, bq_slot} = bq_rdata;
 
   // A free slot: the lowest.
   logic             free_any;
@@ -607,6 +597,13 @@ module rc_tracer #(
   assign fs_hit  = fs_hits_q[fs_lane];
   assign fs_last = (fs_lanes_q & fs_hits_q & ~(4'd1 << fs_lane)) == 4'd0;  // its last hit
 
+  // The lane's records (u_lanes) are read a cycle ahead: at a pop its first lane, at a step the
+  // next one, else the lane again; so seq_* always hold fs_lane's.
+  logic [LaneW-1:0] seq_ln;
+  logic [7*W-1:0]   seq_ray;
+  logic [W-1:0]     seq_w, seq_t, seq_dz;
+  logic [31:0]      seq_tri;
+
   // The entries: a ring, allocated in lane order, filled in any order, retired in order.
   logic [FetchW-1:0] fe_head_q, fe_tail_q;
   logic [FetchW:0]   fe_count_q;
@@ -621,6 +618,11 @@ module rc_tracer #(
   logic [W-1:0]      fe_tr_q    [FetchEntries];
   logic [ExpB-1:0]   fe_ns_q    [FetchEntries];
   logic [W-1:0]      fe_eta_q   [FetchEntries];
+  logic [7*W-1:0]    fe_ray_q   [FetchEntries];  // the lane's records, copied at allocation
+  logic [W-1:0]      fe_w_q     [FetchEntries];
+  logic [31:0]       fe_tri_q   [FetchEntries];
+  logic [W-1:0]      fe_t_q     [FetchEntries];
+  logic [W-1:0]      fe_dz_q    [FetchEntries];
 
   logic              lshd_req_valid_q;
   logic [FetchW-1:0] lshd_req_tag_q;
@@ -639,6 +641,11 @@ module rc_tracer #(
   logic fs_alloc, mi_issue;
   assign fs_alloc = fs_step && fs_hit;
   assign mi_issue = fs_step && !fs_hit;
+  always_comb begin
+    if (fq_pop && fq_work != 4'd0) seq_ln = {fq_slot, rc_pkg::ray_lowest(fq_work)};
+    else if (fs_step) seq_ln = {fs_slot_q, rc_pkg::ray_lowest(fs_lanes_q & ~(4'd1 << fs_lane))};
+    else seq_ln = {fs_slot_q, fs_lane};
+  end
 
   assign lshd_req_valid_o = lshd_req_valid_q;
   assign lshd_req_tag_o   = lshd_req_tag_q;
@@ -728,7 +735,7 @@ module rc_tracer #(
       if (fs_alloc) begin
         lshd_req_valid_q <= 1'b1;
         lshd_req_tag_q   <= fe_tail_q;
-        lshd_req_index_q <= tri_q[{fs_slot_q, fs_lane}];
+        lshd_req_index_q <= seq_tri;
       end else if (lshd_req_ready_i) begin
         lshd_req_valid_q <= 1'b0;
       end
@@ -748,6 +755,11 @@ module rc_tracer #(
     if (fs_alloc) begin
       fe_ln_q[fe_tail_q]   <= {fs_slot_q, fs_lane};
       fe_last_q[fe_tail_q] <= fs_last;
+      fe_ray_q[fe_tail_q]  <= seq_ray;
+      fe_w_q[fe_tail_q]    <= seq_w;
+      fe_tri_q[fe_tail_q]  <= seq_tri;
+      fe_t_q[fe_tail_q]    <= seq_t;
+      fe_dz_q[fe_tail_q]   <= seq_dz;
     end
     if (lshd_take) fe_n_q[lshd_rsp_tag_i] <= lshd_rsp_error_i ? '0 : lshd_rsp_data_i[NrmLsb +: 3*W];
     if (lmat_take) begin
@@ -774,8 +786,8 @@ module rc_tracer #(
   assign hl_valid = fe_count_q != '0 && fe_done_q[fe_head_q];
   assign hl_take  = hl_valid && hl_ready;
   assign hl_ln    = fe_ln_q[fe_head_q];
-  assign hl_ray   = ray_q[hl_ln];
-  assign hl_tag   = {tri_q[hl_ln], depth_q[hl_ln[LaneW-1:2]*DepthW +: DepthW] == '0,
+  assign hl_ray   = fe_ray_q[fe_head_q];
+  assign hl_tag   = {fe_tri_q[fe_head_q], depth_q[hl_ln[LaneW-1:2]*DepthW +: DepthW] == '0,
                      fe_last_q[fe_head_q], hl_ln};
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -827,12 +839,12 @@ module rc_tracer #(
     .org_i           (hl_ray[0 +: 3*W]),
     .dir_i           (hl_ray[3*W +: 3*W]),
     .inv_len_i       (hl_ray[6*W +: W]),
-    .t_i             (t_q[hl_ln]),
-    .dz_i            (dz_q[hl_ln]),
+    .t_i             (fe_t_q[fe_head_q]),
+    .dz_i            (fe_dz_q[fe_head_q]),
     .n_i             (fe_n_q[fe_head_q]),
     .eta_enter_i     (fe_eta_q[fe_head_q]),
     .eta_leave_i     (fe_ior_q[fe_head_q]),
-    .w_i             (w_q[hl_ln]),
+    .w_i             (fe_w_q[fe_head_q]),
     .mirror_i        (fe_mir_q[fe_head_q]),
     .transmit_i      (fe_tr_q[fe_head_q]),
     .kd_i            (fe_kd_q[fe_head_q]),
@@ -983,8 +995,8 @@ module rc_tracer #(
   assign snd_slot = pop_q ? pop_slot_q : dec_slot;
   assign snd_pkt  = pop_q ? stk_top : dec_m.mask != 4'd0 ? dec_m : dec_r;
   assign bq_push  = snd;
-  assign bq_wdata = {snd_pkt.mirror, snd_pkt.mask, snd_pkt.org, snd_pkt.dir, snd_pkt.stri,
-                     snd_slot};
+  assign bq_wdata = {snd_pkt.mirror, snd_pkt.mask, snd_pkt.org, snd_pkt.dir, snd_pkt.w,
+                     snd_pkt.stri, snd_slot};
 
   /////////////////////////////
   // Light samples and terms //
@@ -1019,7 +1031,7 @@ module rc_tracer #(
   );
   assign {aq_ln, aq_term} = aq_rdata;
   logic rs_q;  // a reached shadow ray's term is added in this cycle
-  assign aq_pop = aq_valid && !rs_q;
+  assign aq_pop = aq_valid && !cw_reached && !(cw_cur && cw_d0);  // u_lanes's add port
 
   // The miss term: fix(bg_c * w) per channel, MissL cycles; issued only while the add queue has
   // room for it beside the ones in flight and an ambient term.
@@ -1036,7 +1048,7 @@ module rc_tracer #(
       .rst_ni,
       .valid_i(mi_issue),
       .a_i    (bg_i[c*W +: W]),
-      .b_i    (w_q[{fs_slot_q, fs_lane}]),
+      .b_i    (seq_w),
       .valid_o(mm_valid),
       .res_o  (mm_res)
     );
@@ -1171,7 +1183,6 @@ module rc_tracer #(
   );
 
   // The reached ray's lane, light and whether from a primary hit, for its add.
-  logic [SlotW-1:0]  rs_slot_q;
   logic [1:0]        rs_lane_q;
   logic              rs_d0_q;
   logic [LightW-1:0] rs_light_q;
@@ -1183,7 +1194,6 @@ module rc_tracer #(
   end
   always_ff @(posedge clk_i) begin
     if (cw_reached) begin
-      rs_slot_q  <= cws_slot;
       rs_lane_q  <= cw_lane;
       rs_d0_q    <= sp_d0_q[cw_sp];
       rs_light_q <= sp_light_q[cw_sp];
@@ -1203,11 +1213,11 @@ module rc_tracer #(
     dn_idx = '0;
     for (int s = Slots - 1; s >= 0; s--) begin
       // Not while the sequencer still issues the last packet's misses (their adds are counted
-      // from the issue), nor while a reached shadow ray's term is still to be added (rs_q).
+      // from the issue), nor while an add's sum is still to be written (ln_add_pend).
       done_vec[s] = busy_q[s] && td_q[s] && !fin_q[s] && sh_q[s*ShW +: ShW] == '0 &&
                     ap_q[s*ApW +: ApW] == '0 && lp_q[s*LpW +: LpW] == '0 &&
                     !(fs_busy_q && fs_slot_q == SlotW'(s)) &&
-                    !(rs_q && rs_slot_q == SlotW'(s));
+                    !(ln_add_pend && ln_add_slot == SlotW'(s));
       if (done_vec[s]) begin
         dn_any = 1'b1;
         dn_idx = SlotW'(s);
@@ -1234,6 +1244,21 @@ module rc_tracer #(
   assign fw_write = fw_issue && pmask_q[fw_slot_q][fw_lane_q];
   assign fw_free  = fw_issue && fw_lane_q == 2'd3;
 
+  // The lane's records (u_lanes) are read a cycle ahead: lane 0 of the slot chosen, the next
+  // lane at an issue, else the lane again; so ln_fin_* always hold fw_ln's.
+  logic [LaneW-1:0]     fin_ln;
+  logic [31:0]          ln_fin_pixel, ln_fin_tri, ln_fin_btri, ln_fin_rtri;
+  logic                 ln_fin_hit;
+  logic [W-1:0]         ln_fin_t, ln_fin_u, ln_fin_v;
+  logic [23:0]          ln_fin_rgb;
+  logic [3*SumW-1:0]    ln_fin_sum;
+  logic [MaxLights-1:0] ln_fin_lights;
+  always_comb begin
+    if (!fw_busy_q && dn_any) fin_ln = {dn_idx, 2'd0};
+    else if (fw_issue) fin_ln = {fw_slot_q, fw_lane_q + 2'd1};
+    else fin_ln = fw_ln;
+  end
+
   for (genvar c = 0; c < 3; c++) begin : g_byte
     rc_light_byte #(
       .FixBits(rc_pkg::LightFixedBits),
@@ -1242,7 +1267,7 @@ module rc_tracer #(
       .clk_i,
       .rst_ni,
       .valid_i(fw_write),
-      .sum_i  (sum_q[fw_ln][c*SumW +: SumW]),
+      .sum_i  (ln_fin_sum[c*SumW +: SumW]),
       .valid_o(lb_valid[c]),
       .byte_o (lb_rgb[c*8 +: 8])
     );
@@ -1267,10 +1292,9 @@ module rc_tracer #(
       end
       st_valid_q <= fw_write;
       if (fw_write) begin
-        st_hit_q <= phit_q[fw_ln];
-        st_rec_q <= {pix_q[fw_ln], prgb_q[fw_ln], phit_q[fw_ln], ptri_q[fw_ln], pt_q[fw_ln],
-                     pu_q[fw_ln], pv_q[fw_ln], phit_q[fw_ln] ? lm_q[fw_ln] : '0, btri_q[fw_ln],
-                     rtri_q[fw_ln]};
+        st_hit_q <= ln_fin_hit;
+        st_rec_q <= {ln_fin_pixel, ln_fin_rgb, ln_fin_hit, ln_fin_tri, ln_fin_t, ln_fin_u,
+                     ln_fin_v, ln_fin_hit ? ln_fin_lights : '0, ln_fin_btri, ln_fin_rtri};
       end
     end
   end
@@ -1375,59 +1399,80 @@ module rc_tracer #(
     if (ext_take) begin
       pmask_q[free_idx] <= pkt_mask_i;
       cmask_q[free_idx] <= pkt_mask_i;
-      for (int r = 0; r < 4; r++) begin
-        pix_q[(SlotW + 2)'(4 * free_idx + r)]  <= pkt_pixel_i[r*32 +: 32];
-        ray_q[(SlotW + 2)'(4 * free_idx + r)]  <= {pkt_inv_len_i[r*W +: W],
-                                                   pkt_dir_i[r*3*W +: 3*W],
-                                                   pkt_org_i[r*3*W +: 3*W]};
-        w_q[(SlotW + 2)'(4 * free_idx + r)]    <= FpOne;  // a primary ray's weight
-        sum_q[(SlotW + 2)'(4 * free_idx + r)]  <= '0;
-        lm_q[(SlotW + 2)'(4 * free_idx + r)]   <= '0;
-        btri_q[(SlotW + 2)'(4 * free_idx + r)] <= -32'sd2;
-        rtri_q[(SlotW + 2)'(4 * free_idx + r)] <= -32'sd2;
-      end
     end
-    // A tree packet becomes the slot's current packet: its rays and weights.
-    if (snd) begin
-      cmask_q[snd_slot] <= snd_pkt.mask;
-      for (int r = 0; r < 4; r++) begin
-        if (snd_pkt.mask[r]) begin
-          ray_q[(SlotW + 2)'(4 * snd_slot + r)] <= {FpOne, snd_pkt.dir[r*3*W +: 3*W],
-                                                    snd_pkt.org[r*3*W +: 3*W]};
-          w_q[(SlotW + 2)'(4 * snd_slot + r)]   <= snd_pkt.w[r*W +: W];
-        end
-      end
-    end
-    // The current packet's writes; the primary's are kept for the pixel's write, the first
-    // mirror and refraction rays' triangles for the report.
-    if (cw_cur) begin
-      hit_q[cw_ln] <= core_fb_hit;
-      tri_q[cw_ln] <= core_fb_tri;
-      t_q[cw_ln]   <= core_fb_t;
-      dz_q[cw_ln]  <= core_fb_dz;
-      if (cw_d0) begin
-        phit_q[cw_ln] <= core_fb_hit;
-        ptri_q[cw_ln] <= core_fb_tri;
-        pt_q[cw_ln]   <= core_fb_t;
-        pu_q[cw_ln]   <= core_fb_u;
-        pv_q[cw_ln]   <= core_fb_v;
-        prgb_q[cw_ln] <= core_fb_rgb;
-      end
-      if (cw_d1 && cm_q[cw_slot]) btri_q[cw_ln] <= core_fb_hit ? core_fb_tri : -32'sd1;
-      if (cw_d1 && !cm_q[cw_slot]) rtri_q[cw_ln] <= core_fb_hit ? core_fb_tri : -32'sd1;
-    end
-    // The sums: a reached shadow ray's term a cycle after its write, else the add queue's head.
-    if (rs_q) begin
-      for (int c = 0; c < 3; c++)
-        sum_q[{rs_slot_q, rs_lane_q}][c*SumW +: SumW] <=
-            sum_q[{rs_slot_q, rs_lane_q}][c*SumW +: SumW] + SumW'(rs_term[c*FW +: FW]);
-      if (rs_d0_q) lm_q[{rs_slot_q, rs_lane_q}][rs_light_q] <= 1'b1;
-    end else if (aq_pop) begin
-      for (int c = 0; c < 3; c++)
-        sum_q[aq_ln][c*SumW +: SumW] <= sum_q[aq_ln][c*SumW +: SumW] +
-                                         SumW'(aq_term[c*FW +: FW]);
-    end
+    if (snd) cmask_q[snd_slot] <= snd_pkt.mask;
+    if (cw_cur) hit_q[cw_ln] <= core_fb_hit;
   end
+
+  // The per-lane records. A packet's rays and weights are written when it goes to the core
+  // (ext_take or bq_pop: ext_take waits for an empty tree queue, so the core's packet is the
+  // one written); by then its slot's sequencer and lighting have read the packet before it.
+  // The sums: a reached shadow ray's term (read from u_terms in the ray's cycle) or, in a cycle
+  // without one, the add queue's head; the term is added in the next cycle.
+  assign ln_add        = cw_reached || aq_pop;
+  assign ln_add_ln     = cw_reached ? {cws_slot, cw_lane} : aq_ln;
+  assign ln_add_term   = rs_q ? rs_term : aq_term_q;
+  assign ln_add_lights = (rs_q && rs_d0_q) ? MaxLights'(1) << rs_light_q : '0;
+  always_ff @(posedge clk_i) begin
+    if (aq_pop) aq_term_q <= aq_term;
+  end
+
+  rc_lane_store #(
+    .ExpW     (ExpW),
+    .FracW    (FracW),
+    .Slots    (Slots),
+    .MaxLights(MaxLights),
+    .FW       (FW),
+    .SumW     (SumW)
+  ) u_lanes (
+    .clk_i,
+    .rst_ni,
+    .prim_i           (ext_take),
+    .prim_slot_i      (free_idx),
+    .prim_pixel_i     (pkt_pixel_i),
+    .ray_i            (ext_take || bq_pop),
+    .ray_slot_i       (bq_pop ? bq_slot : free_idx),
+    .ray_org_i        (core_pkt_org),
+    .ray_dir_i        (core_pkt_dir),
+    .ray_inv_len_i    (core_pkt_inv_len),
+    .ray_w_i          (bq_pop ? bq_w : {4{FpOne}}),
+    .cw_i             (cw_cur),
+    .cw_ln_i          (cw_ln),
+    .cw_d0_i          (cw_d0),
+    .cw_d1_i          (cw_d1),
+    .cw_mirror_i      (cm_q[cw_slot]),
+    .cw_hit_i         (core_fb_hit),
+    .cw_tri_i         (core_fb_tri),
+    .cw_t_i           (core_fb_t),
+    .cw_u_i           (core_fb_u),
+    .cw_v_i           (core_fb_v),
+    .cw_dz_i          (core_fb_dz),
+    .cw_rgb_i         (core_fb_rgb),
+    .seq_ln_i         (seq_ln),
+    .seq_ray_o        (seq_ray),
+    .seq_w_o          (seq_w),
+    .seq_tri_o        (seq_tri),
+    .seq_t_o          (seq_t),
+    .seq_dz_o         (seq_dz),
+    .add_i            (ln_add),
+    .add_ln_i         (ln_add_ln),
+    .add_term_i       (ln_add_term),
+    .add_lights_i     (ln_add_lights),
+    .add_pend_o       (ln_add_pend),
+    .add_pend_slot_o  (ln_add_slot),
+    .fin_ln_i         (fin_ln),
+    .fin_pixel_o      (ln_fin_pixel),
+    .fin_hit_o        (ln_fin_hit),
+    .fin_tri_o        (ln_fin_tri),
+    .fin_t_o          (ln_fin_t),
+    .fin_u_o          (ln_fin_u),
+    .fin_v_o          (ln_fin_v),
+    .fin_rgb_o        (ln_fin_rgb),
+    .fin_sum_o        (ln_fin_sum),
+    .fin_lights_o     (ln_fin_lights),
+    .fin_bounce_tri_o (ln_fin_btri),
+    .fin_refract_tri_o(ln_fin_rtri)
+  );
 
   ////////////
   // Status //
