@@ -111,13 +111,16 @@ $(GEN_PKG): docs/spec.toml tb/gen_constants.py $(wildcard rtl/core/rc_core_types
 	$(PYTHON) tb/gen_constants.py docs/spec.toml $(BUILD)/gen
 
 # Every module is linted as a top of its own (so submodules are checked with default parameters
-# too), then Yosys reads everything, elaborates and checks for latches and other problems.
+# too), the board also lit (rc_tracer inside), then Yosys reads everything, elaborates and checks
+# for latches and other problems.
 lint: deps $(GEN_PKG)
 	@set -e; tops=$$(sed -n 's/^\s*module\s\+\([a-zA-Z0-9_]\+\).*/\1/p' $(RTL_FILES) $(TB_RTL)); \
 	for top in $$tops; do \
 	  echo "verilator --lint-only -Wall --top-module $$top"; \
 	  verilator --lint-only -Wall --assert $(WAIVERS) $(RTL_FILES) $(TB_RTL) --top-module $$top; \
 	done
+	@echo "verilator --lint-only -Wall --top-module rc_board -GLit=1 (the lit board)"
+	@verilator --lint-only -Wall --assert $(WAIVERS) $(RTL_FILES) --top-module rc_board "-GLit=1'b1"
 	@echo "yosys: read, elaborate and check all RTL"
 	@yosys -q -l $(BUILD)/yosys_lint.log \
 	  -p "read_verilog -sv $(RTL_FILES); hierarchy -check; proc; check -assert" \

@@ -7,7 +7,7 @@ Usage: ulx3s_host.py [--port /dev/ttyUSB0] [--baud 115200] [--image DIR] [--all-
 With --image DIR (a `raycore board-image` directory, e.g. BUILD/fpga/ecp5/image) it first writes
 the camera and frame size registers (BoardRegEye .. BoardRegHeight; --all-regs: the whole
 register file) from DIR/regs.hex, and checks them by reading them back. Then it starts a frame
-('S'), polls the status register until done (or size error), prints the status and the frame's
+('S'), polls the status register until done (or size or config error), prints the status and the frame's
 cycle count (and time, with --mhz), and fetches the framebuffer ('F') into a binary PPM (P6).
 Without --image the board renders with the registers it has (after configuration: the regs.hex
 the bitstream was built with).
@@ -148,7 +148,6 @@ def main():
 
     spec = load_spec()
     reg, st = spec["board_reg"], spec["board_status"]
-    nregs = spec["board"]["regs"]
     ser = open_port(args.port, args.baud, timeout=2.0)
     board = Board(ser, args.baud)
     # Let a half-received command time out on the board (rc_board_host abandons it), then flush.
@@ -157,6 +156,8 @@ def main():
 
     if args.image:
         regs = read_hex_words(pathlib.Path(args.image) / "regs.hex")
+        # The lit board's image holds board.lit_regs registers (its light registers too).
+        nregs = len(regs)
         addrs = range(nregs) if args.all_regs else range(reg["eye"], reg["height"] + 1)
         for a in addrs:
             board.write_reg(a, regs[a])
@@ -183,15 +184,15 @@ def main():
     cycles = board.read_reg(reg["cycles"])
     errors = status >> st["core_error_lsb"]
     print(f"ulx3s_host: {width}x{height}, status 0x{status:x} (done "
-          f"{status >> st['done'] & 1}, size error {status >> st['size_error'] & 1}, core "
-          f"errors 0x{errors:x}), {cycles} cycles"
+          f"{status >> st['done'] & 1}, size error {status >> st['size_error'] & 1}, config "
+          f"error {status >> st['config_error'] & 1}, core errors 0x{errors:x}), {cycles} cycles"
           + (f" = {cycles / (args.mhz * 1e3):.3f} ms at {args.mhz:g} MHz" if args.mhz else ""))
     data = board.frame(width, height)
     with open(args.output, "wb") as f:
         f.write(b"P6\n%d %d\n255\n" % (width, height) + data)
     print(f"ulx3s_host: wrote {args.output}")
     ser.close()
-    failed = (status >> st["size_error"] & 1) or errors or (
+    failed = (status >> st["size_error"] & 1) or (status >> st["config_error"] & 1) or errors or (
         not args.no_start and not status >> st["done"] & 1)
     return 1 if failed else 0
 

@@ -16,10 +16,10 @@
 //   10 ms) and its press starts a frame (rc_board start_i), with the camera and frame size in the
 //   register file (initially those of RegsHex). btn[6:2] are not used.
 // - LEDs: led[0] heartbeat (0.5 .. 1 Hz), led[1] busy, led[2] done, led[3]
-//   size_error, led[7:4] rc_core's error bits (malformed node, bad address, stack overflow,
+//   size_error or config_error (the start was refused), led[7:4] rc_core's error bits (malformed node, bad address, stack overflow,
 //   watchdog: rc_pkg::CoreStatus*).
-// - Parameters: rc_board's (Threads, ROM depths and hex files: `raycore board-image` writes them
-//   with board.json), the PLL dividers with CoreHz, and Baud.
+// - Parameters: rc_board's (Threads, Lit, ROM depths and hex files: `raycore board-image` writes
+//   them with board.json), the PLL dividers with CoreHz, and Baud.
 // - Illegal input: none.
 module rc_ulx3s #(
   // EHXPLLL dividers (fpga/fpga_ecp5.py computes them) and the resulting core clock in Hz.
@@ -37,11 +37,16 @@ module rc_ulx3s #(
   parameter int unsigned ShdDepth  = 1,
   parameter int unsigned MatDepth  = 1,
   parameter int unsigned FbPixels  = rc_pkg::BoardFbPixels,
+  parameter bit          Lit       = 1'b0,
+  parameter int unsigned LShdDepth = 1,
+  parameter int unsigned LMatDepth = 1,
   parameter              NodeHex   = "",
   parameter              ListHex   = "",
   parameter              TriHex    = "",
   parameter              ShdHex    = "",
   parameter              MatHex    = "",
+  parameter              LShdHex   = "",
+  parameter              LMatHex   = "",
   parameter              RegsHex   = ""
 ) (
   input  logic       clk_25mhz,
@@ -251,12 +256,14 @@ module rc_ulx3s #(
   // Board //
   ///////////
 
-  logic               busy, done, size_error;
+  logic               busy, done, size_error, config_error;
   logic [StatusW-1:0] core_error;
   logic               mon_valid, mon_hit;
   logic [31:0]        mon_pixel, mon_tri;
   logic [23:0]        mon_rgb;
   logic [W-1:0]       mon_t, mon_u, mon_v;
+  logic [rc_pkg::LightMaxLights-1:0] mon_lights;
+  logic [31:0]        mon_bounce_tri, mon_refract_tri;
 
   rc_board #(
     .Threads  (Threads),
@@ -266,11 +273,16 @@ module rc_ulx3s #(
     .ShdDepth (ShdDepth),
     .MatDepth (MatDepth),
     .FbPixels (FbPixels),
+    .Lit      (Lit),
+    .LShdDepth(LShdDepth),
+    .LMatDepth(LMatDepth),
     .NodeHex  (NodeHex),
     .ListHex  (ListHex),
     .TriHex   (TriHex),
     .ShdHex   (ShdHex),
     .MatHex   (MatHex),
+    .LShdHex  (LShdHex),
+    .LMatHex  (LMatHex),
     .RegsHex  (RegsHex)
   ) u_board (
     .clk_i       (clk),
@@ -285,6 +297,7 @@ module rc_ulx3s #(
     .busy_o      (busy),
     .done_o      (done),
     .size_error_o(size_error),
+    .config_error_o(config_error),
     .error_o     (core_error),
     .mon_valid_o (mon_valid),
     .mon_pixel_o (mon_pixel),
@@ -293,7 +306,10 @@ module rc_ulx3s #(
     .mon_tri_o   (mon_tri),
     .mon_t_o     (mon_t),
     .mon_u_o     (mon_u),
-    .mon_v_o     (mon_v)
+    .mon_v_o     (mon_v),
+    .mon_lights_o(mon_lights),
+    .mon_bounce_tri_o(mon_bounce_tri),
+    .mon_refract_tri_o(mon_refract_tri)
   );
 
   //////////
@@ -309,7 +325,7 @@ module rc_ulx3s #(
       led_q  <= '0;
     end else begin
       beat_q <= beat_q + 1'b1;
-      led_q  <= {4'(core_error), size_error, done, busy, beat_q[HeartbeatW-1]};
+      led_q  <= {4'(core_error), size_error || config_error, done, busy, beat_q[HeartbeatW-1]};
     end
   end
 
@@ -319,6 +335,6 @@ module rc_ulx3s #(
   // errors and the host's dropped bytes (a host that waits for its answers sees neither).
   logic unused;
   assign unused = ^{mon_valid, mon_pixel, mon_rgb, mon_hit, mon_tri, mon_t, mon_u, mon_v,
-                    btn[6:2], btn[0], rx_frame_error, host_drop, pll_unused};
+                    mon_lights, mon_bounce_tri, mon_refract_tri, btn[6:2], btn[0], rx_frame_error, host_drop, pll_unused};
 
 endmodule

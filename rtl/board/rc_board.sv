@@ -3,10 +3,15 @@
 // camera registers (rc_ray_gen), and a register port for a host.
 //
 // Contract
+// - Lit = 0: the core alone (rc_core, primary rays, the headlight). Lit = 1: the tree controller
+//   rc_tracer around the core (docs/architecture.md, "The tracer"): the scene's lights with
+//   shadow, mirror and refraction rays, from the light registers.
 // - Memory: five ROMs (rc_board_rom), one per rc_core memory port, of NodeDepth, ListDepth,
 //   TriDepth, ShdDepth and MatDepth lines, initialised from NodeHex .. MatHex (written by
 //   `raycore board-image` from the memory image the scene compiler writes; in simulation the
-//   plusargs +nodes= +lists= +tris= +shading= +materials= override them). A line is what the
+//   plusargs +nodes= +lists= +tris= +shading= +materials= override them); with Lit two more for
+//   rc_tracer's lighting ports, LShdDepth lines of the shading records (LShdHex, +lshading=) and
+//   LMatDepth lines of the materials' lighting fields (LMatHex, +lmaterials=). A line is what the
 //   core's port answers for its index: one record, except for the node ROM, whose line i is the
 //   pair {record i + 1 (zero for the last node), record i} (rc_pkg::CoreNodeRspRecords records
 //   of 64 bits; NodeDepth = the node count). An index beyond a ROM gets an error response (the
@@ -16,13 +21,17 @@
 //   the cycle the address is given and passes two register levels (a four-way preselection of
 //   the register file and the control registers' multiplexer, then the final choice). A new
 //   address can be given every cycle. Register numbers are
-//   rc_pkg's BoardReg* (docs/spec.toml [board_reg]). Registers 0 .. BoardRegs-1 are the register
+//   rc_pkg's BoardReg* (docs/spec.toml [board_reg]). Registers 0 .. Regs-1 are the register
 //   file (camera, frame size, background, root box, record counts, shading constants, the root
-//   node's record: rc_core root_node_i = {BoardRegRoot + 1, BoardRegRoot}), initialised from
+//   node's record: rc_core root_node_i = {BoardRegRoot + 1, BoardRegRoot}; with Lit the light
+//   registers: count, depth, directional lights, t_eps, the background as format values, each
+//   light's position and colour), Regs = BoardRegs, or BoardLitRegs with Lit, initialised from
 //   RegsHex (plusarg +regs=); writes to it are ignored while busy_o. Writing bit 0 of
 //   BoardRegControl (or a start_i pulse, a cycle later) starts a frame when busy_o is 0: three
 //   cycles later the frame size is checked (width * height <= FbPixels, else status bit
-//   size_error and no frame) and the ray generation unit starts. BoardRegPerfLo/Hi show the
+//   size_error and no frame), with Lit also the light count (1 .. LightMaxLights) and the depth
+//   (at most LightBounceLimit; else status bit config_error and no frame), and the ray
+//   generation unit starts. BoardRegPerfLo/Hi show the
 //   core's counter BoardRegPerfSel through two register levels (rc_core's perf_o is a cycle
 //   late, then perf_rd_q, loaded every cycle): a read shows the counter selected three cycles
 //   before its address is given, so after writing PerfSel wait two cycles before reading
@@ -36,10 +45,12 @@
 //   cycles before (the block RAM's read register, a register after each bank of block RAMs, then
 //   one after the multiplexer that joins the banks); reading while a frame runs is legal and
 //   shows the frame in progress. An address at or beyond FbPixels reads an undefined value.
-// - Monitor: mon_valid_o and mon_* show each framebuffer write of the core with its hit record
-//   (simulation checks them; a board top leaves them open).
-// - Status: busy_o (a frame is starting or running), done_o, error_o = rc_core's error_o
-//   (sticky until reset), size_error_o.
+// - Monitor: mon_valid_o and mon_* show each framebuffer write of the core (of the tracer: with
+//   the lights that reach the primary hit and the first mirror and refraction rays' triangles;
+//   0, -2, -2 without Lit) with its hit record (simulation checks them; a board top leaves them
+//   open).
+// - Status: busy_o (a frame is starting or running), done_o, error_o = rc_core's (rc_tracer's)
+//   error_o (sticky until reset), size_error_o, config_error_o.
 // - Parameters: the fp format (ExpW, FracW); Threads, the core's packet threads (default
 //   rc_pkg::BoardThreads, docs/spec.toml [board] threads: fewer than the core alone, chosen for
 //   the ROMs' short latency); the ROM depths and hex files; FbPixels.
@@ -57,14 +68,20 @@ module rc_board #(
   parameter int unsigned ShdDepth  = 1,
   parameter int unsigned MatDepth  = 1,
   parameter int unsigned FbPixels  = rc_pkg::BoardFbPixels,
+  parameter bit          Lit       = 1'b0,
+  parameter int unsigned LShdDepth = 1,
+  parameter int unsigned LMatDepth = 1,
   parameter              NodeHex = "",
   parameter              ListHex = "",
   parameter              TriHex = "",
   parameter              ShdHex = "",
   parameter              MatHex = "",
+  parameter              LShdHex = "",
+  parameter              LMatHex = "",
   parameter              RegsHex = "",
   // Derived (do not override).
   parameter int unsigned W         = 1 + ExpW + FracW,
+  parameter int unsigned MaxLights = rc_pkg::LightMaxLights,
   parameter int unsigned AddrW     = rc_pkg::BoardAddrBits,
   parameter int unsigned FbAddrW   = (FbPixels > 1) ? $clog2(FbPixels) : 1,
   parameter int unsigned StatusW   = rc_pkg::CoreStatusBits
@@ -87,6 +104,7 @@ module rc_board #(
   output logic               busy_o,
   output logic               done_o,
   output logic               size_error_o,
+  output logic               config_error_o,
   output logic [StatusW-1:0] error_o,
 
   // Monitor of the core's framebuffer writes.
@@ -97,19 +115,26 @@ module rc_board #(
   output logic [31:0]        mon_tri_o,
   output logic [W-1:0]       mon_t_o,
   output logic [W-1:0]       mon_u_o,
-  output logic [W-1:0]       mon_v_o
+  output logic [W-1:0]       mon_v_o,
+  output logic [MaxLights-1:0] mon_lights_o,
+  output logic [31:0]        mon_bounce_tri_o,
+  output logic [31:0]        mon_refract_tri_o
 );
 
-  localparam int unsigned Regs   = rc_pkg::BoardRegs;
+  localparam int unsigned Regs   = Lit ? rc_pkg::BoardLitRegs : rc_pkg::BoardRegs;
   localparam int unsigned CoordW = rc_pkg::BoardCoordBits;
   localparam int unsigned TagW   = rc_pkg::CoreTagBits;
   // The node port answers a pair of 64-bit records (rc_core NodeRspW).
   localparam int unsigned NodeRspW = rc_pkg::CoreNodeRspRecords * 8 * rc_pkg::KdNodeBytes;
+  // The lit board's registers (index 0 without Lit: never read there).
+  localparam int unsigned LightCountReg = Lit ? rc_pkg::BoardRegLightCount : 0;
+  localparam int unsigned MaxBouncesReg = Lit ? rc_pkg::BoardRegMaxBounces : 0;
 
   if (Regs < rc_pkg::BoardRegDiffuse + 1 || Regs < rc_pkg::BoardRegRoot + 2 ||
-      Regs > rc_pkg::BoardRegControl) begin : g_regs_check
+      Regs > rc_pkg::BoardRegControl ||
+      (Lit && Regs < rc_pkg::BoardRegLights + 6 * MaxLights)) begin : g_regs_check
     $error("rc_board: the register file must hold registers 0 .. BoardRegDiffuse and %s",
-           "BoardRegRoot + 1, below control");
+           "BoardRegRoot + 1 (with Lit the lights' too), below control");
   end
 
   ///////////////////
@@ -131,7 +156,7 @@ module rc_board #(
 `endif
   end
 
-  logic running_q, done_q, size_error_q, fin_q;
+  logic running_q, done_q, size_error_q, config_error_q, fin_q;
   logic [1:0] pend_q;  // start requested: cycles until the size check
   logic busy;
 
@@ -163,9 +188,9 @@ module rc_board #(
   // Frame control   //
   /////////////////////
 
-  logic        start_req, gen_start, gen_busy, core_idle, size_ok;
+  logic        start_req, gen_start, gen_busy, core_idle, size_ok, cfg_ok;
   logic [31:0] pixels_q, cycles_q;
-  logic        size_ok_q;
+  logic        size_ok_q, cfg_ok_q;
 
   // The start pulse is registered first (it comes from the board top's button logic, placed
   // anywhere on the chip), so its one net ends at a flip-flop beside the frame control.
@@ -180,36 +205,44 @@ module rc_board #(
   assign start_req = !busy && (start_in_q || (reg_we_i && {1'b0, reg_addr_i} ==
                      (AddrW+1)'(rc_pkg::BoardRegControl) && reg_wdata_i[0]));
   assign size_ok   = size_ok_q;
-  assign gen_start = (pend_q == 2'd1) && size_ok;
+  assign cfg_ok    = cfg_ok_q;
+  assign gen_start = (pend_q == 2'd1) && size_ok && cfg_ok;
 
   // The frame size, its product and its check are registers in a row (the register file is
   // locked from the start request on, and a register written in the request's own cycle is in
   // the check two cycles later), so the check's carry chain ends at a flip-flop and not at the
   // ray generator's start.
+  // With Lit, the light count and the depth are checked beside the size (the tracer's range).
   always_ff @(posedge clk_i) begin
     pixels_q  <= 32'(width) * 32'(height);
     size_ok_q <= pixels_q <= 32'(FbPixels);
+    cfg_ok_q  <= !Lit || (regs_q[LightCountReg] != '0 &&
+                          regs_q[LightCountReg] <= 32'(MaxLights) &&
+                          regs_q[MaxBouncesReg] <= 32'(rc_pkg::LightBounceLimit));
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      pend_q       <= 2'd0;
-      fin_q        <= 1'b0;
-      running_q    <= 1'b0;
-      done_q       <= 1'b0;
-      size_error_q <= 1'b0;
-      cycles_q     <= '0;
+      pend_q         <= 2'd0;
+      fin_q          <= 1'b0;
+      running_q      <= 1'b0;
+      done_q         <= 1'b0;
+      size_error_q   <= 1'b0;
+      config_error_q <= 1'b0;
+      cycles_q       <= '0;
     end else begin
       if (start_req) begin
-        pend_q       <= 2'd3;
-        done_q       <= 1'b0;
-        size_error_q <= 1'b0;
-        cycles_q     <= '0;
+        pend_q         <= 2'd3;
+        done_q         <= 1'b0;
+        size_error_q   <= 1'b0;
+        config_error_q <= 1'b0;
+        cycles_q       <= '0;
       end else if (pend_q != 2'd0) begin
         pend_q <= pend_q - 2'd1;
         if (pend_q == 2'd1) begin
-          running_q    <= size_ok;
-          size_error_q <= !size_ok;
+          running_q      <= size_ok && cfg_ok;
+          size_error_q   <= !size_ok;
+          config_error_q <= !cfg_ok;
         end
       end
       // The generator is busy from the cycle after its start until its last packet is taken;
@@ -338,13 +371,64 @@ module rc_board #(
   logic [StatusW-1:0] core_error;
 
   logic [Threads*rc_pkg::ThreadStateBits-1:0] core_dbg_states;
-  logic [W-1:0] core_fb_dz;
-  rc_core #(
-    .ExpW   (ExpW),
-    .FracW  (FracW),
-    .Threads(Threads),
-    .Secondary(1'b0)  // primary rays only on the board, so far (docs/architecture.md, "Lighting")
-  ) u_core (
+  logic [MaxLights-1:0] fb_lights;
+  logic [31:0]  fb_bounce_tri, fb_refract_tri;
+  if (Lit) begin : g_lit
+    // The tree controller around the core, its configuration from the light registers and its
+    // lighting ports from two more ROMs (the shading records again, the materials' lighting
+    // fields).
+    localparam int unsigned FetchW = (rc_pkg::TracerFetchEntries > 1) ?
+                                     $clog2(rc_pkg::TracerFetchEntries) : 1;
+    localparam int unsigned CountW = $clog2(MaxLights + 1);
+    localparam int unsigned DepthW = $clog2(rc_pkg::LightBounceLimit + 1);
+    localparam int unsigned LMatW  =
+        8 * (rc_pkg::ImageMaterialTransmit + 4 - rc_pkg::ImageMaterialKd);
+    logic [CountW-1:0]        light_count;
+    logic [MaxLights-1:0]     light_dir;
+    logic [MaxLights*3*W-1:0] light_pos, light_col;
+    logic [DepthW-1:0]        max_bounces;
+    logic [3*W-1:0]           light_bg;
+    assign light_count = regs_q[rc_pkg::BoardRegLightCount][CountW-1:0];
+    assign light_dir   = regs_q[rc_pkg::BoardRegLightDir][MaxLights-1:0];
+    assign max_bounces = regs_q[rc_pkg::BoardRegMaxBounces][DepthW-1:0];
+    assign light_bg    = vec3(rc_pkg::BoardRegLightBg);
+    for (genvar l = 0; l < MaxLights; l++) begin : g_light
+      assign light_pos[l*3*W +: 3*W] = vec3(rc_pkg::BoardRegLights + 6 * l);
+      assign light_col[l*3*W +: 3*W] = vec3(rc_pkg::BoardRegLights + 6 * l + 3);
+    end
+
+    logic              lshd_req_valid, lshd_req_ready, lshd_rsp_valid, lshd_rsp_ready;
+    logic              lshd_rsp_error;
+    logic [FetchW-1:0] lshd_req_tag, lshd_rsp_tag;
+    logic [31:0]       lshd_req_index;
+    logic [32+4*W-1:0] lshd_rsp_data;
+    logic              lmat_req_valid, lmat_req_ready, lmat_rsp_valid, lmat_rsp_ready;
+    logic              lmat_rsp_error;
+    logic [FetchW-1:0] lmat_req_tag, lmat_rsp_tag;
+    logic [31:0]       lmat_req_index;
+    logic [LMatW-1:0]  lmat_rsp_data;
+    rc_board_rom #(.Width(32+4*W), .Depth(LShdDepth), .TagW(FetchW), .InitFile(LShdHex),
+                   .Name("lshading"))
+    u_rom_lshading (
+      .clk_i, .rst_ni,
+      .req_valid_i(lshd_req_valid), .req_ready_o(lshd_req_ready), .req_tag_i(lshd_req_tag),
+      .req_index_i(lshd_req_index), .rsp_valid_o(lshd_rsp_valid), .rsp_ready_i(lshd_rsp_ready),
+      .rsp_tag_o(lshd_rsp_tag), .rsp_data_o(lshd_rsp_data), .rsp_error_o(lshd_rsp_error)
+    );
+    rc_board_rom #(.Width(LMatW), .Depth(LMatDepth), .TagW(FetchW), .InitFile(LMatHex),
+                   .Name("lmaterials"))
+    u_rom_lmaterials (
+      .clk_i, .rst_ni,
+      .req_valid_i(lmat_req_valid), .req_ready_o(lmat_req_ready), .req_tag_i(lmat_req_tag),
+      .req_index_i(lmat_req_index), .rsp_valid_o(lmat_rsp_valid), .rsp_ready_i(lmat_rsp_ready),
+      .rsp_tag_o(lmat_rsp_tag), .rsp_data_o(lmat_rsp_data), .rsp_error_o(lmat_rsp_error)
+    );
+
+    rc_tracer #(
+      .ExpW   (ExpW),
+      .FracW  (FracW),
+      .Threads(Threads)
+    ) u_tracer (
     .clk_i,
     .rst_ni,
     .bounds_i        (bounds),
@@ -355,7 +439,13 @@ module rc_board #(
     .ambient_i       (regs_q[rc_pkg::BoardRegAmbient][W-1:0]),
     .diffuse_i       (regs_q[rc_pkg::BoardRegDiffuse][W-1:0]),
     .background_i    (regs_q[rc_pkg::BoardRegBackground][23:0]),
-    .t_eps_i         ('0),
+    .light_count_i   (light_count),
+    .light_dir_i     (light_dir),
+    .light_pos_i     (light_pos),
+    .light_col_i     (light_col),
+    .max_bounces_i   (max_bounces),
+    .bg_i            (light_bg),
+    .t_eps_i         (regs_q[rc_pkg::BoardRegTEps][W-1:0]),
     .pkt_valid_i     (pkt_valid),
     .pkt_ready_o     (pkt_ready),
     .pkt_mask_i      (pkt_mask),
@@ -375,7 +465,9 @@ module rc_board #(
     .fb_t_o          (fb_t),
     .fb_u_o          (fb_u),
     .fb_v_o          (fb_v),
-    .fb_dz_o         (core_fb_dz),
+    .fb_lights_o     (fb_lights),
+    .fb_bounce_tri_o (fb_bounce_tri),
+    .fb_refract_tri_o(fb_refract_tri),
     .node_req_valid_o(node_req_valid),
     .node_req_ready_i(node_req_ready),
     .node_req_tag_o  (node_req_tag),
@@ -425,12 +517,126 @@ module rc_board #(
     .error_o         (core_error),
     .perf_sel_i      (perf_sel_q),
     .perf_o          (perf),
-    .dbg_thread_state_o(core_dbg_states)
-  );
-  // The core's debug port feeds nothing on the board (the harness reads it on a core alone), nor
-  // does d'z (zero at Secondary = 0; a tree controller's).
+    .dbg_thread_state_o(core_dbg_states),
+    .lshd_req_valid_o(lshd_req_valid),
+    .lshd_req_ready_i(lshd_req_ready),
+    .lshd_req_tag_o  (lshd_req_tag),
+    .lshd_req_index_o(lshd_req_index),
+    .lshd_rsp_valid_i(lshd_rsp_valid),
+    .lshd_rsp_ready_o(lshd_rsp_ready),
+    .lshd_rsp_tag_i  (lshd_rsp_tag),
+    .lshd_rsp_data_i (lshd_rsp_data),
+    .lshd_rsp_error_i(lshd_rsp_error),
+    .lmat_req_valid_o(lmat_req_valid),
+    .lmat_req_ready_i(lmat_req_ready),
+    .lmat_req_tag_o  (lmat_req_tag),
+    .lmat_req_index_o(lmat_req_index),
+    .lmat_rsp_valid_i(lmat_rsp_valid),
+    .lmat_rsp_ready_o(lmat_rsp_ready),
+    .lmat_rsp_tag_i  (lmat_rsp_tag),
+    .lmat_rsp_data_i (lmat_rsp_data),
+    .lmat_rsp_error_i(lmat_rsp_error)
+    );
+  end else begin : g_core
+    logic [W-1:0] core_fb_dz;
+    rc_core #(
+      .ExpW   (ExpW),
+      .FracW  (FracW),
+      .Threads(Threads),
+      .Secondary(1'b0)  // primary rays only: the headlight
+    ) u_core (
+      .clk_i,
+      .rst_ni,
+      .bounds_i        (bounds),
+      .node_count_i    (regs_q[rc_pkg::BoardRegNodeCount]),
+      .list_count_i    (regs_q[rc_pkg::BoardRegListCount]),
+      .tri_count_i     (regs_q[rc_pkg::BoardRegTriCount]),
+      .root_node_i     ({regs_q[rc_pkg::BoardRegRoot + 1], regs_q[rc_pkg::BoardRegRoot]}),
+      .ambient_i       (regs_q[rc_pkg::BoardRegAmbient][W-1:0]),
+      .diffuse_i       (regs_q[rc_pkg::BoardRegDiffuse][W-1:0]),
+      .background_i    (regs_q[rc_pkg::BoardRegBackground][23:0]),
+      .t_eps_i         ('0),
+      .pkt_valid_i     (pkt_valid),
+      .pkt_ready_o     (pkt_ready),
+      .pkt_mask_i      (pkt_mask),
+      .pkt_org_i       (pkt_org),
+      .pkt_dir_i       (pkt_dir),
+      .pkt_inv_len_i   (pkt_inv_len),
+      .pkt_pixel_i     (pkt_pixel),
+      .pkt_kind_i      (rc_pkg::RayPrimary),
+      .pkt_t_hi_i      ('0),
+      .pkt_start_tri_i ('0),
+      .fb_valid_o      (fb_valid),
+      .fb_ready_i      (1'b1),
+      .fb_pixel_o      (fb_pixel),
+      .fb_rgb_o        (fb_rgb),
+      .fb_hit_o        (fb_hit),
+      .fb_tri_o        (fb_tri),
+      .fb_t_o          (fb_t),
+      .fb_u_o          (fb_u),
+      .fb_v_o          (fb_v),
+      .fb_dz_o         (core_fb_dz),
+      .node_req_valid_o(node_req_valid),
+      .node_req_ready_i(node_req_ready),
+      .node_req_tag_o  (node_req_tag),
+      .node_req_index_o(node_req_index),
+      .node_rsp_valid_i(node_rsp_valid),
+      .node_rsp_ready_o(node_rsp_ready),
+      .node_rsp_tag_i  (node_rsp_tag),
+      .node_rsp_data_i (node_rsp_data),
+      .node_rsp_error_i(node_rsp_error),
+      .list_req_valid_o(list_req_valid),
+      .list_req_ready_i(list_req_ready),
+      .list_req_tag_o  (list_req_tag),
+      .list_req_index_o(list_req_index),
+      .list_rsp_valid_i(list_rsp_valid),
+      .list_rsp_ready_o(list_rsp_ready),
+      .list_rsp_tag_i  (list_rsp_tag),
+      .list_rsp_data_i (list_rsp_data),
+      .list_rsp_error_i(list_rsp_error),
+      .tri_req_valid_o (tri_req_valid),
+      .tri_req_ready_i (tri_req_ready),
+      .tri_req_tag_o   (tri_req_tag),
+      .tri_req_index_o (tri_req_index),
+      .tri_rsp_valid_i (tri_rsp_valid),
+      .tri_rsp_ready_o (tri_rsp_ready),
+      .tri_rsp_tag_i   (tri_rsp_tag),
+      .tri_rsp_data_i  (tri_rsp_data),
+      .tri_rsp_error_i (tri_rsp_error),
+      .shd_req_valid_o (shd_req_valid),
+      .shd_req_ready_i (shd_req_ready),
+      .shd_req_tag_o   (shd_req_tag),
+      .shd_req_index_o (shd_req_index),
+      .shd_rsp_valid_i (shd_rsp_valid),
+      .shd_rsp_ready_o (shd_rsp_ready),
+      .shd_rsp_tag_i   (shd_rsp_tag),
+      .shd_rsp_data_i  (shd_rsp_data),
+      .shd_rsp_error_i (shd_rsp_error),
+      .mat_req_valid_o (mat_req_valid),
+      .mat_req_ready_i (mat_req_ready),
+      .mat_req_tag_o   (mat_req_tag),
+      .mat_req_index_o (mat_req_index),
+      .mat_rsp_valid_i (mat_rsp_valid),
+      .mat_rsp_ready_o (mat_rsp_ready),
+      .mat_rsp_tag_i   (mat_rsp_tag),
+      .mat_rsp_data_i  (mat_rsp_data),
+      .mat_rsp_error_i (mat_rsp_error),
+      .idle_o          (core_idle),
+      .error_o         (core_error),
+      .perf_sel_i      (perf_sel_q),
+      .perf_o          (perf),
+      .dbg_thread_state_o(core_dbg_states)
+    );
+    // d'z is a tree controller's (zero at Secondary = 0).
+    logic unused_dz;
+    assign unused_dz = ^core_fb_dz;
+    assign fb_lights      = '0;
+    assign fb_bounce_tri  = -32'sd2;
+    assign fb_refract_tri = -32'sd2;
+  end
+  // The core's debug port feeds nothing on the board (the harness reads it on a core alone).
   logic unused_core_dbg;
-  assign unused_core_dbg = ^{core_dbg_states, core_fb_dz};
+  assign unused_core_dbg = ^core_dbg_states;
 
   /////////////////
   // Framebuffer //
@@ -534,6 +740,7 @@ module rc_board #(
     status[rc_pkg::BoardStatusBusy]      = busy;
     status[rc_pkg::BoardStatusDone]      = done_q;
     status[rc_pkg::BoardStatusSizeError] = size_error_q;
+    status[rc_pkg::BoardStatusConfigError] = config_error_q;
     status[rc_pkg::BoardStatusCoreErrorLsb +: StatusW] = core_error;
   end
 
@@ -573,6 +780,7 @@ module rc_board #(
   assign busy_o       = busy;
   assign done_o       = done_q;
   assign size_error_o = size_error_q;
+  assign config_error_o = config_error_q;
   assign error_o      = core_error;
 
   assign mon_valid_o = fb_valid;
@@ -583,6 +791,9 @@ module rc_board #(
   assign mon_t_o     = fb_t;
   assign mon_u_o     = fb_u;
   assign mon_v_o     = fb_v;
+  assign mon_lights_o      = fb_lights;
+  assign mon_bounce_tri_o  = fb_bounce_tri;
+  assign mon_refract_tri_o = fb_refract_tri;
 
   ////////////////
   // Assertions //

@@ -406,15 +406,23 @@ std::string check_diff_path(const RenderArgs& a) {
 
 // --check: the golden model's frame against the RTL's, bit for bit. Returns whether they agree.
 bool check_rtl(const RenderArgs& a, const RenderInput& in, const RenderOptions& opt,
-               const Frame& rtl, const harness::CoreSimResult* sim, nlohmann::json& js) {
+               const Frame& rtl, const harness::CoreSimResult* sim,
+               const harness::BoardSimResult* board, nlohmann::json& js) {
   RenderOptions gopt = opt;
   gopt.progress = false;
   const Frame gold = render_golden(load_geometry<fp24>(in.image), gopt);
   const ExactComparison cmp = compare_exact(gold, rtl);
   std::vector<std::string> counters, allowed;  // differences that fail the check, and not
-  // The board's run has no CoreSimResult: a frame without lighting (the board refuses it).
+  // The board's run has no CoreSimResult: its frame, and lit, its counters over every kind with
+  // the per-kind ones (the secondary kinds made on chip, as rc_tracer's run).
   harness::CoreSimResult board_frame;
-  if (!sim) board_frame.frame = rtl;
+  if (!sim) {
+    board_frame.frame = rtl;
+    if (board) {
+      board_frame.perf = board->perf;
+      if (board->lit) board_frame.on_chip_kinds = harness::kTracerKinds;
+    }
+  }
   for (const CounterDifference& d :
        harness::frame_counter_differences(gold, sim ? *sim : board_frame))
     (d.required ? counters : allowed).push_back(d.text());
@@ -544,11 +552,6 @@ int run_render(const RenderArgs& a) {
         "with the board), not '" +
         a.ray_source + "'");
   const Lighting lighting = parse_lighting(a.lighting);
-  if (lighting == Lighting::kScene && a.engine == "board")
-    throw Error(
-        "--lighting scene: the board traces primary rays only so far (the scene's lights, "
-        "shadow, mirror and refraction rays are in the golden model, the Embree reference and "
-        "--engine rtl); use --engine golden, embree or rtl");
   if (a.bounces > static_cast<uint32_t>(spec::kLightBounceLimit))
     throw Error("--bounces: at most " + std::to_string(spec::kLightBounceLimit) + ", got " +
                 std::to_string(a.bounces));
@@ -635,7 +638,7 @@ int run_render(const RenderArgs& a) {
   if (!f.light_mask.empty()) js["max_bounces"] = opt.max_bounces;
   // Secondary rays on chip: the frame's counters are the core's over every kind (rtl.kinds
   // splits rays, traversal steps and triangle tests by kind).
-  const bool on_chip = rtl && rtl->on_chip_kinds != 0;
+  const bool on_chip = (rtl && rtl->on_chip_kinds != 0) || (board && board->lit);
   if (on_chip) js["counters_kinds"] = "all";
   if (!f.light_mask.empty() && a.engine != "embree" && !on_chip) {
     js["shadow_counters"] = counters_json(f.shadow_counters);
@@ -688,7 +691,7 @@ int run_render(const RenderArgs& a) {
   if (rtl) {
     js["rtl"] = rtl_json(*rtl, a);
     if (!a.quiet) print_rtl_summary(js["rtl"]);
-    if (a.check) check_ok = check_rtl(a, in, opt, f, &*rtl, js);
+    if (a.check) check_ok = check_rtl(a, in, opt, f, &*rtl, nullptr, js);
   }
   if (board) {
     js["board"] = board_json(*board);
@@ -707,13 +710,15 @@ int run_render(const RenderArgs& a) {
       std::printf("  board: MISMATCH between the monitored writes and the ports' read-back\n");
       check_ok = false;
     }
-    // Every ray the board makes is a primary one.
+    // The board's ray generator makes the primary rays; the lit board's tracer the others.
+    const uint64_t primary = static_cast<uint64_t>(f.width) * f.height;
     for (const std::string& p :
-         harness::kind_problems(board->perf, {board->frame.counters.rays, 0, 0, 0})) {
+         harness::kind_problems(board->perf, {board->lit ? primary : f.counters.rays, 0, 0, 0},
+                                board->lit ? harness::kTracerKinds : 0u)) {
       std::printf("  board: per-kind counters: %s\n", p.c_str());
       check_ok = false;
     }
-    if (a.check && !check_rtl(a, in, opt, f, nullptr, js)) check_ok = false;
+    if (a.check && !check_rtl(a, in, opt, f, nullptr, &*board, js)) check_ok = false;
   }
   if (!a.reference.empty()) {
     const Frame ref = run_any(a.reference, in, opt);
@@ -786,10 +791,11 @@ int run_render(const RenderArgs& a) {
 }
 
 struct BoardImageArgs {
-  std::string input, output, size, camera, format = "7/16";
+  std::string input, output, size, camera, format = "7/16", lighting = "headlight";
   std::vector<std::string> models_path;
   bool auto_camera = false;
   uint32_t fb_pixels = static_cast<uint32_t>(spec::kBoardFbPixels);
+  uint32_t bounces = static_cast<uint32_t>(spec::kLightMaxBounces);
 };
 
 // `raycore board-image`: the block RAM contents and register file of the board build.
@@ -816,11 +822,15 @@ int run_board_image(const BoardImageArgs& a) {
   }
   if (camera) opt.camera = *camera;
   if (a.auto_camera) opt.camera = auto_camera_for(in.image);
+  opt.lighting = parse_lighting(a.lighting);
+  opt.max_bounces = a.bounces;
   const harness::BoardImage b = harness::make_board_image(in.image, opt, a.fb_pixels);
   harness::write_board_image(b, a.output, a.input);
-  std::printf("%s: board image for a %ux%u frame in %s:", a.input.c_str(), b.width, b.height,
-              a.output.c_str());
+  std::printf("%s: %s board image for a %ux%u frame in %s:", a.input.c_str(),
+              b.lit ? "lit" : "headlight", b.width, b.height, a.output.c_str());
   for (const auto& rom : b.roms)
+    std::printf(" %s %zu x %u bits,", rom.name.c_str(), rom.records.size(), rom.width);
+  for (const auto& rom : b.light_roms)
     std::printf(" %s %zu x %u bits,", rom.name.c_str(), rom.records.size(), rom.width);
   std::printf(" regs %zu\n", b.regs.size());
   return 0;
@@ -850,6 +860,16 @@ void add_render_commands(CLI::App& app, Action* action) {
                     "the board's framebuffer size in pixels (1 to 16777216)")
         ->capture_default_str()
         ->check(kDigits & CLI::Range(1u, 1u << 24));
+    cmd->add_option("--lighting", args->lighting,
+                    "headlight (the board with the core alone) or scene (the lit board: the "
+                    "scene's lights, shadow, mirror and refraction rays; a scene without lights "
+                    "keeps the headlight)")
+        ->capture_default_str();
+    cmd->add_option("--bounces", args->bounces,
+                    "with --lighting scene: the depth of each pixel's tree of mirror and "
+                    "refraction rays")
+        ->capture_default_str()
+        ->check(kDigits & CLI::Range(0u, static_cast<unsigned>(spec::kLightBounceLimit)));
     cmd->callback([args, action] { *action = [args] { return run_board_image(*args); }; });
   }
 
@@ -864,7 +884,7 @@ void add_render_commands(CLI::App& app, Action* action) {
   cmd->add_option("--size", args->size, "frame size WxH (default: the scene's)");
   cmd->add_option("--lighting", args->lighting,
                   "headlight (the core's shading) or scene (the scene's lights with shadow, "
-                  "mirror and refraction rays: golden, embree and rtl so far; a scene without "
+                  "mirror and refraction rays; the board: the lit board build; a scene without "
                   "lights keeps the headlight)")
       ->capture_default_str();
   cmd->add_option(

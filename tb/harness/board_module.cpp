@@ -3,7 +3,8 @@
 // which loads the ROMs through plusargs, programs the camera and frame registers through the
 // register port and reads them back, starts the frame, collects the core's framebuffer writes from
 // the monitor port, and afterwards reads the status, cycles, counters and the whole framebuffer
-// back through the ports.
+// back through the ports. Built twice: the board (Vrc_board) and the lit board (Vrc_board_lit,
+// rc_board Lit = 1), named by RC_BOARD_MODEL and RC_BOARD_MODEL_H.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,7 +13,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "Vrc_board.h"
+#include RC_BOARD_MODEL_H
 #include "board_sim.hpp"
 #include "error.hpp"
 #include "model_module.hpp"
@@ -28,9 +29,11 @@ BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
   std::vector<std::string> args = {"raycore-board"};
   for (const BoardRom& rom : b.roms)
     args.push_back("+" + rom.name + "=" + (dir / (rom.name + ".hex")).string());
+  for (const BoardRom& rom : b.light_roms)
+    args.push_back("+" + rom.name + "=" + (dir / (rom.name + ".hex")).string());
   args.push_back("+regs=" + (dir / "regs.hex").string());
   // Not fatal on error: an assertion ends the run with a BoardSimError, not abort().
-  VerilatedTb<Vrc_board> tb("board", false, args);
+  VerilatedTb<RC_BOARD_MODEL> tb("board", false, args);
 
   BoardSimResult res;
   const auto fail = [&](const std::string& what) {
@@ -68,7 +71,7 @@ BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
 
   // Program the camera and the frame size, then read the whole register file back.
   for (uint32_t k = spec::kBoardRegEye; k <= spec::kBoardRegHeight; ++k) write_reg(k, b.regs[k]);
-  for (uint32_t k = 0; k < spec::kBoardRegs; ++k)
+  for (uint32_t k = 0; k < b.regs.size(); ++k)
     if (read_reg(k) != b.regs[k]) ++res.register_readback_differ;
 
   // The frame.
@@ -80,11 +83,18 @@ BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
   f.hit_tri.assign(npix, -1);
   f.hit_t.assign(npix, 0.0f);
   f.hits.assign(npix, HitRecord{});
+  res.lit = b.lit;
+  if (b.lit) {
+    f.light_mask.assign(npix, 0);
+    f.bounce_tri.assign(npix, -2);
+    f.refract_tri.assign(npix, -2);
+  }
   std::vector<uint8_t> seen(npix, 0);
   write_reg(spec::kBoardRegControl, 1u);
   const uint64_t frame_start = tb.cycles();
   while (!tb->done_o) {
     if (tb->size_error_o) fail("the board refused the frame size");
+    if (tb->config_error_o) fail("the board refused the light count or depth");
     if (tb->mon_valid_o) {
       const uint32_t pix = tb->mon_pixel_o;
       if (pix >= npix) fail("write to pixel " + std::to_string(pix) + " outside the frame");
@@ -97,6 +107,11 @@ BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
             HitRecord{static_cast<int32_t>(tb->mon_tri_o), tb->mon_t_o, tb->mon_u_o, tb->mon_v_o};
         f.hit_tri[pix] = static_cast<int32_t>(tb->mon_tri_o);
         f.hit_t[pix] = fp24::from_bits(tb->mon_t_o).to_float();
+      }
+      if (b.lit) {
+        f.light_mask[pix] = static_cast<uint32_t>(tb->mon_lights_o);
+        f.bounce_tri[pix] = static_cast<int32_t>(tb->mon_bounce_tri_o);
+        f.refract_tri[pix] = static_cast<int32_t>(tb->mon_refract_tri_o);
       }
     }
     tick();

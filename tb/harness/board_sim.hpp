@@ -4,8 +4,11 @@
 //   ROM the pair {record i + 1 (zero for the last), record i}) and its register file (camera
 //   registers from rc::camera_registers(), frame size, background, root box, record counts,
 //   shading constants, the root node's record). `raycore board-image` writes it for the FPGA
-//   flow.
-// - render_board(): the verilated rc_board (model Vrc_board) renders a frame: the harness loads
+//   flow. A frame lit by the scene's lights (--lighting scene, a scene with lights) needs the lit
+//   board (rc_board Lit = 1: rc_tracer around the core): two more ROMs for its lighting ports
+//   (the shading records, the materials' lighting fields) and the light registers.
+// - render_board(): the verilated rc_board (model Vrc_board, Vrc_board_lit when lit) renders a
+//   frame: the harness loads
 //   the ROMs through plusargs, programs the camera and frame registers through the register port
 //   and reads them back, starts the frame, collects the core's framebuffer writes from the
 //   monitor port, and afterwards reads the whole framebuffer back through its read port.
@@ -32,18 +35,28 @@ struct BoardRom {
 
 struct BoardImage {
   std::array<BoardRom, kCorePorts> roms;  // in CorePort order
-  std::vector<uint32_t> regs;             // the register file (spec::kBoardRegs entries)
+  // The lit board's: lshading, lmaterials (rc_tracer's lighting ports); empty when not lit.
+  std::vector<BoardRom> light_roms;
+  bool lit = false;
+  // The register file (spec::kBoardRegs entries; spec::kBoardLitRegs when lit).
+  std::vector<uint32_t> regs;
   uint32_t width = 0, height = 0;
   uint32_t fb_pixels = 0;  // the framebuffer the image was made for (rc_board FbPixels)
 };
 
-// The board's contents for a frame of `render` (size, camera, background) over an fp24 image.
-// Throws scene::Error when the image is not fp24 or the frame does not fit (fb_pixels).
+// Whether a frame of `render` over `image` is lit by the scene's lights (--lighting scene and a
+// scene with lights): the lit board renders it.
+bool board_lit(const scene::SceneImage& image, const RenderOptions& render);
+
+// The board's contents for a frame of `render` (size, camera, background; lit: the lights, the
+// depth) over an fp24 image. Throws scene::Error when the image is not fp24, the frame does not
+// fit (fb_pixels), or a lit frame has more lights than the tracer holds or a depth above its limit.
 BoardImage make_board_image(const scene::SceneImage& image, const RenderOptions& render,
                             uint32_t fb_pixels);
 
-// Writes <dir>/{nodes,lists,tris,shading,materials,regs}.hex ($readmemh) and <dir>/board.json
-// (depths, frame size, the parameters the FPGA flow passes to rc_board). Creates dir.
+// Writes <dir>/{nodes,lists,tris,shading,materials,regs}.hex ($readmemh), when lit
+// <dir>/{lshading,lmaterials}.hex, and <dir>/board.json (depths, frame size, the parameters the
+// FPGA flow passes to rc_board, Lit among them). Creates dir.
 void write_board_image(const BoardImage& b, const std::string& dir, const std::string& source);
 // The names of the files write_board_image() writes into its directory.
 std::vector<std::string> board_image_files();
@@ -54,7 +67,10 @@ struct BoardSimOptions {
 };
 
 struct BoardSimResult {
-  Frame frame;  // from the monitor: rgb, exact hit records; counters from the perf registers
+  // From the monitor: rgb, exact hit records (lit: the lights and first mirror and refraction
+  // hits too); counters from the perf registers (lit: the core's, over every kind).
+  Frame frame;
+  bool lit = false;
   uint64_t cycles = 0;      // the board's cycle register for the frame
   uint32_t status = 0;      // the status register after the frame
   uint32_t error_bits = 0;  // rc_core error_o (status bits from core_error_lsb)
@@ -69,7 +85,7 @@ class BoardSimError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The largest frame the verilated board model holds (its FbPixels parameter).
+// The largest frame the verilated board models hold (their FbPixels parameter).
 uint32_t board_model_fb_pixels();
 
 // Renders through the verilated board. Throws scene::Error for an unusable image or frame and

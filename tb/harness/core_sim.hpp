@@ -104,6 +104,10 @@ std::array<KindCounters, kRayKinds> kind_counters(const std::array<uint64_t, kCo
 std::vector<std::string> kind_problems(const std::array<uint64_t, kCorePerfCount>& perf,
                                        const std::array<uint64_t, kRayKinds>& rays_fed,
                                        uint32_t on_chip_kinds = 0);
+// The kinds rc_tracer makes on chip: shadow, mirror and refraction.
+inline constexpr uint32_t kTracerKinds = 1u << static_cast<unsigned>(spec::kRayKindShadow) |
+                                         1u << static_cast<unsigned>(spec::kRayKindBounce) |
+                                         1u << static_cast<unsigned>(spec::kRayKindRefract);
 
 // The fewest cycles a core needs for a frame with these counters, the ideal of the efficiency
 // figure (efficiency = ideal_cycles / cycles): its four traversal sub-units take one step each

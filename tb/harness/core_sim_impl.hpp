@@ -535,9 +535,7 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
   f.counters = counters_from_perf(res.perf, res.error_bits);
   if constexpr (kTracer) {
     res.lit = true;
-    res.on_chip_kinds = 1u << static_cast<unsigned>(spec::kRayKindShadow) |
-                        1u << static_cast<unsigned>(spec::kRayKindBounce) |
-                        1u << static_cast<unsigned>(spec::kRayKindRefract);
+    res.on_chip_kinds = kTracerKinds;
   }
   tb.flush_trace();
   if (!s.opt.trace_path.empty() && !tb.tracing())

@@ -15,6 +15,7 @@
 #include "compare.hpp"
 #include "compiler.hpp"
 #include "core_sim.hpp"
+#include "four_lights.hpp"
 #include "geometry.hpp"
 #include "job.hpp"
 
@@ -44,23 +45,7 @@ void PrintTo(const TracerCase& c, std::ostream* os) {
 RenderInput case_input(const TracerCase& c) {
   RenderInput in =
       load_render_input(kRoot + "/" + c.scene, scene::LoadOptions{}, scene::NumberFormat::fp24());
-  if (!c.four_lights) return in;
-  scene::Scene s = *in.scene;
-  scene::Light a, b, d;
-  a.position = {-0.6, 1.2, 0.5};
-  a.color = {1.0, 0.6, 0.3};
-  a.intensity = 0.7;
-  b.type = scene::Light::Type::kDirectional;
-  b.position = {0.3, -1.0, -0.4};
-  b.color = {0.4, 0.5, 1.0};
-  b.intensity = 0.5;
-  d.position = {0.7, 0.3, 0.8};
-  d.intensity = 0.3;
-  s.lights.push_back(a);
-  s.lights.push_back(b);
-  s.lights.push_back(d);
-  const scene::Compiled cc = scene::compile_scene(s, scene::CompileOptions{});
-  return RenderInput{s.name, s, scene::SceneImage::from_bytes(cc.image, s.name), std::nullopt};
+  return c.four_lights ? with_four_lights(in) : in;
 }
 
 uint64_t differ(const std::vector<int32_t>& a, const std::vector<int32_t>& b) {
