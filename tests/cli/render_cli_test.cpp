@@ -140,7 +140,7 @@ TEST(RenderCli, BadOptionsAndOutputs) {
        2,
        "--bounces"},
       {"board-image five lights",
-       {"board-image", img5, "-o", "OUT/b", "--lighting", "scene"},
+       {"board-image", img5, "-o", "OUT/b", "--size", "4x4", "--lighting", "scene"},
        1,
        "the lit board holds 4 lights, the scene has 5"},
       {"unknown secondary", with(rtl, {"-o", png, "--lighting", "scene", "--secondary", "gpu"}), 1,
