@@ -73,9 +73,10 @@ std::string regs_hex(const std::vector<uint32_t>& regs) {
 
 }  // namespace
 
+// As render_rtl() decides it (core_sim.cpp): the image's lights section, without loading the
+// geometry.
 bool board_lit(const scene::SceneImage& image, const RenderOptions& render) {
-  return render.lighting == Lighting::kScene && image.format().is<fp24>() &&
-         !load_geometry<fp24>(image).lights.empty();
+  return render.lighting == Lighting::kScene && image.light_count() > 0;
 }
 
 BoardImage make_board_image(const scene::SceneImage& image, const RenderOptions& render,
