@@ -60,7 +60,10 @@
 //   rc_pkg are typed with it); Threads 1 .. CoreMaxThreads; StackDepth a power of two up to
 //   KdtreeStackDepth; ListTags >= 2; IsectInterval 1 or 2; SetupUnits 1 to 3; Secondary: 1 =
 //   secondary packets as above, 0 = primary packets only (pkt_kind_i, pkt_t_hi_i,
-//   pkt_start_tri_i and t_eps_i are not read, and no logic is made for them).
+//   pkt_start_tri_i and t_eps_i are not read, and no logic is made for them); Shade: 1 = primary
+//   hits shaded as above, 0 = no ray shaded (for a tree controller that lights every hit itself:
+//   a primary packet's rays write the background colour with their hit records, the shd_ and
+//   mat_ ports make no requests, and no shading unit is built).
 // - Reset: rst_ni, active low, asynchronous; clears all control state.
 module rc_core #(
   parameter int unsigned ExpW           = rc_pkg::Fp24ExpW,
@@ -72,6 +75,7 @@ module rc_core #(
   parameter int unsigned IsectInterval  = rc_pkg::CoreIsectInterval,
   parameter int unsigned SetupUnits     = rc_pkg::CoreSetupUnits,
   parameter bit          Secondary      = 1'b1,
+  parameter bit          Shade          = 1'b1,
   // Derived (do not override).
   parameter int unsigned W              = 1 + ExpW + FracW,
   parameter int unsigned TagW           = rc_pkg::CoreTagBits,
@@ -687,8 +691,9 @@ module rc_core #(
   logic [ThrW-1:0] shd_pick_thr;
 
   rc_shade_seq #(
-    .Threads(Threads),
-    .Secondary(Secondary)
+    .Threads  (Threads),
+    .Secondary(Secondary),
+    .Shade    (Shade)
   ) u_shade (
     .clk_i,
     .rst_ni,

@@ -30,11 +30,15 @@
 // - Errors: a failed shading or material read raises the core's bad-address bit (err_shd_o,
 //   err_mat_o: the packet's own error bits are final by then).
 // - Parameters: Threads; Secondary: 1 = secondary packets as above, 0 = primary packets only
-//   (vm_rd_sec_i not read).
+//   (vm_rd_sec_i not read). Shade: 1 = primary hits shaded as above; 0 = no ray is shaded (a
+//   tree controller, rc_tracer, lights the hits itself): every ray goes the misses' way and is
+//   written with its hit record, a primary packet's with the background colour; the shading and
+//   material ports stay idle (no requests, responses ignored), and rc_shade_unit is not built.
 // - Reset: rst_ni (active low, asynchronous) clears control state.
 module rc_shade_seq #(
   parameter int unsigned Threads   = rc_pkg::CoreThreads,
   parameter bit          Secondary = 1'b1,
+  parameter bit          Shade     = 1'b1,
   // Derived (do not override).
   parameter int unsigned W         = rc_pkg::CoreFpW,
   parameter int unsigned ThrW      = (Threads > 1) ? $clog2(Threads) : 1,
@@ -201,8 +205,8 @@ module rc_shade_seq #(
 
   logic adv, to_shd, to_miss, sreq_free, miss_free, miss_v;
   logic sh_valid_r, sh_hit_r;
-  logic [RidW-1:0] shd_req_rid, miss_rid;
-  logic            miss_take, miss_sec, miss_sec_hit, miss_sec_err;
+  logic [RidW-1:0] miss_rid;
+  logic            miss_take, miss_sec, miss_hit, miss_sec_err;
 
   // The sequencer's two outputs, shading requests and misses, are two-entry queues whose room is
   // a flip-flop (rc_credit_fifo's credit): a ray's step depends on this unit's registers only,
@@ -213,9 +217,10 @@ module rc_shade_seq #(
   // only numbers the ray in the queues' data.
   assign sh_valid_r = sh_vm_q[0];
   assign sh_hit_r   = sh_hm_q[0];
-  // A secondary packet's rays all go the misses' way (with their hit bit, for the record).
+  // A secondary packet's rays all go the misses' way (with their hit bit, for the record), and
+  // with Shade = 0 every packet's.
   assign to_shd     = sh_busy_q & sh_valid_r & sh_hit_r & ~sh_sec_q & sreq_free;
-  assign to_miss    = sh_busy_q & sh_valid_r & (~sh_hit_r | sh_sec_q) & miss_free;
+  assign to_miss    = sh_busy_q & sh_valid_r & (~sh_hit_r | sh_sec_q | ~Shade) & miss_free;
   assign adv        = sh_busy_q & (~sh_valid_r | to_shd | to_miss);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -292,22 +297,6 @@ module rc_shade_seq #(
   assign tri_thr_o = shp_thr_q;
 
   rc_credit_fifo #(
-    .Width(RidW + 32),
-    .Depth(2)
-  ) u_shd_req_q (
-    .clk_i,
-    .rst_ni,
-    .take_i    (to_shd),
-    .credit_o  (sreq_free),
-    .wr_valid_i(to_shd),
-    .wr_data_i ({rc_pkg::lane32(sh_btri_q, sh_r_q), sh_thr_q, sh_r_q}),
-    .valid_o   (shd_req_valid_o),
-    .ready_i   (shd_req_ready_i),
-    .data_o    ({shd_req_index_o, shd_req_rid})
-  );
-  assign shd_req_tag_o = TagW'(shd_req_rid);
-
-  rc_credit_fifo #(
     .Width(3 + RidW),
     .Depth(2)
   ) u_miss_q (
@@ -316,152 +305,206 @@ module rc_shade_seq #(
     .take_i    (to_miss),
     .credit_o  (miss_free),
     .wr_valid_i(to_miss),
-    .wr_data_i ({sh_sec_q, sh_sec_q & sh_hit_r, sh_se_q, sh_thr_q, sh_r_q}),
+    .wr_data_i ({sh_sec_q, (sh_sec_q | ~Shade) & sh_hit_r, sh_se_q, sh_thr_q, sh_r_q}),
     .valid_o   (miss_v),
     .ready_i   (miss_take),
-    .data_o    ({miss_sec, miss_sec_hit, miss_sec_err, miss_rid})
+    .data_o    ({miss_sec, miss_hit, miss_sec_err, miss_rid})
   );
 
-  ////////////////////////////////////
-  // Shading record -> material     //
-  ////////////////////////////////////
-
-  logic            mat_req_valid_q, sr_take, mreq_free;
-  logic [RidW-1:0] mat_req_rid_q, sr_rid;
-  logic [31:0]     mat_req_index_q;
-
-  assign mreq_free       = ~mat_req_valid_q | mat_req_ready_i;
-  assign shd_rsp_ready_o = mreq_free;
-  assign sr_take         = shd_rsp_valid_i & mreq_free;
-  assign sr_rid          = shd_rsp_tag_i[RidW-1:0];
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      mat_req_valid_q <= 1'b0;
-      mat_req_rid_q   <= '0;
-      mat_req_index_q <= '0;
-    end else begin
-      if (mat_req_valid_q && mat_req_ready_i) mat_req_valid_q <= 1'b0;
-      if (sr_take) begin
-        mat_req_valid_q <= 1'b1;
-        mat_req_rid_q   <= sr_rid;
-        mat_req_index_q <= shd_rsp_error_i ? 32'd0 :
-                           shd_rsp_data_i[8 * rc_pkg::ImageShadingMaterial +: 32];
-      end
-    end
-  end
-  assign mat_req_valid_o = mat_req_valid_q;
-  assign mat_req_tag_o   = TagW'(mat_req_rid_q);
-  assign mat_req_index_o = mat_req_index_q;
-
-  logic            ma_take;
-  logic [RidW-1:0] mr_rid;
-
-  // |n| and whether the shading read failed, per {thread, ray}: written at the shading response,
-  // read at the material response (which comes after its request, so after the write).
-  logic [W:0] nl_rd;
-  rc_ram #(
-    .Width (W + 1),
-    .Depth (4 << ThrW),
-    .OutReg(1'b1)
-  ) u_nlen (
-    .clk_i,
-    .we_i   (sr_take),
-    .waddr_i(sr_rid),
-    .wdata_i({shd_rsp_error_i, shd_rsp_data_i[NlenLsb +: W]}),
-    .re_i   (ma_take),
-    .raddr_i(mr_rid),
-    .rdata_o(nl_rd)
-  );
-
-  //////////////////////////////
-  // Material -> shading unit //
-  //////////////////////////////
-
-  // A material response is taken while the input queue has room for it and every response in
-  // the two read stages (m1, m2): ma_room_q, from the queue's count a cycle ago.
-  logic            ma_room_q, m1_v_q, m2_v_q, m1_bad_q, m2_bad_q;
-  logic [RidW-1:0] m1_rid_q, m2_rid_q;
-  logic [3*W-1:0]  m1_kd_q, m2_kd_q;
-  logic [$clog2(InQD+1)-1:0] iq_cnt;
-  logic            iq_valid, sh_ready;
-  logic [RidW+6*W-1:0] iq_data;
-  logic [RidW-1:0] iq_rid;
-  logic [W-1:0]    iq_dz, iq_nlen, iq_ilen;
-  logic [3*W-1:0]  iq_kd;
-
-  assign mr_rid          = mat_rsp_tag_i[RidW-1:0];
-  assign mat_rsp_ready_o = ma_room_q;
-  assign ma_take         = mat_rsp_valid_i & ma_room_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      m1_v_q    <= 1'b0;
-      m2_v_q    <= 1'b0;
-      ma_room_q <= 1'b1;
-    end else begin
-      m1_v_q    <= ma_take;
-      m2_v_q    <= m1_v_q;
-      // Room for a response taken now: the queue's entries, the two read stages and this one.
-      ma_room_q <= 32'(iq_cnt) + 32'(m1_v_q) + 32'(m2_v_q) + 32'(ma_take) + 1 <= InQD;
-    end
-  end
-  always_ff @(posedge clk_i) begin
-    m1_rid_q <= mr_rid;
-    m1_bad_q <= mat_rsp_error_i;
-    m1_kd_q  <= {mat_rsp_data_i[64 +: W], mat_rsp_data_i[32 +: W], mat_rsp_data_i[0 +: W]};
-    m2_rid_q <= m1_rid_q;
-    m2_bad_q <= m1_bad_q;
-    m2_kd_q  <= m1_kd_q;
-  end
-  assign dz_re_o    = ma_take;
-  assign dz_thr_o   = mr_rid[RidW-1:2];
-  assign dz_ray_o   = mr_rid[1:0];
-  assign ilen_re_o  = ma_take;
-  assign ilen_thr_o = mr_rid[RidW-1:2];
-  assign ilen_ray_o = mr_rid[1:0];
-
-  rc_fifo #(
-    .Width(RidW + 6 * W),
-    .Depth(InQD)
-  ) u_in_q (
-    .clk_i,
-    .rst_ni,
-    .push_i (m2_v_q),
-    .data_i ({m2_rid_q, (m2_bad_q | nl_rd[W]) ? {3*W{1'b0}} : m2_kd_q, ilen_i, nl_rd[W-1:0],
-              dz_i}),
-    .valid_o(iq_valid),
-    .ready_i(sh_ready),
-    .data_o (iq_data),
-    .count_o(iq_cnt)
-  );
-  assign {iq_rid, iq_kd, iq_ilen, iq_nlen, iq_dz} = iq_data;
-
+  // The shading path: shading requests, the shading and material responses, rc_shade_unit
+  // (Shade = 0: none of it; the ports stay idle).
+  logic            port_hs;
   logic            sho_v, sho_ready;
   logic [RidW-1:0] sho_rid;
   logic [23:0]     sho_rgb;
+  if (Shade) begin : g_shade
+    logic [RidW-1:0] shd_req_rid;
+    rc_credit_fifo #(
+      .Width(RidW + 32),
+      .Depth(2)
+    ) u_shd_req_q (
+      .clk_i,
+      .rst_ni,
+      .take_i    (to_shd),
+      .credit_o  (sreq_free),
+      .wr_valid_i(to_shd),
+      .wr_data_i ({rc_pkg::lane32(sh_btri_q, sh_r_q), sh_thr_q, sh_r_q}),
+      .valid_o   (shd_req_valid_o),
+      .ready_i   (shd_req_ready_i),
+      .data_o    ({shd_req_index_o, shd_req_rid})
+    );
+    assign shd_req_tag_o = TagW'(shd_req_rid);
 
-  rc_shade_unit #(
-    .ExpW (rc_pkg::Fp24ExpW),
-    .FracW(rc_pkg::Fp24FracW),
-    .TagW (RidW)
-  ) u_shade (
-    .clk_i,
-    .rst_ni,
-    .valid_i  (iq_valid),
-    .ready_o  (sh_ready),
-    .tag_i    (iq_rid),
-    .dz_i     (iq_dz),
-    .nlen_i   (iq_nlen),
-    .inv_len_i(iq_ilen),
-    .kd_i     (iq_kd),
-    .ambient_i(ambient_i),
-    .diffuse_i(diffuse_i),
-    .valid_o  (sho_v),
-    .ready_i  (sho_ready),
-    .tag_o    (sho_rid),
-    .rgb_o    (sho_rgb)
-  );
+    ////////////////////////////////////
+    // Shading record -> material     //
+    ////////////////////////////////////
+
+    logic            mat_req_valid_q, sr_take, mreq_free;
+    logic [RidW-1:0] mat_req_rid_q, sr_rid;
+    logic [31:0]     mat_req_index_q;
+
+    assign mreq_free       = ~mat_req_valid_q | mat_req_ready_i;
+    assign shd_rsp_ready_o = mreq_free;
+    assign sr_take         = shd_rsp_valid_i & mreq_free;
+    assign sr_rid          = shd_rsp_tag_i[RidW-1:0];
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        mat_req_valid_q <= 1'b0;
+        mat_req_rid_q   <= '0;
+        mat_req_index_q <= '0;
+      end else begin
+        if (mat_req_valid_q && mat_req_ready_i) mat_req_valid_q <= 1'b0;
+        if (sr_take) begin
+          mat_req_valid_q <= 1'b1;
+          mat_req_rid_q   <= sr_rid;
+          mat_req_index_q <= shd_rsp_error_i ? 32'd0 :
+                             shd_rsp_data_i[8 * rc_pkg::ImageShadingMaterial +: 32];
+        end
+      end
+    end
+    assign mat_req_valid_o = mat_req_valid_q;
+    assign mat_req_tag_o   = TagW'(mat_req_rid_q);
+    assign mat_req_index_o = mat_req_index_q;
+
+    logic            ma_take;
+    logic [RidW-1:0] mr_rid;
+
+    // |n| and whether the shading read failed, per {thread, ray}: written at the shading response,
+    // read at the material response (which comes after its request, so after the write).
+    logic [W:0] nl_rd;
+    rc_ram #(
+      .Width (W + 1),
+      .Depth (4 << ThrW),
+      .OutReg(1'b1)
+    ) u_nlen (
+      .clk_i,
+      .we_i   (sr_take),
+      .waddr_i(sr_rid),
+      .wdata_i({shd_rsp_error_i, shd_rsp_data_i[NlenLsb +: W]}),
+      .re_i   (ma_take),
+      .raddr_i(mr_rid),
+      .rdata_o(nl_rd)
+    );
+
+    //////////////////////////////
+    // Material -> shading unit //
+    //////////////////////////////
+
+    // A material response is taken while the input queue has room for it and every response in
+    // the two read stages (m1, m2): ma_room_q, from the queue's count a cycle ago.
+    logic            ma_room_q, m1_v_q, m2_v_q, m1_bad_q, m2_bad_q;
+    logic [RidW-1:0] m1_rid_q, m2_rid_q;
+    logic [3*W-1:0]  m1_kd_q, m2_kd_q;
+    logic [$clog2(InQD+1)-1:0] iq_cnt;
+    logic            iq_valid, sh_ready;
+    logic [RidW+6*W-1:0] iq_data;
+    logic [RidW-1:0] iq_rid;
+    logic [W-1:0]    iq_dz, iq_nlen, iq_ilen;
+    logic [3*W-1:0]  iq_kd;
+
+    assign mr_rid          = mat_rsp_tag_i[RidW-1:0];
+    assign mat_rsp_ready_o = ma_room_q;
+    assign ma_take         = mat_rsp_valid_i & ma_room_q;
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        m1_v_q    <= 1'b0;
+        m2_v_q    <= 1'b0;
+        ma_room_q <= 1'b1;
+      end else begin
+        m1_v_q    <= ma_take;
+        m2_v_q    <= m1_v_q;
+        // Room for a response taken now: the queue's entries, the two read stages and this one.
+        ma_room_q <= 32'(iq_cnt) + 32'(m1_v_q) + 32'(m2_v_q) + 32'(ma_take) + 1 <= InQD;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      m1_rid_q <= mr_rid;
+      m1_bad_q <= mat_rsp_error_i;
+      m1_kd_q  <= {mat_rsp_data_i[64 +: W], mat_rsp_data_i[32 +: W], mat_rsp_data_i[0 +: W]};
+      m2_rid_q <= m1_rid_q;
+      m2_bad_q <= m1_bad_q;
+      m2_kd_q  <= m1_kd_q;
+    end
+    assign dz_re_o    = ma_take;
+    assign dz_thr_o   = mr_rid[RidW-1:2];
+    assign dz_ray_o   = mr_rid[1:0];
+    assign ilen_re_o  = ma_take;
+    assign ilen_thr_o = mr_rid[RidW-1:2];
+    assign ilen_ray_o = mr_rid[1:0];
+
+    rc_fifo #(
+      .Width(RidW + 6 * W),
+      .Depth(InQD)
+    ) u_in_q (
+      .clk_i,
+      .rst_ni,
+      .push_i (m2_v_q),
+      .data_i ({m2_rid_q, (m2_bad_q | nl_rd[W]) ? {3*W{1'b0}} : m2_kd_q, ilen_i, nl_rd[W-1:0],
+                dz_i}),
+      .valid_o(iq_valid),
+      .ready_i(sh_ready),
+      .data_o (iq_data),
+      .count_o(iq_cnt)
+    );
+    assign {iq_rid, iq_kd, iq_ilen, iq_nlen, iq_dz} = iq_data;
+
+    rc_shade_unit #(
+      .ExpW (rc_pkg::Fp24ExpW),
+      .FracW(rc_pkg::Fp24FracW),
+      .TagW (RidW)
+    ) u_shade (
+      .clk_i,
+      .rst_ni,
+      .valid_i  (iq_valid),
+      .ready_o  (sh_ready),
+      .tag_i    (iq_rid),
+      .dz_i     (iq_dz),
+      .nlen_i   (iq_nlen),
+      .inv_len_i(iq_ilen),
+      .kd_i     (iq_kd),
+      .ambient_i(ambient_i),
+      .diffuse_i(diffuse_i),
+      .valid_o  (sho_v),
+      .ready_i  (sho_ready),
+      .tag_o    (sho_rid),
+      .rgb_o    (sho_rgb)
+    );
+
+    assign err_shd_o    = sr_take & shd_rsp_error_i;
+    assign err_mat_o    = ma_take & mat_rsp_error_i;
+    assign perf_shade_o = iq_valid & sh_ready;
+    assign port_hs      = (shd_req_valid_o & shd_req_ready_i) | sr_take |
+                          (mat_req_valid_q & mat_req_ready_i) | ma_take;
+  end else begin : g_none
+    assign sreq_free       = 1'b0;
+    assign shd_req_valid_o = 1'b0;
+    assign shd_req_tag_o   = '0;
+    assign shd_req_index_o = '0;
+    assign shd_rsp_ready_o = 1'b1;
+    assign mat_req_valid_o = 1'b0;
+    assign mat_req_tag_o   = '0;
+    assign mat_req_index_o = '0;
+    assign mat_rsp_ready_o = 1'b1;
+    assign dz_re_o         = 1'b0;
+    assign dz_thr_o        = '0;
+    assign dz_ray_o        = '0;
+    assign ilen_re_o       = 1'b0;
+    assign ilen_thr_o      = '0;
+    assign ilen_ray_o      = '0;
+    assign sho_v           = 1'b0;
+    assign sho_rid         = '0;
+    assign sho_rgb         = '0;
+    assign err_shd_o       = 1'b0;
+    assign err_mat_o       = 1'b0;
+    assign perf_shade_o    = 1'b0;
+    assign port_hs         = 1'b0;
+    logic unused_none;
+    assign unused_none = ^{shd_req_ready_i, shd_rsp_valid_i, shd_rsp_error_i, mat_req_ready_i,
+                           mat_rsp_valid_i, mat_rsp_error_i, dz_i, ilen_i, sho_ready,
+                           ambient_i, diffuse_i, sh_btri_q};
+  end
 
   ////////////////////////
   // Framebuffer writes //
@@ -479,7 +522,7 @@ module rc_shade_seq #(
   logic [31:0]     rec_tri;
 
   assign f_take    = (sho_v | miss_v) & f_room_q;
-  assign f_hit     = sho_v | miss_sec_hit;
+  assign f_hit     = sho_v | miss_hit;
   assign f_rid     = sho_v ? sho_rid : miss_rid;
   assign f_rgb     = sho_v ? sho_rgb : (miss_sec ? {23'd0, miss_sec_err} : background_i);
   assign sho_ready = f_room_q;
@@ -596,14 +639,10 @@ module rc_shade_seq #(
   assign free0_valid_o = free0_v;
   assign free0_thr_o   = free0_thr;
 
-  assign err_shd_o    = sr_take & shd_rsp_error_i;
-  assign err_mat_o    = ma_take & mat_rsp_error_i;
   assign pick_valid_o = shp_v_q;
   assign pick_thr_o   = shp_thr_q;
-  assign perf_shade_o = iq_valid & sh_ready;
   assign perf_fb_o    = fb_take;
-  assign wd_o         = (shd_req_valid_o & shd_req_ready_i) | sr_take |
-                        (mat_req_valid_q & mat_req_ready_i) | ma_take | fb_take;
+  assign wd_o         = port_hs | fb_take;
 
   logic unused_bits;
   assign unused_bits = ^{shd_rsp_tag_i, shd_rsp_data_i, mat_rsp_tag_i, mat_rsp_data_i,
