@@ -141,7 +141,10 @@ module rc_board #(
   // Register file //
   ///////////////////
 
-  logic [31:0] regs_q [0:Regs-1];
+  // Flip-flops, never a memory (mem2reg): every register is read at a fixed address by its user,
+  // and Yosys 0.23's memory_libmap, given the lit board's 64 registers as one memory with 147
+  // read ports, grew past 24 GB.
+  (* mem2reg *) logic [31:0] regs_q [0:Regs-1];
 
   initial begin
 `ifndef SYNTHESIS
