@@ -8,8 +8,8 @@
 // Contract
 // - Ports: rc_core's (its configuration, packet input, framebuffer write, five memory ports,
 //   status, counters and debug, with the core's meaning; the core is built with Shade = 0, so
-//   shd_* and mat_* make no requests and ambient_i, diffuse_i are not read: the lighting reads
-//   lshd_* and lmat_*), and:
+//   shd_* and mat_* make no requests and diffuse_i is not read: the lighting reads lshd_* and
+//   lmat_*, and ambient_i goes to rc_hit_light), and:
 //     light_count_i (1 .. MaxLights), light_dir_i, light_pos_i, light_col_i: the lights, as
 //       rc_hit_light's; max_bounces_i (0 .. MaxBounces): the depth of the trees; bg_i: the
 //       background colour as format values (channel c = byte c / 255 in double, rounded once),
