@@ -30,6 +30,7 @@ rtl/core/rc_isect_unit.sv
 rtl/core/rc_rr_pick_flat.sv
 rtl/core/rc_rr_pick.sv
 rtl/core/rc_onehot.sv
+rtl/core/rc_lowest.sv
 rtl/core/rc_flag_pair.sv
 rtl/core/rc_reg_copies.sv
 rtl/core/rc_ram.sv

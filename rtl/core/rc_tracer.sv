@@ -217,10 +217,11 @@ module rc_tracer #(
   localparam int unsigned FW     = rc_pkg::LightFixedBits + 1;
   localparam int unsigned ExpB   = rc_pkg::LightExponentBits;
   localparam int unsigned SumW   = 32;
-  localparam int unsigned ShW    = $clog2(4 * ShadowPackets + 1);  // a slot's shadow rays out
   localparam int unsigned AddQ   = 8;                            // the add queue's entries
-  localparam int unsigned ApW    = $clog2(2 * AddQ + 1);         // a slot's adds pending
-  localparam int unsigned LpW    = $clog2(MaxBounces + 2);       // a slot's packets being lit
+  // A slot's work out: its shadow rays in the core (at most 4 per shadow packet), its adds
+  // pending (ambient and miss terms, at most two add queues' worth) and its packets in
+  // rc_hit_light (at most MaxBounces + 1): one counter, as the slot waits for all three.
+  localparam int unsigned WkW    = $clog2(4 * ShadowPackets + 2 * AddQ + MaxBounces + 2);
   localparam int unsigned MissL  = rc_pkg::FpStagesMul + 1;      // the miss term's latency
   localparam int unsigned KsLsb  = 8 * (rc_pkg::ImageMaterialKs - rc_pkg::ImageMaterialKd);
   localparam int unsigned NsLsb  = 8 * (rc_pkg::ImageMaterialNs - rc_pkg::ImageMaterialKd);
@@ -267,9 +268,7 @@ module rc_tracer #(
   logic [Slots-1:0]       cm_q;      // the current packet is a mirror packet
   logic [Slots*3-1:0]     pend_q;    // the current packet's writes still due, [3s +: 3]
   logic [Slots*DepthW-1:0] depth_q;  // the current packet's depth
-  logic [Slots*ShW-1:0]   sh_q;      // shadow rays out
-  logic [Slots*ApW-1:0]   ap_q;      // adds pending (ambient and miss terms)
-  logic [Slots*LpW-1:0]   lp_q;      // packets in rc_hit_light
+  logic [Slots*WkW-1:0]   wk_q;      // work out: shadow rays, adds pending, packets being lit
   logic [Slots*DepthW-1:0] sp_q;     // the stack's entries
   logic [3:0]             pmask_q  [Slots];   // the primary packet's rays
   logic [3:0]             cmask_q  [Slots];   // the current packet's rays
@@ -349,16 +348,16 @@ module rc_tracer #(
   // A free slot: the lowest.
   logic             free_any;
   logic [SlotW-1:0] free_idx;
-  always_comb begin
-    free_any = 1'b0;
-    free_idx = '0;
-    for (int s = Slots - 1; s >= 0; s--) begin
-      if (!busy_q[s]) begin
-        free_any = 1'b1;
-        free_idx = SlotW'(s);
-      end
-    end
-  end
+  logic [Slots-1:0] free_hot;
+  rc_lowest #(
+    .N   (Slots),
+    .IdxW(SlotW)
+  ) u_free (
+    .req_i  (~busy_q),
+    .valid_o(free_any),
+    .idx_o  (free_idx),
+    .hot_o  (free_hot)
+  );
 
   // The controller's own packets first: shadow packets, then the trees' packets.
   logic ext_take;
@@ -534,18 +533,18 @@ module rc_tracer #(
   logic [SlotW-1:0]         cws_slot;
   assign cws_slot = sp_slot_q[cw_sp];
 
-  logic             sp_free_any;
-  logic [SpW-1:0]   sp_free;
-  always_comb begin
-    sp_free_any = 1'b0;
-    sp_free     = '0;
-    for (int k = ShadowPackets - 1; k >= 0; k--) begin
-      if (!spb_q[k]) begin
-        sp_free_any = 1'b1;
-        sp_free     = SpW'(k);
-      end
-    end
-  end
+  logic                     sp_free_any;
+  logic [SpW-1:0]           sp_free;
+  logic [ShadowPackets-1:0] sp_free_hot;
+  rc_lowest #(
+    .N   (ShadowPackets),
+    .IdxW(SpW)
+  ) u_sp_free (
+    .req_i  (~spb_q),
+    .valid_o(sp_free_any),
+    .idx_o  (sp_free),
+    .hot_o  (sp_free_hot)
+  );
 
   ///////////////////////////////////////////
   // Fetch: shading record, then material  //
@@ -909,19 +908,23 @@ module rc_tracer #(
     gr.mirror = 1'b0;
     gm.depth  = geo_depth + 1'b1;
     gr.depth  = geo_depth + 1'b1;
-    if (geo_take && geo_deeper && geo_mirror) begin
-      gm.mask[geo_lane]         = 1'b1;
-      gm.org[geo_lane*3*W +: 3*W] = geo_p;
-      gm.dir[geo_lane*3*W +: 3*W] = geo_r;
-      gm.w[geo_lane*W +: W]     = geo_w_mirror;
-      gm.stri[geo_lane*32 +: 32] = geo_tri;
-    end
-    if (geo_take && geo_deeper && geo_refract) begin
-      gr.mask[geo_lane]         = 1'b1;
-      gr.org[geo_lane*3*W +: 3*W] = geo_p;
-      gr.dir[geo_lane*3*W +: 3*W] = geo_refr;
-      gr.w[geo_lane*W +: W]     = geo_w_refract;
-      gr.stri[geo_lane*32 +: 32] = geo_tri;
+    // A loop over the lanes with constant part-selects: a select at a computed offset becomes a
+    // barrel shifter over the whole record in synthesis.
+    for (int r = 0; r < 4; r++) begin
+      if (geo_lane == 2'(r) && geo_take && geo_deeper && geo_mirror) begin
+        gm.mask[r]             = 1'b1;
+        gm.org[r*3*W +: 3*W]   = geo_p;
+        gm.dir[r*3*W +: 3*W]   = geo_r;
+        gm.w[r*W +: W]         = geo_w_mirror;
+        gm.stri[r*32 +: 32]    = geo_tri;
+      end
+      if (geo_lane == 2'(r) && geo_take && geo_deeper && geo_refract) begin
+        gr.mask[r]             = 1'b1;
+        gr.org[r*3*W +: 3*W]   = geo_p;
+        gr.dir[r*3*W +: 3*W]   = geo_refr;
+        gr.w[r*W +: W]         = geo_w_refract;
+        gr.stri[r*32 +: 32]    = geo_tri;
+      end
     end
   end
 
@@ -950,8 +953,15 @@ module rc_tracer #(
   logic [DepthW-1:0] dec_sp;
   assign dec      = dec_geo || dec_seq || (fq_pop && fq_work == 4'd0);
   assign dec_slot = dec_geo ? geo_slot : dec_seq ? fs_slot_q : fq_slot;
-  assign dec_m    = dec_geo ? gm : '0;
-  assign dec_r    = dec_geo ? gr : '0;
+  // Outside dec_geo only the masks are cleared: a packet without rays is neither sent nor pushed.
+  always_comb begin
+    dec_m = gm;
+    dec_r = gr;
+    if (!dec_geo) begin
+      dec_m.mask = '0;
+      dec_r.mask = '0;
+    end
+  end
   assign dec_sp   = sp_q[dec_slot*DepthW +: DepthW];
   assign dec_now  = dec && (dec_m.mask != 4'd0 || dec_r.mask != 4'd0);
   assign dec_push = dec && dec_m.mask != 4'd0 && dec_r.mask != 4'd0;
@@ -1113,13 +1123,15 @@ module rc_tracer #(
     as_t_hi = as_t_hi_q;
     as_tri  = as_tri_q;
     as_term = as_term_q;
-    if (lt_take && lt_present) begin
-      as_mask[lt_lane]              = 1'b1;
-      as_org[lt_lane*3*W +: 3*W]    = lt_org;
-      as_dir[lt_lane*3*W +: 3*W]    = lt_dir;
-      as_t_hi[lt_lane*W +: W]       = lt_t_hi;
-      as_tri[lt_lane*32 +: 32]      = lt_tri;
-      as_term[lt_lane*3*FW +: 3*FW] = lt_term;
+    for (int r = 0; r < 4; r++) begin  // constant part-selects, as for the tree's packets
+      if (lt_lane == 2'(r) && lt_take && lt_present) begin
+        as_mask[r]              = 1'b1;
+        as_org[r*3*W +: 3*W]    = lt_org;
+        as_dir[r*3*W +: 3*W]    = lt_dir;
+        as_t_hi[r*W +: W]       = lt_t_hi;
+        as_tri[r*32 +: 32]      = lt_tri;
+        as_term[r*3*FW +: 3*FW] = lt_term;
+      end
     end
   end
   assign shq_push  = lt_close && as_mask != 4'd0;
@@ -1143,17 +1155,22 @@ module rc_tracer #(
   end
 
   // The shadow packets' entries.
-  logic cws_free;
+  logic                     cws_free;
+  logic [ShadowPackets-1:0] cwsf_hot;
   assign cws_free = cw_sh && sp_cnt_q[cw_sp] == 3'd1;
+  rc_onehot #(.N(ShadowPackets), .IdxW(SpW)) u_cwsf_hot (.valid_i(cws_free), .idx_i(cw_sp),
+                                                         .hot_o(cwsf_hot));
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       spb_q   <= '0;
       sp_d0_q <= '0;
     end else begin
-      if (cws_free) spb_q[cw_sp] <= 1'b0;
-      if (shq_push) begin
-        spb_q[sp_free]   <= 1'b1;
-        sp_d0_q[sp_free] <= lt_d0;
+      for (int k = 0; k < ShadowPackets; k++) begin  // decoded writes
+        if (cwsf_hot[k]) spb_q[k] <= 1'b0;
+        if (shq_push && sp_free_hot[k]) begin
+          spb_q[k]   <= 1'b1;
+          sp_d0_q[k] <= lt_d0;
+        end
       end
     end
   end
@@ -1208,25 +1225,30 @@ module rc_tracer #(
   ////////////////////////
 
   // Done slots: the lowest first, one slot's lanes at a time, one lane per cycle.
-  logic [Slots-1:0] done_vec;
+  logic [Slots-1:0] done_vec, dn_hot, fs_hot, lnp_hot;
   logic             dn_any;
   logic [SlotW-1:0] dn_idx;
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_fs_hot  (.valid_i(fs_busy_q),   .idx_i(fs_slot_q),
+                                                  .hot_o(fs_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_lnp_hot (.valid_i(ln_add_pend), .idx_i(ln_add_slot),
+                                                  .hot_o(lnp_hot));
   always_comb begin
-    dn_any = 1'b0;
-    dn_idx = '0;
-    for (int s = Slots - 1; s >= 0; s--) begin
+    for (int s = 0; s < Slots; s++) begin
       // Not while the sequencer still issues the last packet's misses (their adds are counted
       // from the issue), nor while an add's sum is still to be written (ln_add_pend).
-      done_vec[s] = busy_q[s] && td_q[s] && !fin_q[s] && sh_q[s*ShW +: ShW] == '0 &&
-                    ap_q[s*ApW +: ApW] == '0 && lp_q[s*LpW +: LpW] == '0 &&
-                    !(fs_busy_q && fs_slot_q == SlotW'(s)) &&
-                    !(ln_add_pend && ln_add_slot == SlotW'(s));
-      if (done_vec[s]) begin
-        dn_any = 1'b1;
-        dn_idx = SlotW'(s);
-      end
+      done_vec[s] = busy_q[s] && td_q[s] && !fin_q[s] && wk_q[s*WkW +: WkW] == '0 &&
+                    !fs_hot[s] && !lnp_hot[s];
     end
   end
+  rc_lowest #(
+    .N   (Slots),
+    .IdxW(SlotW)
+  ) u_done (
+    .req_i  (done_vec),
+    .valid_o(dn_any),
+    .idx_o  (dn_idx),
+    .hot_o  (dn_hot)
+  );
 
   localparam int unsigned OutW = 32 + 24 + 1 + 32 + 3 * W + MaxLights + 64;
   logic             fw_busy_q, fw_issue, fw_room, fw_free, fw_write;
@@ -1330,9 +1352,26 @@ module rc_tracer #(
   // The slots' state //
   //////////////////////
 
-  logic [SlotW-1:0] mi_slot, aq_slot;
-  assign mi_slot = fs_slot_q;
+  // The slots' events, decoded (rc_onehot: two predecoded lines per slot, not a compare each).
+  logic [SlotW-1:0] aq_slot;
+  logic [Slots-1:0] lt_hot, cws_hot, aq_hot, fq_hot, cw_hot, snd_hot, dec_hot, fwf_hot;
   assign aq_slot = aq_ln[LaneW-1:2];
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_lt_hot  (.valid_i(1'b1),   .idx_i(lt_slot),
+                                                  .hot_o(lt_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_cws_hot (.valid_i(cw_sh),  .idx_i(cws_slot),
+                                                  .hot_o(cws_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_aq_hot  (.valid_i(aq_pop), .idx_i(aq_slot),
+                                                  .hot_o(aq_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_fq_hot  (.valid_i(fq_pop && fq_hits != 4'd0),
+                                                  .idx_i(fq_slot), .hot_o(fq_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_cw_hot  (.valid_i(cw_cur), .idx_i(cw_slot),
+                                                  .hot_o(cw_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_snd_hot (.valid_i(snd),    .idx_i(snd_slot),
+                                                  .hot_o(snd_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_dec_hot (.valid_i(dec),    .idx_i(dec_slot),
+                                                  .hot_o(dec_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_fwf_hot (.valid_i(fw_free), .idx_i(fw_slot_q),
+                                                  .hot_o(fwf_hot));
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -1343,29 +1382,20 @@ module rc_tracer #(
       cm_q    <= '0;
       pend_q  <= '0;
       depth_q <= '0;
-      sh_q    <= '0;
-      ap_q    <= '0;
-      lp_q    <= '0;
+      wk_q    <= '0;
       sp_q    <= '0;
     end else begin
       for (int s = 0; s < Slots; s++) begin
-        logic [ShW-1:0] sh_d;
-        logic [ApW-1:0] ap_d;
-        logic [LpW-1:0] lp_d;
-        sh_d = sh_q[s*ShW +: ShW];
-        if (shq_push && lt_slot == SlotW'(s)) sh_d = sh_d + ShW'(rc_pkg::ray_count(as_mask));
-        if (cw_sh && cws_slot == SlotW'(s)) sh_d = sh_d - 1'b1;
-        sh_q[s*ShW +: ShW] <= sh_d;
-        ap_d = ap_q[s*ApW +: ApW];
-        if (mi_issue && mi_slot == SlotW'(s)) ap_d = ap_d + 1'b1;
-        if (lt_amb_push && lt_slot == SlotW'(s)) ap_d = ap_d + 1'b1;
-        if (aq_pop && aq_slot == SlotW'(s)) ap_d = ap_d - 1'b1;
-        ap_q[s*ApW +: ApW] <= ap_d;
-        lp_d = lp_q[s*LpW +: LpW];
-        if (fq_pop && fq_hits != 4'd0 && fq_slot == SlotW'(s)) lp_d = lp_d + 1'b1;
-        if (lt_take && lt_lane_last && lt_light_last && lt_slot == SlotW'(s)) lp_d = lp_d - 1'b1;
-        lp_q[s*LpW +: LpW] <= lp_d;
-        if (ext_take && pkt_mask_i != 4'd0 && free_idx == SlotW'(s)) begin
+        // The work's change in this cycle, -3 .. 7: a shadow packet's rays, a miss term's
+        // issue, an ambient term, a packet into the lighting; less a shadow ray's write, an
+        // add, a packet's last sample.
+        logic [4:0] wk_delta;
+        wk_delta = ((shq_push && lt_hot[s]) ? 5'(rc_pkg::ray_count(as_mask)) : 5'd0) +
+                   5'(mi_issue && fs_hot[s]) + 5'(lt_amb_push && lt_hot[s]) + 5'(fq_hot[s]) -
+                   5'(cws_hot[s]) - 5'(aq_hot[s]) -
+                   5'(lt_take && lt_lane_last && lt_light_last && lt_hot[s]);
+        wk_q[s*WkW +: WkW] <= wk_q[s*WkW +: WkW] + {{(WkW - 5){wk_delta[4]}}, wk_delta};
+        if (ext_take && pkt_mask_i != 4'd0 && free_hot[s]) begin
           busy_q[s] <= 1'b1;
           td_q[s]   <= 1'b0;
           fin_q[s]  <= 1'b0;
@@ -1375,23 +1405,23 @@ module rc_tracer #(
           depth_q[s*DepthW +: DepthW] <= '0;
           sp_q[s*DepthW +: DepthW] <= '0;
         end else begin
-          if (cw_cur && cw_slot == SlotW'(s)) begin
+          if (cw_hot[s]) begin
             pend_q[s*3 +: 3] <= pend_q[s*3 +: 3] - 1'b1;
             if (!cw_d0 && core_fb_rgb[0]) cf_q[s] <= 1'b1;
           end
-          if (snd && snd_slot == SlotW'(s)) begin
+          if (snd_hot[s]) begin
             pend_q[s*3 +: 3] <= rc_pkg::ray_count(snd_pkt.mask);
             depth_q[s*DepthW +: DepthW] <= snd_pkt.depth;
             cm_q[s] <= snd_pkt.mirror;
             cf_q[s] <= 1'b0;
           end
-          if (dec && dec_slot == SlotW'(s)) begin
+          if (dec_hot[s]) begin
             if (dec_push) sp_q[s*DepthW +: DepthW] <= dec_sp + 1'b1;
             if (dec_pop) sp_q[s*DepthW +: DepthW] <= dec_sp - 1'b1;
             if (dec_done) td_q[s] <= 1'b1;
           end
-          if (!fw_busy_q && dn_any && dn_idx == SlotW'(s)) fin_q[s] <= 1'b1;
-          if (fw_free && fw_slot_q == SlotW'(s)) busy_q[s] <= 1'b0;
+          if (!fw_busy_q && dn_hot[s]) fin_q[s] <= 1'b1;
+          if (fwf_hot[s]) busy_q[s] <= 1'b0;
         end
       end
     end
@@ -1404,7 +1434,9 @@ module rc_tracer #(
       cmask_q[free_idx] <= pkt_mask_i;
     end
     if (snd) cmask_q[snd_slot] <= snd_pkt.mask;
-    if (cw_cur) hit_q[cw_ln] <= core_fb_hit;
+    for (int i = 0; i < 4 * Slots; i++) begin  // a decoded write, not a shifted one
+      if (cw_hot[i / 4] && cw_lane == 2'(i % 4)) hit_q[i] <= core_fb_hit;
+    end
   end
 
   // The per-lane records. A packet's rays and weights are written when it goes to the core
