@@ -31,6 +31,7 @@
 //   port (CData, SData, IData, QData) or a VlWide<N>; width <= 64; bit i of a VlWide is bit
 //   i % 32 of word i / 32 (element i of a [N][W] packed array sits at bits [i*W +: W]);
 //   put_field changes only its field. put(p, v) assigns v to an integer port (truncated).
+//   put_bits(p, bits) sets bit i of a port of any width to bits[i] and clears the rest.
 #pragma once
 
 #include <algorithm>
@@ -187,6 +188,13 @@ void put_field(VlWide<N>& port, int lsb, int width, uint64_t value) {
     port[bit / 32] = (port[bit / 32] & ~m) | (v & m);
     i += n;
   }
+}
+
+template <class P>
+void put_bits(P& port, const std::vector<bool>& bits) {
+  clear(port);
+  for (std::size_t i = 0; i < bits.size(); ++i)
+    if (bits[i]) put_field(port, static_cast<int>(i), 1, 1);
 }
 
 template <class P, std::enable_if_t<std::is_integral_v<P>, int> = 0>

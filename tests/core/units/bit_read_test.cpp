@@ -30,17 +30,10 @@
 namespace rc::test {
 
 using rc::harness::clear;
+using rc::harness::put_bits;
 using rc::harness::put_field;
 using rc::harness::VerilatedTb;
 namespace {
-
-// Write bits into the model's bits_i, whatever type Verilator gave it (an integer or VlWide).
-template <class Port>
-void set_bits(Port& port, const std::vector<bool>& bits) {
-  clear(port);
-  for (size_t i = 0; i < bits.size(); ++i)
-    if (bits[i]) put_field(port, static_cast<int>(i), 1, 1);
-}
 
 // Write idx into the model's idx_i: every copy the index (copies = 1: a plain index), or, with
 // copies = the groups of 2^low_w bits, copy 0's group bits and the group's own copy's low bits the
@@ -91,7 +84,7 @@ void run(int n, int idx_w, const char* what, int low_w = 0, int copies = 1) {
   std::shuffle(samples.begin(), samples.end(), rng);
 
   uint64_t cases = 0, bad = 0;
-  set_bits(tb->bits_i, samples[0].bits);
+  put_bits(tb->bits_i, samples[0].bits);
   set_idx(tb->idx_i, samples[0].idx, idx_w, low_w, copies, rng);
   tb.eval();
   for (size_t s = 0; s < samples.size(); ++s) {
@@ -100,7 +93,7 @@ void run(int n, int idx_w, const char* what, int low_w = 0, int copies = 1) {
     // Right after the edge, the next sample's inputs (or the complement of this one's).
     const Sample& next = samples[(s + 1) % samples.size()];
     tb.tick([&] {
-      set_bits(tb->bits_i, next.bits);
+      put_bits(tb->bits_i, next.bits);
       set_idx(tb->idx_i, next.idx, idx_w, low_w, copies, rng);
     });
     ++cases;

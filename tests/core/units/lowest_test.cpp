@@ -23,18 +23,10 @@
 
 namespace rc::test {
 
-using rc::harness::clear;
 using rc::harness::get_field;
-using rc::harness::put_field;
+using rc::harness::put_bits;
 using rc::harness::VerilatedTb;
 namespace {
-
-template <class Port>
-void set_bits(Port& port, const std::vector<bool>& bits) {
-  clear(port);
-  for (size_t i = 0; i < bits.size(); ++i)
-    if (bits[i]) put_field(port, static_cast<int>(i), 1, 1);
-}
 
 template <class V>
 void run(int n, const char* what) {
@@ -67,7 +59,7 @@ void run(int n, const char* what) {
     int want = -1;
     for (int i = n - 1; i >= 0; --i)
       if (bits[static_cast<size_t>(i)]) want = i;
-    set_bits(tb->req_i, bits);
+    put_bits(tb->req_i, bits);
     tb.eval();
     bool ok = static_cast<bool>(tb->valid_o) == (want >= 0) &&
               static_cast<int>(tb->idx_o) == (want >= 0 ? want : 0);
