@@ -53,7 +53,9 @@
 //   error_o (sticky until reset), size_error_o, config_error_o.
 // - Parameters: the fp format (ExpW, FracW); Threads, the core's packet threads (default
 //   rc_pkg::BoardThreads, docs/spec.toml [board] threads: fewer than the core alone, chosen for
-//   the ROMs' short latency); the ROM depths and hex files; FbPixels.
+//   the ROMs' short latency); LitSetupUnits, the lit core's ray set-up units (default
+//   rc_pkg::BoardLitSetupUnits, [board] lit_setup_units; the board without Lit keeps the core's
+//   default); the ROM depths and hex files; FbPixels.
 // - Illegal input: none on the register port (writes while busy are ignored); reading registers
 //   that do not exist returns 0.
 // - Reset: rst_ni (active low, asynchronous) clears control state; the register file, ROMs and
@@ -62,6 +64,7 @@ module rc_board #(
   parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW     = rc_pkg::Fp24FracW,
   parameter int unsigned Threads   = rc_pkg::BoardThreads,
+  parameter int unsigned LitSetupUnits = rc_pkg::BoardLitSetupUnits,
   parameter int unsigned NodeDepth = 1,
   parameter int unsigned ListDepth = 1,
   parameter int unsigned TriDepth  = 1,
@@ -428,9 +431,10 @@ module rc_board #(
     );
 
     rc_tracer #(
-      .ExpW   (ExpW),
-      .FracW  (FracW),
-      .Threads(Threads)
+      .ExpW      (ExpW),
+      .FracW     (FracW),
+      .Threads   (Threads),
+      .SetupUnits(LitSetupUnits)
     ) u_tracer (
     .clk_i,
     .rst_ni,
