@@ -25,8 +25,8 @@
 //   as one value at a fixed cycle. A scalar that a vector operation needs (t, inv_len, the
 //   mirror term's c + c, the refraction term's g) is held for the three cycles of the stream by
 //   a register loaded in the stream's first cycle. One multiplier takes c * c, e * e and e * c in
-//   consecutive cycles, one the two weights. Hits are taken at a fixed phase modulo 3
-//   (rc_serial_sched, Phased), so the three scalar sums 1 - c * c, q = 1 - x and g, whose times
+//   consecutive cycles, one the two weights. Hits are taken at phase 0 modulo Period, a
+//   multiple of 3 (rc_serial_sched, Phased), so the three scalar sums 1 - c * c, q = 1 - x and g, whose times
 //   differ modulo 3, share one adder; c + c is rc_fp_twice (exact doubling, a cycle). Each value
 //   reaches its operation through rc_delay lines (rc_delay_ram memories where they are long) of
 //   the lengths the fp units' latencies give (the times below, in cycles after slot 0), so a
@@ -42,19 +42,22 @@
 //   is 1 (71 at the default fp_stages: mul 4, add 6, sqrt 10): input register 1, then the chain
 //   V, N.V, the sum c, c * c, 1 - c * c, e^2 (1 - c^2), q, sqrt(q), g, g * N, e * V - g * N
 //   (TimeT = 67 after slot 0), two cycles for the stream's y and z, the FIFO's output register 1.
-// - Throughput: one hit per 3 cycles while ready_i is 1 (ready_o rises again in the hit's last
-//   cycle in the input register); ready_o is high only in cycles whose phase modulo 3 lets a hit
-//   start at phase 0, so a hit offered after a gap may wait up to 2 cycles. The FIFO holds
-//   Latency / 3 + 2 entries, enough credits for every operation in flight at that rate.
-// - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1).
+// - Throughput: one hit per Period cycles while ready_i is 1; ready_o is high only in cycles
+//   whose phase modulo Period lets a hit start at phase 0, so a hit offered after a gap may wait
+//   up to Period - 1 cycles. The FIFO holds Latency / Period + 2 entries, enough credits for
+//   every operation in flight at that rate.
+// - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1); Period:
+//   the cycles between two hits, 3, 6, 9, 12 or 15 (docs/spec.toml [light] unit_period: the
+//   light units need not keep up with the core, and a lower rate needs a shallower FIFO).
 // - Illegal input: none; every bit pattern of the data inputs is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, the
 //   stream-start chain, the delay memories' pointers, the FIFO's pointers and credit count); data
 //   registers have no reset.
 module rc_hit_geom #(
-  parameter int unsigned ExpW  = rc_pkg::Fp24ExpW,
-  parameter int unsigned FracW = rc_pkg::Fp24FracW,
-  parameter int unsigned TagW  = 8
+  parameter int unsigned ExpW   = rc_pkg::Fp24ExpW,
+  parameter int unsigned FracW  = rc_pkg::Fp24FracW,
+  parameter int unsigned TagW   = 8,
+  parameter int unsigned Period = rc_pkg::LightUnitPeriod
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
@@ -112,7 +115,7 @@ module rc_hit_geom #(
   localparam int unsigned TimeT   = TimeGn + La;       // e V - g N
   localparam int unsigned TimeOut = TimeT + 2;         // z of the last streams: the FIFO write
   localparam int unsigned Latency = TimeT + 4;
-  localparam int unsigned FifoDepth = Latency / 3 + 2;
+  localparam int unsigned FifoDepth = Latency / Period + 2;
   localparam int unsigned OutW = TagW + 1 + 15 * W + 2 * W + 2;
 
   localparam logic [W-1:0] One = {1'b0, 1'b0, {(ExpW - 1) {1'b1}}, {FracW{1'b0}}};
@@ -170,7 +173,7 @@ module rc_hit_geom #(
   // operation issued at time T (its x; y and z follow) is busy (rc_serial_sched).
   logic [TimeOut:0]   at;
   logic [TimeOut-2:0] strm;
-  rc_serial_sched #(.Time(TimeOut), .Phased(1'b1)) u_sched (
+  rc_serial_sched #(.Time(TimeOut), .Phased(1'b1), .Period(Period)) u_sched (
     .clk_i, .rst_ni, .take_i(take), .slot_o(slot_q), .in_free_o(in_free_q), .at_o(at),
     .strm_o(strm)
   );

@@ -36,12 +36,14 @@
 // - Handshake: valid_i/ready_o in (rc_hit_geom's: ready_o is flip-flops only and never depends
 //   on valid_i); geo_valid_o/geo_ready_i and lt_valid_o/lt_ready_i out, each with backpressure;
 //   no valid depends on its ready. Nothing is dropped or duplicated.
-// - Throughput: one hit per 3 cycles while light_count_i <= 1 and both outputs are ready; one per
-//   3 x light_count_i cycles with more lights (rc_light_term takes one job per 3 cycles).
+// - Throughput: one hit per Period cycles while light_count_i <= 1 and both outputs are ready;
+//   one per Period x light_count_i cycles with more lights (rc_hit_geom and rc_light_term each
+//   take one job per Period cycles).
 // - Configuration: ambient_i, light_count_i (0 .. MaxLights) and the lights are quasi-static:
 //   they may change only while no hit is in the unit.
 // - Parameters: ExpW, FracW: the number format; TagW: tag bits (>= 1); MaxLights (>= 1):
-//   docs/spec.toml [light] max_lights; FixBits, ExpBits: [light] fixed_bits, exponent_bits.
+//   docs/spec.toml [light] max_lights; FixBits, ExpBits: [light] fixed_bits, exponent_bits;
+//   Period: [light] unit_period, the cycles per hit of rc_hit_geom and per job of rc_light_term.
 // - Illegal input: light_count_i above MaxLights; a packet of more than 4 hits (assertions catch
 //   both).
 // - Reset: rst_ni (active low, asynchronous) clears control state only.
@@ -52,6 +54,7 @@ module rc_hit_light #(
   parameter int unsigned MaxLights = rc_pkg::LightMaxLights,
   parameter int unsigned FixBits   = rc_pkg::LightFixedBits,
   parameter int unsigned ExpBits   = rc_pkg::LightExponentBits,
+  parameter int unsigned Period    = rc_pkg::LightUnitPeriod,
   // Derived (do not override).
   parameter int unsigned W         = 1 + ExpW + FracW,
   parameter int unsigned FW        = FixBits + 1,
@@ -132,9 +135,10 @@ module rc_hit_light #(
   logic [W-1:0]      hg_w_mirror, hg_w_refract;
 
   rc_hit_geom #(
-    .ExpW (ExpW),
-    .FracW(FracW),
-    .TagW (GTagW)
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .TagW  (GTagW),
+    .Period(Period)
   ) u_geom (
     .clk_i,
     .rst_ni,
@@ -300,7 +304,8 @@ module rc_hit_light #(
     .FracW  (FracW),
     .TagW   (LTagW),
     .FixBits(FixBits),
-    .ExpBits(ExpBits)
+    .ExpBits(ExpBits),
+    .Period (Period)
   ) u_light (
     .clk_i,
     .rst_ni,

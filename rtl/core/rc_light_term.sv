@@ -26,25 +26,26 @@
 //   scalar that a vector operation needs (inv, cos, spec) is held for its stream's three cycles by
 //   a register loaded in the first. The dot products (dist2, cos, H.H, N.H) are rc_serial_dot3:
 //   a stream's products, x + y as y's leaves, then + z. The power is ExpBits multipliers, one
-//   per bit, each taking b * b and then r * b in consecutive cycles. Jobs are taken at a fixed
-//   phase modulo 3 (rc_serial_sched, Phased), so scalar operations (one cycle per job) whose
+//   per bit, each taking b * b and then r * b in consecutive cycles. Jobs are taken at phase 0
+//   modulo Period, a multiple of 3 (rc_serial_sched, Phased), so scalar operations (one cycle per job) whose
 //   times differ modulo 3 share an operator and no two jobs meet there: one square root and one
 //   divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after its sum), and
 //   cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H 1). Values wait for
 //   their operations in rc_delay lines (short) and rc_delay_ram memories (long), so a job may
-//   follow another after three cycles or after any gap (rc_serial_sched keeps the slots and the
+//   follow another after Period cycles or after any gap (rc_serial_sched keeps the slots and the
 //   job times). The last stage collects each stream's three components into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure, as rc_hit_geom (ready_o
 //   is the AND of two flip-flops; valid_o never depends on ready_i; results leave in order;
 //   tag_i travels with the operation to tag_o).
 // - Latency: TimeOut + 2 cycles from the taking cycle to valid_o when the FIFO is empty and
 //   ready_i is 1 (170 at the default fp_stages: mul 4, add 6, sqrt 10, div 11, and ExpBits 10).
-// - Throughput: one job per 3 cycles while ready_i is 1; ready_o is high only in cycles whose
-//   phase modulo 3 lets a job start at phase 0, so a job offered after a gap may wait up to 2
-//   cycles. The FIFO holds Latency / 3 + 2 entries.
+// - Throughput: one job per Period cycles while ready_i is 1; ready_o is high only in cycles
+//   whose phase modulo Period lets a job start at phase 0, so a job offered after a gap may wait
+//   up to Period - 1 cycles. The FIFO holds Latency / Period + 2 entries.
 // - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1); FixBits:
 //   the fixed point's fraction bits (docs/spec.toml [light] fixed_bits); ExpBits: the exponent's
-//   bits ([light] exponent_bits).
+//   bits ([light] exponent_bits); Period: the cycles between two jobs, 3, 6, 9, 12 or 15
+//   ([light] unit_period, as rc_hit_geom's).
 // - Illegal input: none; every bit pattern of the data inputs is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, the
 //   stream-start chain, the delay memories' pointers, the FIFO's pointers and credit count).
@@ -53,7 +54,8 @@ module rc_light_term #(
   parameter int unsigned FracW   = rc_pkg::Fp24FracW,
   parameter int unsigned TagW    = 8,
   parameter int unsigned FixBits = rc_pkg::LightFixedBits,
-  parameter int unsigned ExpBits = rc_pkg::LightExponentBits
+  parameter int unsigned ExpBits = rc_pkg::LightExponentBits,
+  parameter int unsigned Period  = rc_pkg::LightUnitPeriod
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
@@ -111,7 +113,7 @@ module rc_light_term #(
   localparam int unsigned TimeFix  = TimeX + 1;
   localparam int unsigned TimeOut  = TimeFix + 2;
   localparam int unsigned Latency  = TimeOut + 2;
-  localparam int unsigned FifoDepth = Latency / 3 + 2;
+  localparam int unsigned FifoDepth = Latency / Period + 2;
   localparam int unsigned OutW = TagW + 1 + 3 * W + W + 6 * FW;
 
   localparam logic [W-1:0] One     = {1'b0, 1'b0, {(ExpW - 1) {1'b1}}, {FracW{1'b0}}};
@@ -172,7 +174,7 @@ module rc_light_term #(
   // (rc_serial_sched).
   logic [TimeOut:0]   at;
   logic [TimeOut-2:0] strm;
-  rc_serial_sched #(.Time(TimeOut), .Phased(1'b1)) u_sched (
+  rc_serial_sched #(.Time(TimeOut), .Phased(1'b1), .Period(Period)) u_sched (
     .clk_i, .rst_ni, .take_i(take), .slot_o(slot_q), .in_free_o(in_free_q), .at_o(at),
     .strm_o(strm)
   );

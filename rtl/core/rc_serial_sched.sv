@@ -9,20 +9,24 @@
 // - in_free_o: the register is free (empty, or in its job's last slot), a flip-flop registered
 //   from the slot counter's next value, so the owner's ready_o (its credit AND this) comes from
 //   two flip-flops and never depends on valid_i; the next job can be taken in slot 2, one job per
-//   3 cycles.
-// - Phased = 1: in_free_o is also low unless the cycle's phase (a counter modulo 3, 0 after reset)
-//   is 2, so every job's slot 0 falls at phase 0 and its time T at phase T mod 3, for every job.
-//   Scalar operations (one cycle per job) whose times differ modulo 3 can then share an operator:
-//   no two jobs ever bring them to it in one cycle. Jobs still follow each other every 3 cycles;
-//   a job offered at another phase waits at most 2 cycles.
+//   3 cycles (Phased: one per Period cycles, below).
+// - Phased = 1: in_free_o is also low unless the cycle's phase (a counter modulo Period, 0 after
+//   reset) is Period - 1, so every job's slot 0 falls at phase 0 and its time T at phase
+//   T mod Period, for every job. Scalar operations (one cycle per job) whose times differ modulo
+//   3 can then share an operator: no two jobs ever bring them to it in one cycle (Period is a
+//   multiple of 3). Jobs follow each other every Period cycles; a job offered at another phase
+//   waits at most Period - 1 cycles.
 // - at_o[T]: a job is at time T of its schedule in this cycle (T cycles after its slot 0; at_o[0]
 //   is slot_o[0]), T = 0 .. Time. strm_o[T] = at_o[T] | at_o[T + 1] | at_o[T + 2]: a vector
 //   operation issued at time T (its x, then y and z) is busy in this cycle.
-// - Parameters: Time (>= 3), the last time the owner needs; Phased (above).
+// - Parameters: Time (>= 3), the last time the owner needs; Phased (above); Period (a multiple
+//   of 3, 3 .. 15): the cycles between two jobs' slot 0 when Phased (without Phased it must be
+//   3: a job may then be taken in any job's slot 2).
 // - Reset: rst_ni (active low, asynchronous) empties the slots and the chain.
 module rc_serial_sched #(
   parameter int unsigned Time   = 3,
-  parameter bit          Phased = 1'b0
+  parameter bit          Phased = 1'b0,
+  parameter int unsigned Period = 3
 ) (
   input  logic          clk_i,
   input  logic          rst_ni,
@@ -36,16 +40,22 @@ module rc_serial_sched #(
   if (Time < 3) begin : g_param_check
     $error("rc_serial_sched: Time must be at least 3");
   end
+  if (Period < 3 || Period > 15 || Period % 3 != 0 || (!Phased && Period != 3))
+  begin : g_period_check
+    $error("rc_serial_sched: Period must be 3, 6, 9, 12 or 15 (3 without Phased)");
+  end
+
+  localparam logic [3:0] LastPhase = 4'(Period - 1);
 
   logic [2:0]      slot_q, slot_d;
   logic            in_free_q;
   logic [Time-1:0] first_q;  // first_q[k]: a job's slot 0 was k + 1 cycles ago
-  logic [1:0]      phase_q, phase_d;
+  logic [3:0]      phase_q, phase_d;  // 0 .. Period - 1
   logic            free_d;
 
   assign slot_d  = take_i ? 3'b001 : slot_q << 1;
-  assign phase_d = (phase_q == 2'd2) ? 2'd0 : phase_q + 2'd1;
-  assign free_d  = (~|slot_d | slot_d[2]) & (~Phased | (phase_d == 2'd2));
+  assign phase_d = (phase_q == LastPhase) ? 4'd0 : phase_q + 4'd1;
+  assign free_d  = (~|slot_d | slot_d[2]) & (~Phased | (phase_d == LastPhase));
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -83,12 +93,13 @@ module rc_serial_sched #(
   // cycles is never overwritten within them.
   StartsApart_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   slot_q[0] |-> !first_q[0] && !first_q[1]);
-  // in_free_q is the register's freedom as the slot counter says (at phase 2 when Phased).
+  // in_free_q is the register's freedom as the slot counter says (at the last phase when Phased).
   InFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                             in_free_q == ((~|slot_q | slot_q[2]) & (~Phased | phase_q == 2'd2)));
+                             in_free_q == ((~|slot_q | slot_q[2]) &
+                                           (~Phased | phase_q == LastPhase)));
   // Phased: every job's slot 0 is at phase 0.
   SlotPhase_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                Phased & slot_q[0] |-> phase_q == 2'd0);
+                                Phased & slot_q[0] |-> phase_q == 4'd0);
 `endif
 
 endmodule

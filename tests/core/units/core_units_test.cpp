@@ -1041,12 +1041,18 @@ TEST(CoreUnits, HitGeomRandom) {
 constexpr int64_t kHitGeomLatency =
     1 + 2 * kMul + 1 + 2 * kAdd + 3 * kMul + 4 * kAdd + spec::kFpStagesSqrt + 2 + 1;
 
-// rc_hit_geom runs a hit's components through one slice: one hit per 3 cycles; a hit waits at
-// most 2 cycles for its phase. The FIFO holds latency / 3 + 2 entries.
+// The light units' cycles per job (docs/spec.toml [light] unit_period, a multiple of 3).
+constexpr int64_t kLightPeriod = spec::kLightUnitPeriod;
+static_assert(kLightPeriod >= 3 && kLightPeriod % 3 == 0, "[light] unit_period");
+
+// rc_hit_geom runs a hit's components through one slice: one hit per unit_period cycles; a hit
+// waits at most unit_period - 1 cycles for its phase. The FIFO holds latency / unit_period + 2
+// entries.
 TEST(CoreUnits, HitGeomTiming) {
   constexpr int64_t lat = kHitGeomLatency;
-  run_timing<Vrc_hit_geom, HitGeomUnit>("rc_hit_geom", lat, static_cast<uint64_t>(lat / 3 + 2),
-                                        hit_geom_case, 3, 2);
+  run_timing<Vrc_hit_geom, HitGeomUnit>(
+      "rc_hit_geom", lat, static_cast<uint64_t>(lat / kLightPeriod + 2), hit_geom_case,
+      static_cast<uint64_t>(kLightPeriod), static_cast<uint64_t>(kLightPeriod - 1));
 }
 
 TEST(CoreUnits, LightTermRandom) {
@@ -1084,11 +1090,13 @@ constexpr int64_t kLightTermLatency = 1 + kAdd + kMul + 1 + 2 * kAdd + spec::kFp
                                       kDiv + kMul + int64_t{spec::kLightExponentBits} * (kMul + 1) +
                                       kMul + kAdd + 2 * kMul + 1 + 2 + 1;
 
-// rc_light_term takes one job per 3 cycles; a job waits at most 2 cycles for its phase.
+// rc_light_term takes one job per unit_period cycles; a job waits at most unit_period - 1 cycles
+// for its phase.
 TEST(CoreUnits, LightTermTiming) {
   constexpr int64_t lat = kLightTermLatency;
   run_timing<Vrc_light_term, LightTermUnit>(
-      "rc_light_term", lat, static_cast<uint64_t>(lat / 3 + 2), light_term_case, 3, 2);
+      "rc_light_term", lat, static_cast<uint64_t>(lat / kLightPeriod + 2), light_term_case,
+      static_cast<uint64_t>(kLightPeriod), static_cast<uint64_t>(kLightPeriod - 1));
 }
 
 // Inputs x = 0 .. 2^24 - 1 through a valid-only converter (set(model, x) drives its input,
@@ -1507,9 +1515,9 @@ TEST(CoreUnits, HitLightRandom) {
   EXPECT_EQ(b.samples(), samples);
 }
 
-// Without stalls, packets of four hits: a hit per 3 cycles with at most one light and one per
-// 3 x count cycles with more: N hits take at most that many cycles plus the pipeline's fill and
-// drain.
+// Without stalls, packets of four hits: a hit per unit_period cycles with at most one light and
+// one per unit_period x count cycles with more: N hits take at most that many cycles plus the
+// pipeline's fill and drain.
 TEST(CoreUnits, HitLightThroughput) {
   Gen g(709);
   for (const uint32_t count : {0u, 1u, 2u, 4u}) {
@@ -1525,7 +1533,7 @@ TEST(CoreUnits, HitLightThroughput) {
     const uint64_t cycles = b.cycle() - start;
     b.drain();
     EXPECT_EQ(b.mismatches(), 0u);
-    const uint64_t per = 3 * std::max(count, 1u);
+    const uint64_t per = static_cast<uint64_t>(kLightPeriod) * std::max(count, 1u);
     std::printf(
         "[timing] rc_hit_light, %u lights: %llu hits taken in %llu cycles (%.3f per hit); "
         "latency %lld cycles to the geometry, %s to the first light\n",
@@ -1534,13 +1542,14 @@ TEST(CoreUnits, HitLightThroughput) {
         static_cast<long long>(b.geo_latency()),
         count > 0 ? std::to_string(b.lt_latency()).c_str() : "none");
     // The geometry: rc_hit_geom's latency and the geo FIFO's head register. The first light
-    // sample: the packet's fourth hit is taken 9 cycles after its first, its geometry enters the
-    // lane memory, whose bank is issued from the cycle after; the job waits at most 2 cycles for
-    // its phase, then rc_light_term's latency.
+    // sample: the packet's fourth hit is taken 3 x unit_period cycles after its first, its
+    // geometry enters the lane memory, whose bank is issued from the cycle after; the job waits
+    // at most unit_period - 1 cycles for its phase, then rc_light_term's latency.
     EXPECT_EQ(b.geo_latency(), kHitGeomLatency + 1);
     if (count > 0) {
-      EXPECT_GE(b.lt_latency(), kHitGeomLatency + 9 + 1 + kLightTermLatency);
-      EXPECT_LE(b.lt_latency(), kHitGeomLatency + 9 + 1 + 2 + kLightTermLatency);
+      EXPECT_GE(b.lt_latency(), kHitGeomLatency + 3 * kLightPeriod + 1 + kLightTermLatency);
+      EXPECT_LE(b.lt_latency(),
+                kHitGeomLatency + 3 * kLightPeriod + 1 + kLightPeriod - 1 + kLightTermLatency);
     }
     EXPECT_LE(cycles, per * kHits + 8) << count << " lights";
   }
