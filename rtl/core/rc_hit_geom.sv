@@ -26,13 +26,13 @@
 //   mirror term's c + c, the refraction term's g) is held for the three cycles of the stream by
 //   a register loaded in the stream's first cycle. One multiplier takes c * c, e * e and e * c in
 //   consecutive cycles, one the two weights. Hits are taken at phase 0 modulo Period, a
-//   multiple of 3 (rc_serial_sched, Phased), so the three scalar sums 1 - c * c, q = 1 - x and g, whose times
-//   differ modulo 3, share one adder; c + c is rc_fp_twice (exact doubling, a cycle). Each value
-//   reaches its operation through rc_delay lines (rc_delay_ram memories where they are long) of
-//   the lengths the fp units' latencies give (the times below, in cycles after slot 0), so a
-//   stream's timing never depends on its neighbours: a hit may follow another after three cycles
-//   or after any gap (rc_serial_sched keeps the slots and says which job time is now).
-//   The last stage collects each stream's three components into the output FIFO.
+//   multiple of 3 (rc_serial_sched, Phased), so the three scalar sums 1 - c * c, q = 1 - x and
+//   g, whose times differ modulo 3, share one adder; c + c is rc_fp_twice (exact doubling, a
+//   cycle). Each value reaches its operation through rc_delay lines (rc_delay_ram memories where
+//   they are long) of the lengths the fp units' latencies give (the times below, in cycles after
+//   slot 0), so a stream's timing never depends on its neighbours: a hit may follow another after
+//   Period cycles or after any gap (rc_serial_sched keeps the slots and says which job time is
+//   now). The last stage collects each stream's three components into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
 //   when valid_i & ready_o. ready_o is the AND of two flip-flops (rc_credit_fifo's credit
 //   register and the input register's free flag) and never depends on valid_i or ready_i;

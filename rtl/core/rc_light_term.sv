@@ -27,13 +27,14 @@
 //   a register loaded in the first. The dot products (dist2, cos, H.H, N.H) are rc_serial_dot3:
 //   a stream's products, x + y as y's leaves, then + z. The power is ExpBits multipliers, one
 //   per bit, each taking b * b and then r * b in consecutive cycles. Jobs are taken at phase 0
-//   modulo Period, a multiple of 3 (rc_serial_sched, Phased), so scalar operations (one cycle per job) whose
-//   times differ modulo 3 share an operator and no two jobs meet there: one square root and one
-//   divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after its sum), and
-//   cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H 1). Values wait for
-//   their operations in rc_delay lines (short) and rc_delay_ram memories (long), so a job may
-//   follow another after Period cycles or after any gap (rc_serial_sched keeps the slots and the
-//   job times). The last stage collects each stream's three components into the output FIFO.
+//   modulo Period, a multiple of 3 (rc_serial_sched, Phased), so scalar operations (one cycle
+//   per job) whose times differ modulo 3 share an operator and no two jobs meet there: one
+//   square root and one divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle
+//   after its sum), and cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H
+//   1). Values wait for their operations in rc_delay lines (short) and rc_delay_ram memories
+//   (long), so a job may follow another after Period cycles or after any gap (rc_serial_sched
+//   keeps the slots and the job times). The last stage collects each stream's three components
+//   into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure, as rc_hit_geom (ready_o
 //   is the AND of two flip-flops; valid_o never depends on ready_i; results leave in order;
 //   tag_i travels with the operation to tag_o).
