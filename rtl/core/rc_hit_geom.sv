@@ -24,10 +24,13 @@
 //   every vector value then travels as a stream of three consecutive components and every scalar
 //   as one value at a fixed cycle. A scalar that a vector operation needs (t, inv_len, the
 //   mirror term's c + c, the refraction term's g) is held for the three cycles of the stream by
-//   a register loaded in the stream's first cycle. One multiplier takes c * c, e * e and e * c in
-//   consecutive cycles, one the two weights. Hits are taken at phase 0 modulo Period, a
-//   multiple of 3 (rc_serial_sched, Phased), so the three scalar sums 1 - c * c, q = 1 - x and
-//   g, whose times differ modulo 3, share one adder; c + c is rc_fp_twice (exact doubling, a
+//   a register loaded in the stream's first cycle. Hits are taken at phase 0 modulo Period, a
+//   multiple of 6 (rc_serial_sched, Phased), so operations whose cycles fall at different phases
+//   share an operator and no two hits meet there: the three scalar sums 1 - c * c, q = 1 - x and
+//   g (times that differ modulo 3) share one adder; modulo 6 (rc_fp_shared, which checks the
+//   phases at elaboration), one multiplier takes the two weights and then c * c, e * e and e * c
+//   in consecutive cycles, one t * d and g * N, one d * inv_len and e * V, one (c + c) * N and
+//   e^2 (1 - c^2), and one adder o + t d and e V - g N; c + c is rc_fp_twice (exact doubling, a
 //   cycle). Each value reaches its operation through rc_delay lines (rc_delay_ram memories where
 //   they are long) of the lengths the fp units' latencies give (the times below, in cycles after
 //   slot 0), so a stream's timing never depends on its neighbours: a hit may follow another after
@@ -47,8 +50,9 @@
 //   up to Period - 1 cycles. The FIFO holds Latency / Period + 2 entries, enough credits for
 //   every operation in flight at that rate.
 // - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1); Period:
-//   the cycles between two hits, 3, 6, 9, 12 or 15 (docs/spec.toml [light] unit_period: the
-//   light units need not keep up with the core, and a lower rate needs a shallower FIFO).
+//   the cycles between two hits, 6 or 12 (docs/spec.toml [light] unit_period: the light units
+//   need not keep up with the core, a lower rate needs a shallower FIFO, and the shared
+//   operators need a multiple of 6).
 // - Illegal input: none; every bit pattern of the data inputs is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, the
 //   stream-start chain, the delay memories' pointers, the FIFO's pointers and credit count); data
@@ -217,19 +221,11 @@ module rc_hit_geom #(
   //////////////////////////////////////////////////
 
   logic [W-1:0] td, v_s, p_s, o_d, n_dv;
-  logic         td_vld, v_vld, p_vld, nv_vld, s01_vld, c_vld;
+  logic         nv_vld, s01_vld, c_vld;
 
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_td (
-    .clk_i, .rst_ni, .valid_i(strm[0]), .a_i(t_q), .b_i(d_s), .valid_o(td_vld), .res_o(td)
-  );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_v (
-    .clk_i, .rst_ni, .valid_i(strm[0]), .a_i(d_s), .b_i(ilen_q), .valid_o(v_vld), .res_o(v_s)
-  );
+  // t * d and V = d * inv_len: in u_mul_tdgn and u_mul_vev (below, with g * N and e * V); o + t d
+  // in u_add_pt (with e V - g N).
   rc_delay #(.Width(W), .Cycles(TimeV)) u_dly_o (.clk_i, .data_i(o_s), .data_o(o_d));
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_p (
-    .clk_i, .rst_ni, .valid_i(strm[TimeV]), .sub_i(1'b0), .a_i(o_d), .b_i(td),
-    .valid_o(p_vld), .res_o(p_s)
-  );
 
   // The facing normal's stream, tapped where the operations need it.
   logic [W-1:0] n_at_v, n_at_k, n_at_g, n_at_t;
@@ -256,17 +252,14 @@ module rc_hit_geom #(
   //////////////////////////////////////
 
   logic [W-1:0] kn, v_at_kn, r_s, v_at_g;
-  logic         k_vld, kn_vld, r_vld;
+  logic         k_vld, r_vld;
 
   // c + c: exact doubling (rc_fp_twice, x + x bit for bit), a cycle.
   rc_fp_twice #(.ExpW(ExpW), .FracW(FracW)) u_twice_k (
     .clk_i, .rst_ni, .valid_i(at[TimeC]), .x_i(c_res), .valid_o(k_vld), .res_o(k_res)
   );
 
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_kn (
-    .clk_i, .rst_ni, .valid_i(strm[TimeK]), .a_i(k_b), .b_i(n_at_k), .valid_o(kn_vld),
-    .res_o(kn)
-  );
+  // (c + c) * N: in u_mul_knx (below, with e^2 * (1 - c^2)).
   rc_delay_ram #(.Width(W), .Cycles(TimeKn - TimeV)) u_dly_v0 (
     .clk_i, .rst_ni, .data_i(v_s), .data_o(v_at_kn)
   );
@@ -293,21 +286,26 @@ module rc_hit_geom #(
 
   // One multiplier: c * c at TimeC, e * e at TimeC + 1, e * c at TimeC + 2.
   logic [W-1:0] m5_a, m5_b, m5, e2_d, ec_d, s_res, x_res, q_res, sq_res;
-  logic         m5_vld, x_vld, sq_vld;
+  logic         knx_vld, sq_vld;
   assign m5_a = at[TimeC] ? c_b : e_at_c;
   assign m5_b = at[TimeC + 1] ? e_at_c : c_b;
 
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_m5 (
-    .clk_i, .rst_ni, .valid_i(strm[TimeC]), .a_i(m5_a), .b_i(m5_b), .valid_o(m5_vld),
-    .res_o(m5)
-  );
+  // c * c, e * e, e * c: in u_mul_wm5 (below, with the weights).
   rc_delay #(.Width(W), .Cycles(TimeS - (TimeC + 1 + Lm))) u_dly_e2 (
     .clk_i, .data_i(m5), .data_o(e2_d)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_x (
-    .clk_i, .rst_ni, .valid_i(at[TimeS]), .a_i(e2_d), .b_i(s_res), .valid_o(x_vld),
-    .res_o(x_res)
+  // One multiplier for the stream (c + c) * N (at TimeK) and the scalar e^2 * (1 - c^2) (at
+  // TimeS): their cycles fall at different phases modulo Period.
+  logic [W-1:0] knx;
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
+    .Time(128'({16'(TimeS), 16'(TimeK)})), .Cycles(16'h0007)
+  ) u_mul_knx (
+    .clk_i, .rst_ni, .issue_i({at[TimeS], strm[TimeK]}), .a_i({e2_d, k_b}), .b_i({s_res, n_at_k}),
+    .valid_o(knx_vld), .res_o(knx)
   );
+  assign kn    = knx;
+  assign x_res = knx;
   // One adder for the three scalar sums, issued at different phases (jobs start at phase 0,
   // rc_serial_sched Phased): 1 - c * c at TimeC + Lm, 1 - x at TimeX, g = e c + sqrt(q) at
   // TimeSq. Each user reads the result La cycles after its issue (TimeS, TimeQ, TimeG).
@@ -342,20 +340,38 @@ module rc_hit_geom #(
     .clk_i, .rst_ni, .data_i(tir_b), .data_o(tir_at_t)
   );
 
-  logic [W-1:0] gn, ev, t_s;
-  logic         gn_vld, ev_vld, t_vld;
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_gn (
-    .clk_i, .rst_ni, .valid_i(strm[TimeG]), .a_i(g_b), .b_i(n_at_g), .valid_o(gn_vld),
-    .res_o(gn)
+  // Two multipliers and an adder, each for two streams at different phases modulo Period:
+  // t * d (at 0) with g * N (at TimeG), d * inv_len (at 0) with e * V (at TimeG), and o + t d (at
+  // TimeV) with e V - g N (at TimeGn).
+  logic [W-1:0] gn, ev, t_s, tdgn, vev, pt;
+  logic         tdgn_vld, vev_vld, pt_vld;
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
+    .Time(128'({16'(TimeG), 16'(0)})), .Cycles(16'h000f)
+  ) u_mul_tdgn (
+    .clk_i, .rst_ni, .issue_i({strm[TimeG], strm[0]}), .a_i({g_b, t_q}), .b_i({n_at_g, d_s}),
+    .valid_o(tdgn_vld), .res_o(tdgn)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ev (
-    .clk_i, .rst_ni, .valid_i(strm[TimeG]), .a_i(e_at_g), .b_i(v_at_g), .valid_o(ev_vld),
-    .res_o(ev)
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
+    .Time(128'({16'(TimeG), 16'(0)})), .Cycles(16'h000f)
+  ) u_mul_vev (
+    .clk_i, .rst_ni, .issue_i({strm[TimeG], strm[0]}), .a_i({e_at_g, d_s}),
+    .b_i({v_at_g, ilen_q}), .valid_o(vev_vld), .res_o(vev)
   );
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_t (
-    .clk_i, .rst_ni, .valid_i(strm[TimeGn]), .sub_i(1'b1), .a_i(ev), .b_i(gn),
-    .valid_o(t_vld), .res_o(t_s)
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(2), .Sub(8'b10), .Period(Period),
+    .Time(128'({16'(TimeGn), 16'(TimeV)})), .Cycles(16'h000f)
+  ) u_add_pt (
+    .clk_i, .rst_ni, .issue_i({strm[TimeGn], strm[TimeV]}), .a_i({ev, o_d}), .b_i({gn, td}),
+    .valid_o(pt_vld), .res_o(pt)
   );
+  assign td  = tdgn;
+  assign gn  = tdgn;
+  assign v_s = vev;
+  assign ev  = vev;
+  assign p_s = pt;
+  assign t_s = pt;
 
   //////////////////////////////////////
   // Weights                          //
@@ -363,13 +379,21 @@ module rc_hit_geom #(
 
   // w * mirror at slot 0, w * transmit at slot 1; each with lt(0, factor) beside it.
   logic [W-1:0] wf_s, wx, wx_at_t;
-  logic         fpos_s, fpos_d, wok, wok_at_t, wx_vld;
+  logic         fpos_s, fpos_d, wok, wok_at_t, wm5_vld;
   assign wf_s   = slot_q[1] ? transmit_q : mirror_q;
   assign fpos_s = pos(wf_s);
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_w (
-    .clk_i, .rst_ni, .valid_i(slot_q[0] | slot_q[1]), .a_i(w_q), .b_i(wf_s), .valid_o(wx_vld),
-    .res_o(wx)
+  // One multiplier for the weights (slots 0 and 1) and the stream c * c, e * e, e * c (at
+  // TimeC): their cycles fall at different phases modulo Period.
+  logic [W-1:0] wm5;
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
+    .Time(128'({16'(TimeC), 16'(0)})), .Cycles(16'h000e)
+  ) u_mul_wm5 (
+    .clk_i, .rst_ni, .issue_i({strm[TimeC], slot_q[0] | slot_q[1]}), .a_i({m5_a, w_q}),
+    .b_i({m5_b, wf_s}), .valid_o(wm5_vld), .res_o(wm5)
   );
+  assign wx = wm5;
+  assign m5 = wm5;
   rc_delay #(.Width(1), .Cycles(Lm)) u_dly_fpos (.clk_i, .data_i(fpos_s), .data_o(fpos_d));
   assign wok = fpos_d & pos(wx);
   rc_delay_ram #(.Width(W + 1), .Cycles(TimeT - Lm)) u_dly_w (
@@ -454,17 +478,16 @@ module rc_hit_geom #(
   // Each operation's result leaves at the time the schedule above gives it: the valid chains of
   // the fp units agree with the stream starts, so no value is read at the wrong cycle.
   Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               td_vld == strm[TimeV] && v_vld == strm[TimeV] &&
-                               p_vld == strm[TimeP] && nv_vld == strm[TimeNv] &&
+                               tdgn_vld == (strm[TimeV] | strm[TimeGn]) &&
+                               vev_vld == (strm[TimeV] | strm[TimeGn]) &&
+                               pt_vld == (strm[TimeP] | strm[TimeT]) && nv_vld == strm[TimeNv] &&
                                s01_vld == at[TimeS01] && c_vld == at[TimeC] &&
                                k_vld == at[TimeK] &&
                                sa_vld == (at[TimeS] | at[TimeQ] | at[TimeG]) &&
-                               kn_vld == strm[TimeKn] &&
-                               r_vld == strm[TimeR] && m5_vld == strm[TimeC + Lm] &&
-                               x_vld == at[TimeX] &&
-                               sq_vld == at[TimeSq] &&
-                               gn_vld == strm[TimeGn] && ev_vld == strm[TimeGn] &&
-                               t_vld == strm[TimeT] && wx_vld == (at[Lm] | at[Lm + 1]));
+                               knx_vld == (strm[TimeKn] | at[TimeX]) &&
+                               r_vld == strm[TimeR] &&
+                               wm5_vld == (at[Lm] | at[Lm + 1] | strm[TimeC + Lm]) &&
+                               sq_vld == at[TimeSq]);
   // At most one user of the shared adder in a cycle (the phases keep them apart).
   OneUser_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               $onehot0({at[TimeC + Lm], at[TimeX], at[TimeSq]}));

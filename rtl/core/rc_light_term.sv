@@ -24,17 +24,21 @@
 //   cycle; every vector value then travels as a stream of three consecutive components, every
 //   scalar as one value at a fixed cycle after the job's first (the Time* constants below). A
 //   scalar that a vector operation needs (inv, cos, spec) is held for its stream's three cycles by
-//   a register loaded in the first. The dot products (dist2, cos, H.H, N.H) are rc_serial_dot3:
-//   a stream's products, x + y as y's leaves, then + z. The power is ExpBits multipliers, one
-//   per bit, each taking b * b and then r * b in consecutive cycles. Jobs are taken at phase 0
-//   modulo Period, a multiple of 3 (rc_serial_sched, Phased), so scalar operations (one cycle
-//   per job) whose times differ modulo 3 share an operator and no two jobs meet there: one
-//   square root and one divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle
-//   after its sum), and cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H
-//   1). Values wait for their operations in rc_delay lines (short) and rc_delay_ram memories
-//   (long), so a job may follow another after Period cycles or after any gap (rc_serial_sched
-//   keeps the slots and the job times). The last stage collects each stream's three components
-//   into the output FIFO.
+//   a register loaded in the first. A dot product (dist2, cos, H.H, N.H) takes a stream's
+//   products, then x + y as y's leaves, then + z (rc_serial_dot3 for cos, H.H and N.H). The power
+//   is ExpBits steps, each taking b * b and then r * b in consecutive cycles. Jobs are taken at
+//   phase 0 modulo Period, a multiple of 6 (rc_serial_sched, Phased), so operations whose cycles
+//   fall at different phases share an operator and no two jobs meet there. Modulo 3: one square
+//   root and one divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after
+//   its sum), and cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H 1).
+//   Modulo 6 (rc_fp_shared, which checks the phases at elaboration): the power's steps i, i + 2
+//   and i + 4 share a multiplier (4 for 10 steps), three multipliers each take two streams (kd *
+//   ambient and ks * spec, ka * w and kd * cos, L * inv and the term's last * w), one the two
+//   scalars dist and nh, and dist2's two sums go through the adders of the streams L and H.
+//   Values wait for their operations in rc_delay lines (short) and rc_delay_ram memories (long),
+//   so a job may follow another after Period cycles or after any gap (rc_serial_sched keeps the
+//   slots and the job times). The last stage collects each stream's three components into the
+//   output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure, as rc_hit_geom (ready_o
 //   is the AND of two flip-flops; valid_o never depends on ready_i; results leave in order;
 //   tag_i travels with the operation to tag_o).
@@ -45,8 +49,8 @@
 //   up to Period - 1 cycles. The FIFO holds Latency / Period + 2 entries.
 // - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1); FixBits:
 //   the fixed point's fraction bits (docs/spec.toml [light] fixed_bits); ExpBits: the exponent's
-//   bits ([light] exponent_bits); Period: the cycles between two jobs, 3, 6, 9, 12 or 15
-//   ([light] unit_period, as rc_hit_geom's).
+//   bits ([light] exponent_bits); Period: the cycles between two jobs, 6 or 12 ([light]
+//   unit_period, as rc_hit_geom's; the shared multipliers need a multiple of 6).
 // - Illegal input: none; every bit pattern of the data inputs is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, the
 //   stream-start chain, the delay memories' pointers, the FIFO's pointers and credit count).
@@ -226,31 +230,34 @@ module rc_light_term #(
   //////////////////////////////////////////////////////////
 
   logic [W-1:0] l_s, dist2, l_at_inv, d2_at_inv, lh_pt, dist_res;
-  logic         l_vld, ll_vld, d01_vld, d2_vld, lh_vld, dist_vld;
+  logic [W-1:0] ll, ll_d1, ll_dz, la, d01;
+  logic         la_vld, ll_vld;
 
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_l (
-    .clk_i, .rst_ni, .valid_i(strm[0]), .sub_i(1'b1), .a_i(lp_s), .b_i(p_s), .valid_o(l_vld),
-    .res_o(l_s)
+  // dist2 = (L.x L.x + L.y L.y) + L.z L.z, as rc_serial_dot3: x + y as y's product leaves, then
+  // + z. Its two scalar sums (phase 5 of 6) go through the adders of the streams L = lpos - p and
+  // H = lh - v (phases 0 to 2): x + y through u_add_l, + z through u_add_h (below).
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(2), .Sub(8'b01), .Period(Period),
+    .Time(128'({16'(TimeLl + 1), 16'(0)})), .Cycles(16'h0007)
+  ) u_add_l (
+    .clk_i, .rst_ni, .issue_i({at[TimeLl + 1], strm[0]}), .a_i({ll_d1, lp_s}), .b_i({ll, p_s}),
+    .valid_o(la_vld), .res_o(la)
   );
-  // dist2 = (L.x L.x + L.y L.y) + L.z L.z.
-  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_d2 (
-    .clk_i, .rst_ni, .strm_i(strm[TimeL]), .xy_i(at[TimeLl + 1]), .z_i(at[TimeD01]), .a_i(l_s),
-    .b_i(l_s), .prod_valid_o(ll_vld), .xy_valid_o(d01_vld), .valid_o(d2_vld), .res_o(dist2)
+  assign l_s = la;
+  assign d01 = la;
+  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ll (
+    .clk_i, .rst_ni, .valid_i(strm[TimeL]), .a_i(l_s), .b_i(l_s), .valid_o(ll_vld), .res_o(ll)
   );
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_llx (.clk_i, .data_i(ll), .data_o(ll_d1));
+  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_llz (.clk_i, .data_i(ll), .data_o(ll_dz));
   rc_delay_ram #(.Width(W), .Cycles(TimeInv - TimeL)) u_dly_l (
     .clk_i, .rst_ni, .data_i(l_s), .data_o(l_at_inv)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_lh (
-    .clk_i, .rst_ni, .valid_i(strm[TimeInv]), .a_i(l_at_inv), .b_i(inv_b), .valid_o(lh_vld),
-    .res_o(lh_pt)
-  );
+  // lh = L * inv: in u_mul_lhw (below, with the terms' last product).
   rc_delay_ram #(.Width(W), .Cycles(TimeInv - TimeD2)) u_dly_d2 (
     .clk_i, .rst_ni, .data_i(dist2), .data_o(d2_at_inv)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_dist (
-    .clk_i, .rst_ni, .valid_i(at[TimeInv]), .a_i(d2_at_inv), .b_i(inv_res), .valid_o(dist_vld),
-    .res_o(dist_res)
-  );
+  // dist = dist2 * inv: in u_mul_dnh (below, with nh).
 
   // A directional light: its vector and +inf instead (the light's kind and vector wait here).
   logic [W-1:0] lp_at_lh, lh_s, thi_s;
@@ -279,12 +286,19 @@ module rc_light_term #(
   logic [W-1:0] h_s, h_s1, dots, nhd, ih, nhd_d;
   logic [W-1:0] nh;
   logic [2:0]   dp_vld;
-  logic         h_vld, dxy_vld, dots_vld;
-  logic         nh_vld;
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_h (
-    .clk_i, .rst_ni, .valid_i(strm[TimeLh]), .sub_i(1'b1), .a_i(lh_s), .b_i(v_at_lh),
-    .valid_o(h_vld), .res_o(h_s)
+  logic         hd_vld, dxy_vld, dots_vld;
+  logic         dnh_vld;
+  // H = lh - v, and dist2's + z (at TimeD01).
+  logic [W-1:0] hd;
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(2), .Sub(8'b01), .Period(Period),
+    .Time(128'({16'(TimeD01), 16'(TimeLh)})), .Cycles(16'h0007)
+  ) u_add_h (
+    .clk_i, .rst_ni, .issue_i({at[TimeD01], strm[TimeLh]}), .a_i({d01, lh_s}),
+    .b_i({ll_dz, v_at_lh}), .valid_o(hd_vld), .res_o(hd)
   );
+  assign h_s   = hd;
+  assign dist2 = hd;
   rc_delay #(.Width(W), .Cycles(1)) u_dly_h1 (.clk_i, .data_i(h_s), .data_o(h_s1));
   // cos = N.lh, H.H and N.H, each (x + y) + z, through two adders shared by phase: N.lh's stream
   // issued 2 cycles late, H.H's on time, N.H's 1 late, so their sums come at times that differ
@@ -324,20 +338,56 @@ module rc_light_term #(
   rc_delay_ram #(.Width(W), .Cycles(TimeIh - TimeHh - 1)) u_dly_nhd (
     .clk_i, .rst_ni, .data_i(nhd), .data_o(nhd_d)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_nh (
-    .clk_i, .rst_ni, .valid_i(at[TimeIh]), .a_i(nhd_d), .b_i(ih), .valid_o(nh_vld), .res_o(nh)
+  // One multiplier for the two scalar products dist = dist2 * inv (at TimeInv) and
+  // nh = N.H * (1 / sqrt(H.H)) (at TimeIh): their times differ modulo Period.
+  logic [W-1:0] dnh;
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
+    .Time(128'({16'(TimeIh), 16'(TimeInv)})), .Cycles(16'h5555)
+  ) u_mul_dnh (
+    .clk_i, .rst_ni, .issue_i({at[TimeIh], at[TimeInv]}), .a_i({nhd_d, d2_at_inv}),
+    .b_i({ih, inv_res}), .valid_o(dnh_vld), .res_o(dnh)
   );
+  assign dist_res = dnh;
+  assign nh       = dnh;
 
   //////////////////////////////////////////////////////////
   // spec = lt(0, nh) ? pow(nh, ns) : +0                  //
   //////////////////////////////////////////////////////////
 
-  // Step i at T_i = TimeNh + i * PowStep: b * b at T_i, r * b at T_i + 1 in the step's
-  // multiplier. Word i of b_src and r_src holds b_i and r_i at T_i (flat: Yosys 0.23 reads no
-  // multi-dimensional packed arrays); r_src's word ExpBits is the power at TimeSpec.
-  logic [ExpBits*W-1:0]     b_src;
+  // Step i at T_i = TimeNh + i * PowStep: b * b at T_i, r * b at T_i + 1. Word i of b_src and
+  // r_src holds b_i and r_i at T_i (flat: Yosys 0.23 reads no multi-dimensional packed arrays);
+  // r_src's word ExpBits is the power at TimeSpec. The steps share PowMuls multipliers: step i
+  // uses PowMul(i) = (i mod 2) + 2 (i / 6), with the steps i + 2 and i + 4, which issue 2 PowStep
+  // and 4 PowStep cycles later (with PowStep 5 and Period 6 each step's two cycles are a
+  // different pair of every six; rc_fp_shared checks the phases).
+  localparam int unsigned PowMuls = 2 * (ExpBits / 6) + ((ExpBits % 6 == 0) ? 0 :
+                                                          (ExpBits % 6 == 1) ? 1 : 2);
+
+  function automatic int unsigned pow_mul(input int unsigned i);
+    pow_mul = (i % 2) + 2 * (i / 6);
+  endfunction
+  // Group g's steps' issue times (words of rc_fp_shared's Time; those past the group's last step
+  // are not read).
+  function automatic logic [127:0] pow_times(input int unsigned g);
+    pow_times = '0;
+    for (int unsigned m = 0; m < 3; m++) begin
+      pow_times[16*m +: 16] = 16'(TimeNh + (6 * (g / 2) + (g % 2) + 2 * m) * PowStep);
+    end
+  endfunction
+  // Group g's steps: 6 (g / 2) + (g mod 2) + 2 m, m = 0 .. pow_steps(g) - 1.
+  function automatic int unsigned pow_steps(input int unsigned g);
+    pow_steps = 0;
+    for (int unsigned m = 0; m < 3; m++) begin
+      if (6 * (g / 2) + (g % 2) + 2 * m < ExpBits) pow_steps = pow_steps + 1;
+    end
+  endfunction
+
+  logic [ExpBits*W-1:0]     b_src, b_d1_q, r_d1_q, step_a, step_b;
   logic [(ExpBits+1)*W-1:0] r_src;
-  logic [ExpBits-1:0]       pow_vld_ok;
+  logic [ExpBits-1:0]       step_issue;
+  logic [PowMuls*W-1:0]     pow_prod;
+  logic [PowMuls-1:0]       pow_vld, pow_vld_ok;
   logic [ExpBits-1:0]       ns_at_nh;
 
   rc_delay_ram #(.Width(ExpBits), .Cycles(TimeNh)) u_dly_ns (
@@ -347,23 +397,22 @@ module rc_light_term #(
   assign b_src[0 +: W] = nh;
   assign r_src[0 +: W] = One;
 
+  always_ff @(posedge clk_i) begin
+    b_d1_q <= b_src;
+    r_d1_q <= r_src[ExpBits*W-1:0];
+  end
+
   for (genvar i = 0; i < ExpBits; i++) begin : g_pow
-    logic [W-1:0] b_d1_q, r_d1_q, ma, mb, prod, r_keep;
-    logic         mvld, bit_i;
-    always_ff @(posedge clk_i) begin
-      b_d1_q <= b_src[i*W +: W];
-      r_d1_q <= r_src[i*W +: W];
-    end
-    assign ma = at[TimeNh + i*PowStep + 1] ? r_d1_q : b_src[i*W +: W];
-    assign mb = at[TimeNh + i*PowStep + 1] ? b_d1_q : b_src[i*W +: W];
-    rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_pow (
-      .clk_i, .rst_ni, .valid_i(at[TimeNh + i*PowStep] | at[TimeNh + i*PowStep + 1]),
-      .a_i(ma), .b_i(mb), .valid_o(mvld), .res_o(prod)
-    );
-    assign pow_vld_ok[i] = mvld == (at[TimeNh + i*PowStep + Lm] |
-                                    at[TimeNh + i*PowStep + Lm + 1]);
+    logic [W-1:0] prod, r_keep;
+    logic         bit_i;
+    assign step_issue[i]     = at[TimeNh + i*PowStep] | at[TimeNh + i*PowStep + 1];
+    assign step_a[i*W +: W] = at[TimeNh + i*PowStep + 1] ? r_d1_q[i*W +: W] : b_src[i*W +: W];
+    assign step_b[i*W +: W] = at[TimeNh + i*PowStep + 1] ? b_d1_q[i*W +: W] : b_src[i*W +: W];
+    assign prod = pow_prod[pow_mul(i)*W +: W];
     // r_i waits from T_i + 1 to T_{i+1}; bit i of ns arrives at T_{i+1}.
-    rc_delay #(.Width(W), .Cycles(Lm)) u_dly_r (.clk_i, .data_i(r_d1_q), .data_o(r_keep));
+    rc_delay #(.Width(W), .Cycles(Lm)) u_dly_r (
+      .clk_i, .data_i(r_d1_q[i*W +: W]), .data_o(r_keep)
+    );
     rc_delay #(.Width(1), .Cycles((i + 1) * PowStep)) u_dly_bit (
       .clk_i, .data_i(ns_at_nh[i]), .data_o(bit_i)
     );
@@ -374,6 +423,36 @@ module rc_light_term #(
         .clk_i, .data_i(prod), .data_o(b_src[(i+1)*W +: W])
       );
     end
+  end
+
+  for (genvar g = 0; g < PowMuls; g++) begin : g_pow_mul
+    localparam int unsigned N  = pow_steps(g);
+    localparam int unsigned I0 = 6 * (g / 2) + (g % 2);  // the group's first step
+    logic [N-1:0]   issue, due;
+    logic [N*W-1:0] ga, gb;
+    for (genvar m = 0; m < N; m++) begin : g_step
+      assign issue[m]        = step_issue[I0 + 2*m];
+      assign ga[m*W +: W]    = step_a[(I0 + 2*m)*W +: W];
+      assign gb[m*W +: W]    = step_b[(I0 + 2*m)*W +: W];
+      assign due[m]          = at[TimeNh + (I0 + 2*m)*PowStep + Lm] |
+                               at[TimeNh + (I0 + 2*m)*PowStep + Lm + 1];
+    end
+    if (N == 1) begin : g_alone
+      // A last group of one step: its own multiplier.
+      rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_pow (
+        .clk_i, .rst_ni, .valid_i(issue[0]), .a_i(ga), .b_i(gb), .valid_o(pow_vld[g]),
+        .res_o(pow_prod[g*W +: W])
+      );
+    end else begin : g_shared
+      rc_fp_shared #(
+        .ExpW(ExpW), .FracW(FracW), .Users(N), .Period(Period),
+        .Time(pow_times(g)), .Cycles(16'haaaa)
+      ) u_mul_pow (
+        .clk_i, .rst_ni, .issue_i(issue), .a_i(ga), .b_i(gb), .valid_o(pow_vld[g]),
+        .res_o(pow_prod[g*W +: W])
+      );
+    end
+    assign pow_vld_ok[g] = pow_vld[g] == (|due);
   end
 
   logic nh_pos_at_spec;
@@ -387,24 +466,18 @@ module rc_light_term #(
   //////////////////////////////////////////////////////////
 
   logic [W-1:0] kd_at_cos, kdcos, kdcos_d, ks_at_spec, ksspec, sum, lc_at_sum, sl, w_at_sl, x_s;
-  logic         kdcos_vld, ksspec_vld, sum_vld, sl_vld, x_vld;
+  logic         sum_vld, sl_vld, lhw_vld;
   rc_delay_ram #(.Width(W), .Cycles(TimeCos)) u_dly_kd (
     .clk_i, .rst_ni, .data_i(kd_s), .data_o(kd_at_cos)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_kc (
-    .clk_i, .rst_ni, .valid_i(strm[TimeCos]), .a_i(kd_at_cos), .b_i(cos_b), .valid_o(kdcos_vld),
-    .res_o(kdcos)
-  );
+  // kd * cos: in u_mul_kca (below, with the ambient term's ka * w).
   rc_delay_ram #(.Width(W), .Cycles(TimeSpec - TimeCos)) u_dly_kdcos (
     .clk_i, .rst_ni, .data_i(kdcos), .data_o(kdcos_d)
   );
   rc_delay_ram #(.Width(W), .Cycles(TimeSpec)) u_dly_ks (
     .clk_i, .rst_ni, .data_i(ks_s), .data_o(ks_at_spec)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ks (
-    .clk_i, .rst_ni, .valid_i(strm[TimeSpec]), .a_i(ks_at_spec), .b_i(spec_b),
-    .valid_o(ksspec_vld), .res_o(ksspec)
-  );
+  // ks * spec: in u_mul_kas (below, with kd * ambient).
   rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_sum (
     .clk_i, .rst_ni, .valid_i(strm[TimeSpec + Lm]), .sub_i(1'b0), .a_i(kdcos_d), .b_i(ksspec),
     .valid_o(sum_vld), .res_o(sum)
@@ -420,10 +493,18 @@ module rc_light_term #(
   rc_delay_ram #(.Width(W), .Cycles(TimeSum + Lm)) u_dly_w (
     .clk_i, .rst_ni, .data_i(w_q), .data_o(w_at_sl)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_w (
-    .clk_i, .rst_ni, .valid_i(strm[TimeSum + Lm]), .a_i(sl), .b_i(w_at_sl), .valid_o(x_vld),
-    .res_o(x_s)
+  // One multiplier for the streams lh = L * inv (at TimeInv) and (... * lcol) * w (at
+  // TimeSum + Lm): their three cycles fall at different phases modulo Period.
+  logic [W-1:0] lhw;
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
+    .Time(128'({16'(TimeSum + Lm), 16'(TimeInv)})), .Cycles(16'hffff)
+  ) u_mul_lhw (
+    .clk_i, .rst_ni, .issue_i({strm[TimeSum + Lm], strm[TimeInv]}), .a_i({sl, l_at_inv}),
+    .b_i({w_at_sl, inv_b}), .valid_o(lhw_vld), .res_o(lhw)
   );
+  assign lh_pt = lhw;
+  assign x_s   = lhw;
   logic [FW-1:0] term_s;
   logic          term_vld;
   rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_t (
@@ -440,15 +521,29 @@ module rc_light_term #(
 
   logic [W-1:0]  ka, w_at_ka, aw;
   logic [FW-1:0] amb_s, amb_at_fix;
-  logic          ka_vld, aw_vld, amb_vld;
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ka (
-    .clk_i, .rst_ni, .valid_i(strm[0]), .a_i(kd_s), .b_i(ambient_i), .valid_o(ka_vld),
-    .res_o(ka)
+  logic          kas_vld, kca_vld, amb_vld;
+  // Two multipliers, each for two streams at different phases modulo Period: kd * ambient (at
+  // 0) with ks * spec (at TimeSpec), and ka * w (at Lm) with kd * cos (at TimeCos).
+  logic [W-1:0] kas, kca;
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
+    .Time(128'({16'(TimeSpec), 16'(0)})), .Cycles(16'hffff)
+  ) u_mul_kas (
+    .clk_i, .rst_ni, .issue_i({strm[TimeSpec], strm[0]}), .a_i({ks_at_spec, kd_s}),
+    .b_i({spec_b, ambient_i}), .valid_o(kas_vld), .res_o(kas)
   );
+  assign ka     = kas;
+  assign ksspec = kas;
   rc_delay #(.Width(W), .Cycles(Lm)) u_dly_wa (.clk_i, .data_i(w_q), .data_o(w_at_ka));
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_aw (
-    .clk_i, .rst_ni, .valid_i(strm[Lm]), .a_i(ka), .b_i(w_at_ka), .valid_o(aw_vld), .res_o(aw)
+  rc_fp_shared #(
+    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
+    .Time(128'({16'(TimeCos), 16'(Lm)})), .Cycles(16'hffff)
+  ) u_mul_kca (
+    .clk_i, .rst_ni, .issue_i({strm[TimeCos], strm[Lm]}), .a_i({kd_at_cos, ka}),
+    .b_i({cos_b, w_at_ka}), .valid_o(kca_vld), .res_o(kca)
   );
+  assign aw    = kca;
+  assign kdcos = kca;
   rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_a (
     .clk_i, .rst_ni, .valid_i(strm[2 * Lm]), .x_i(aw), .valid_o(amb_vld), .out_o(amb_s)
   );
@@ -521,19 +616,18 @@ module rc_light_term #(
   // Each operation's result leaves at the time the schedule above gives it: the fp units' valid
   // chains agree with the stream starts, so no value is read at the wrong cycle.
   Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-      l_vld == strm[TimeL] && ll_vld == strm[TimeLl] && d01_vld == at[TimeD01] &&
-      d2_vld == at[TimeD2] && rt_vld == (at[TimeSq1] | at[TimeHs + Ls]) &&
+      la_vld == (strm[TimeL] | at[TimeD01]) && ll_vld == strm[TimeLl] &&
+      hd_vld == (strm[TimeH] | at[TimeD2]) && rt_vld == (at[TimeSq1] | at[TimeHs + Ls]) &&
       rinv_vld == (at[TimeInv] | at[TimeIh]) &&
-      lh_vld == strm[TimeLh] && dist_vld == at[TimeLh] && h_vld == strm[TimeH] &&
+      lhw_vld == (strm[TimeLh] | strm[TimeX]) && dnh_vld == (at[TimeLh] | at[TimeNh]) &&
       dp_vld == {strm[TimeH + 1 + Lm], strm[TimeH + Lm], strm[TimeLh + 2 + Lm]} &&
       dxy_vld == (at[TimeLh + 2 + Lm + 1 + La] | at[TimeH + Lm + 1 + La] |
                   at[TimeH + 1 + Lm + 1 + La]) &&
       dots_vld == (at[TimeCos] | at[TimeHh] | at[TimeHh + 1]) &&
-      nh_vld == at[TimeNh] &&
-      (&pow_vld_ok) && kdcos_vld == strm[TimeCos + Lm] && ksspec_vld == strm[TimeSpec + Lm] &&
-      sum_vld == strm[TimeSum] && sl_vld == strm[TimeSum + Lm] && x_vld == strm[TimeX] &&
-      term_vld == strm[TimeFix] && ka_vld == strm[Lm] && aw_vld == strm[2 * Lm] &&
-      amb_vld == strm[2 * Lm + 1]);
+      (&pow_vld_ok) && kca_vld == (strm[TimeCos + Lm] | strm[2 * Lm]) &&
+      kas_vld == (strm[TimeSpec + Lm] | strm[Lm]) &&
+      sum_vld == strm[TimeSum] && sl_vld == strm[TimeSum + Lm] &&
+      term_vld == strm[TimeFix] && amb_vld == strm[2 * Lm + 1]);
   // ready_o must be known once out of reset (upstream acts on it).
   ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));

@@ -1041,9 +1041,9 @@ TEST(CoreUnits, HitGeomRandom) {
 constexpr int64_t kHitGeomLatency =
     1 + 2 * kMul + 1 + 2 * kAdd + 3 * kMul + 4 * kAdd + spec::kFpStagesSqrt + 2 + 1;
 
-// The light units' cycles per job (docs/spec.toml [light] unit_period, a multiple of 3).
+// The light units' cycles per job (docs/spec.toml [light] unit_period, 6 or 12).
 constexpr int64_t kLightPeriod = spec::kLightUnitPeriod;
-static_assert(kLightPeriod >= 3 && kLightPeriod % 3 == 0, "[light] unit_period");
+static_assert(kLightPeriod == 6 || kLightPeriod == 12, "[light] unit_period");
 
 // rc_hit_geom runs a hit's components through one slice: one hit per unit_period cycles; a hit
 // waits at most unit_period - 1 cycles for its phase. The FIFO holds latency / unit_period + 2
