@@ -19,7 +19,8 @@
 //   cnt_q for L + 1 cycles when ready_i is 1, and credit_o needs cnt_q < Depth, so Depth >= L + 2
 //   sustains one operation per cycle.
 // - Parameters: Width data bits (>= 1); Depth entries (>= 1: the head register and Depth - 1
-//   behind it); MemArray: 0 = the entries behind the head in a flat register vector with a read
+//   behind it; Depth = 1 is the head register alone: with one credit a write always finds the
+//   head free); MemArray: 0 = the entries behind the head in a flat register vector with a read
 //   multiplexer (flip-flops), 1 = in a memory array written at wr_ptr and read asynchronously at
 //   rd_ptr, mapped to distributed RAM (ram_style; e.g. ECP5 DPR16X4, never block RAM): the
 //   better choice for deep or wide FIFOs. Same behaviour either way.
@@ -80,7 +81,7 @@ module rc_credit_fifo #(
 
   assign pop      = out_v_q & ready_i;
   assign out_free = ~out_v_q | ready_i;
-  assign ram_any  = ram_any_q;
+  assign ram_any  = (Depth > 1) && ram_any_q;  // Depth 1: no storage behind the head
   assign ram_rd   = out_free & ram_any;
   assign bypass   = out_free & ~ram_any & wr_valid_i;
   assign ram_wr   = wr_valid_i & ~bypass;
@@ -158,7 +159,10 @@ module rc_credit_fifo #(
   // bypass decision (the head's state and ready_i), before the write enables of every memory
   // cell (run 33: -0.38 ns).
 
-  if (MemArray) begin : g_mem_array
+  if (Depth == 1) begin : g_no_mem
+    // The head register alone: with one credit, a write comes only while the head is free.
+    assign ram_data = '0;
+  end else if (MemArray) begin : g_mem_array
     // Write port at wr_ptr_q, asynchronous read at rd_ptr_q (distributed RAM). ram_style keeps
     // synthesis from making the output register the read port of a block RAM, whose
     // clock-to-out (5.8 ns on the LFE5U-85F) would then start the consumer's paths.
@@ -207,7 +211,7 @@ module rc_credit_fifo #(
   // Every write was reserved by a credit, so the storage is never full when a write goes there
   // (it holds at most Depth - 1 entries: it is non-empty only while the head is full).
   WriteHasRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                   ram_wr |-> occ_q < CntW'(RamDepth));
+                                   ram_wr |-> Depth > 1 && occ_q < CntW'(RamDepth));
   // Entries wait behind a full head only.
   HeadFirst_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 ram_any |-> out_v_q);

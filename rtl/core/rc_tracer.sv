@@ -305,7 +305,7 @@ module rc_tracer #(
   logic [SpW-1:0]  shq_sp;
   logic            bq_push, bq_valid, bq_pop;
   logic [BqW-1:0]  bq_wdata, bq_rdata;
-  logic [1:0]      bq_count;
+  logic            bq_count;
   logic            bq_mirror;
   logic [3:0]      bq_mask;
   logic [12*W-1:0] bq_org, bq_dir;
@@ -329,9 +329,11 @@ module rc_tracer #(
   );
   assign {shq_mask, shq_org, shq_dir, shq_t_hi, shq_tri, shq_sp} = shq_rdata;
 
+  // The tree packet queue holds one packet: a decision (which sends at most one) needs it empty
+  // and no pop in its second cycle (dec_room).
   rc_fifo #(
     .Width   (BqW),
-    .Depth   (2),
+    .Depth   (1),
     .MemArray(1'b0)
   ) u_tree_q (
     .clk_i,
@@ -587,7 +589,7 @@ module rc_tracer #(
   logic dec_geo, dec_room;
   logic fs_busy_q;
   logic pop_q;  // a stack pop's read: its packet is sent in this cycle, no decision is made
-  assign dec_room = bq_count == 2'd0 && !pop_q;
+  assign dec_room = !bq_count && !pop_q;
   assign fq_pop   = fq_valid && !fs_busy_q && (fq_work != 4'd0 || (dec_room && !dec_geo));
 
   // The sequencer: the popped packet's lanes, one per cycle.
