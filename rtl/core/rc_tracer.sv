@@ -297,7 +297,7 @@ module rc_tracer #(
   localparam int unsigned BqW  = 1 + 4 + 28 * W + 128 + SlotW;
   logic            shq_push, shq_valid, shq_pop;
   logic [ShqW-1:0] shq_wdata, shq_rdata;
-  logic [1:0]      shq_count;
+  logic            shq_count;
   logic [3:0]      shq_mask;
   logic [12*W-1:0] shq_org, shq_dir;
   logic [4*W-1:0]  shq_t_hi;
@@ -313,9 +313,10 @@ module rc_tracer #(
   logic [127:0]    bq_tri;
   logic [SlotW-1:0] bq_slot;
 
+  // The shadow packet queue holds one packet: the light samples wait while it is full.
   rc_fifo #(
     .Width   (ShqW),
-    .Depth   (2),
+    .Depth   (1),
     .MemArray(1'b0)
   ) u_shadow_q (
     .clk_i,
@@ -1105,7 +1106,7 @@ module rc_tracer #(
   assign {lt_tri, lt_d0, lt_ln} = {lt_tag[HlTagW-1 -: 32], lt_tag[LaneW + 1], lt_tag[LaneW-1:0]};
   assign lt_slot     = lt_ln[LaneW-1:2];
   assign lt_lane     = lt_ln[1:0];
-  assign lt_ready    = shq_count != 2'd2 && sp_free_any && !mo_valid &&
+  assign lt_ready    = !shq_count && sp_free_any && !mo_valid &&
                        32'(aq_count) + 32'(mi_count_q) + 1 <= AddQ;
   assign lt_take     = lt_valid && lt_ready;
   assign lt_close    = lt_take && lt_lane_last;
