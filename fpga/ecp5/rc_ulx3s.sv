@@ -18,8 +18,8 @@
 // - LEDs: led[0] heartbeat (0.5 .. 1 Hz), led[1] busy, led[2] done, led[3]
 //   size_error or config_error (the start was refused), led[7:4] rc_core's error bits (malformed node, bad address, stack overflow,
 //   watchdog: rc_pkg::CoreStatus*).
-// - Parameters: rc_board's (Threads, Lit, ROM depths and hex files: `raycore board-image` writes
-//   them with board.json), the PLL dividers with CoreHz, and Baud.
+// - Parameters: rc_board's (Threads; LitThreads, LitSlots and LitShadowPackets, the lit board's;
+//   Lit, ROM depths and hex files: `raycore board-image` writes them with board.json), the PLL dividers with CoreHz, and Baud.
 // - Illegal input: none.
 module rc_ulx3s #(
   // EHXPLLL dividers (fpga/fpga_ecp5.py computes them) and the resulting core clock in Hz.
@@ -31,6 +31,9 @@ module rc_ulx3s #(
   parameter int unsigned Baud        = 115_200,
   // rc_board.
   parameter int unsigned Threads   = rc_pkg::BoardThreads,
+  parameter int unsigned LitThreads = rc_pkg::BoardLitThreads,
+  parameter int unsigned LitSlots  = rc_pkg::BoardLitSlots,
+  parameter int unsigned LitShadowPackets = rc_pkg::BoardLitShadowPackets,
   parameter int unsigned NodeDepth = 1,
   parameter int unsigned ListDepth = 1,
   parameter int unsigned TriDepth  = 1,
@@ -267,6 +270,9 @@ module rc_ulx3s #(
 
   rc_board #(
     .Threads  (Threads),
+    .LitThreads(LitThreads),
+    .LitSlots (LitSlots),
+    .LitShadowPackets(LitShadowPackets),
     .NodeDepth(NodeDepth),
     .ListDepth(ListDepth),
     .TriDepth (TriDepth),

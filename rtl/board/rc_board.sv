@@ -55,7 +55,11 @@
 //   rc_pkg::BoardThreads, docs/spec.toml [board] threads: fewer than the core alone, chosen for
 //   the ROMs' short latency); LitSetupUnits, the lit core's ray set-up units (default
 //   rc_pkg::BoardLitSetupUnits, [board] lit_setup_units; the board without Lit keeps the core's
-//   default); the ROM depths and hex files; FbPixels.
+//   default); with Lit, LitThreads (the lit core's packet threads, instead of Threads), LitSlots
+//   and LitShadowPackets (rc_tracer's Slots and ShadowPackets; defaults [board] lit_threads,
+//   lit_slots, lit_shadow_packets: fewer than the chip's, for area, docs/fpga.md "Status"); the
+//   ROM depths and hex files; FbPixels; CoreThreads is derived (the threads of
+//   the core built: LitThreads with Lit, else Threads).
 // - Illegal input: none on the register port (writes while busy are ignored); reading registers
 //   that do not exist returns 0.
 // - Reset: rst_ni (active low, asynchronous) clears control state; the register file, ROMs and
@@ -65,6 +69,9 @@ module rc_board #(
   parameter int unsigned FracW     = rc_pkg::Fp24FracW,
   parameter int unsigned Threads   = rc_pkg::BoardThreads,
   parameter int unsigned LitSetupUnits = rc_pkg::BoardLitSetupUnits,
+  parameter int unsigned LitThreads = rc_pkg::BoardLitThreads,
+  parameter int unsigned LitSlots  = rc_pkg::BoardLitSlots,
+  parameter int unsigned LitShadowPackets = rc_pkg::BoardLitShadowPackets,
   parameter int unsigned NodeDepth = 1,
   parameter int unsigned ListDepth = 1,
   parameter int unsigned TriDepth  = 1,
@@ -87,7 +94,8 @@ module rc_board #(
   parameter int unsigned MaxLights = rc_pkg::LightMaxLights,
   parameter int unsigned AddrW     = rc_pkg::BoardAddrBits,
   parameter int unsigned FbAddrW   = (FbPixels > 1) ? $clog2(FbPixels) : 1,
-  parameter int unsigned StatusW   = rc_pkg::CoreStatusBits
+  parameter int unsigned StatusW   = rc_pkg::CoreStatusBits,
+  parameter int unsigned CoreThreads = Lit ? LitThreads : Threads
 ) (
   input  logic               clk_i,
   input  logic               rst_ni,
@@ -376,7 +384,7 @@ module rc_board #(
   logic [63:0]       perf, perf_rd_q;
   logic [StatusW-1:0] core_error;
 
-  logic [Threads*rc_pkg::ThreadStateBits-1:0] core_dbg_states;
+  logic [CoreThreads*rc_pkg::ThreadStateBits-1:0] core_dbg_states;
   logic [MaxLights-1:0] fb_lights;
   logic [31:0]  fb_bounce_tri, fb_refract_tri;
   if (Lit) begin : g_lit
@@ -433,8 +441,10 @@ module rc_board #(
     rc_tracer #(
       .ExpW      (ExpW),
       .FracW     (FracW),
-      .Threads   (Threads),
-      .SetupUnits(LitSetupUnits)
+      .Threads   (LitThreads),
+      .SetupUnits(LitSetupUnits),
+      .Slots     (LitSlots),
+      .ShadowPackets(LitShadowPackets)
     ) u_tracer (
     .clk_i,
     .rst_ni,

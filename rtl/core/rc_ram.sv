@@ -11,6 +11,10 @@
 // - A read of the word written at the same edge: the model returns the old word; the hardware's
 //   is unspecified (no_rw_check: no collision logic around the block RAM). Users never read a
 //   word in the cycle it is written (each says why in its own contract).
+// - Mapping: a memory of Width * Depth >= BlockBits (1024) bits asks for block RAM (ram_style
+//   "block"): a shallow wide store (e.g. 16 threads' records) would otherwise become distributed
+//   RAM, on the ECP5 six LUT sites per 64 bits, where one DP16KD holds 18 kbits; smaller ones
+//   are left to synthesis.
 // - Parameters: Width bits per word (>= 1), Depth words (>= 1), OutReg (0 or 1).
 // - Reset: none (contents and read registers are undefined until written and read).
 module rc_ram #(
@@ -18,6 +22,7 @@ module rc_ram #(
   parameter int unsigned Depth  = 16,
   parameter bit          OutReg = 1'b1,
   // Derived (do not override).
+  parameter int unsigned BlockBits = 1024,
   parameter int unsigned AddrW  = (Depth > 1) ? $clog2(Depth) : 1
 ) (
   input  logic             clk_i,
@@ -33,13 +38,22 @@ module rc_ram #(
     $error("rc_ram: need Width >= 1 and Depth >= 1");
   end
 
-  (* no_rw_check *)
-  logic [Width-1:0] mem [0:Depth-1];
   logic [Width-1:0] rd_q;
 
-  always_ff @(posedge clk_i) begin
-    if (we_i) mem[waddr_i] <= wdata_i;
-    if (re_i) rd_q <= mem[raddr_i];
+  if (Width * Depth >= BlockBits) begin : g_block
+    (* no_rw_check, ram_style = "block" *)
+    logic [Width-1:0] mem [0:Depth-1];
+    always_ff @(posedge clk_i) begin
+      if (we_i) mem[waddr_i] <= wdata_i;
+      if (re_i) rd_q <= mem[raddr_i];
+    end
+  end else begin : g_auto
+    (* no_rw_check *)
+    logic [Width-1:0] mem [0:Depth-1];
+    always_ff @(posedge clk_i) begin
+      if (we_i) mem[waddr_i] <= wdata_i;
+      if (re_i) rd_q <= mem[raddr_i];
+    end
   end
 
   if (OutReg) begin : g_out_reg
