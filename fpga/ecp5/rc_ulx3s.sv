@@ -19,7 +19,8 @@
 //   size_error or config_error (the start was refused), led[7:4] rc_core's error bits (malformed node, bad address, stack overflow,
 //   watchdog: rc_pkg::CoreStatus*).
 // - Parameters: rc_board's (Threads; LitThreads, LitSlots and LitShadowPackets, the lit board's;
-//   Lit, ROM depths and hex files: `raycore board-image` writes them with board.json), the PLL dividers with CoreHz, and Baud.
+//   Lit, ROM depths and hex files: `raycore board-image` writes them with board.json), the PLL
+//   dividers with CoreHz, and Baud.
 // - Illegal input: none.
 module rc_ulx3s #(
   // EHXPLLL dividers (fpga/fpga_ecp5.py computes them) and the resulting core clock in Hz.

@@ -58,8 +58,8 @@
 //   default); with Lit, LitThreads (the lit core's packet threads, instead of Threads), LitSlots
 //   and LitShadowPackets (rc_tracer's Slots and ShadowPackets; defaults [board] lit_threads,
 //   lit_slots, lit_shadow_packets: fewer than the chip's, for area, docs/fpga.md "Status"); the
-//   ROM depths and hex files; FbPixels; CoreThreads is derived (the threads of
-//   the core built: LitThreads with Lit, else Threads).
+//   ROM depths and hex files; FbPixels. CoreThreads is derived: the threads of the core built
+//   (LitThreads with Lit, else Threads).
 // - Illegal input: none on the register port (writes while busy are ignored); reading registers
 //   that do not exist returns 0.
 // - Reset: rst_ni (active low, asynchronous) clears control state; the register file, ROMs and

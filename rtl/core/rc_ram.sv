@@ -22,7 +22,6 @@ module rc_ram #(
   parameter int unsigned Depth  = 16,
   parameter bit          OutReg = 1'b1,
   // Derived (do not override).
-  parameter int unsigned BlockBits = 1024,
   parameter int unsigned AddrW  = (Depth > 1) ? $clog2(Depth) : 1
 ) (
   input  logic             clk_i,
@@ -38,8 +37,10 @@ module rc_ram #(
     $error("rc_ram: need Width >= 1 and Depth >= 1");
   end
 
+  localparam int unsigned BlockBits = 1024;  // from this size on, block RAM (see Mapping)
   logic [Width-1:0] rd_q;
 
+  // The same memory twice: Yosys takes ram_style from the declaration only.
   if (Width * Depth >= BlockBits) begin : g_block
     (* no_rw_check, ram_style = "block" *)
     logic [Width-1:0] mem [0:Depth-1];
