@@ -364,22 +364,26 @@ module rc_light_term #(
   localparam int unsigned PowMuls = 2 * (ExpBits / 6) + ((ExpBits % 6 == 0) ? 0 :
                                                           (ExpBits % 6 == 1) ? 1 : 2);
 
+  // Step i's multiplier (its group), and group g's step m (m = 0 .. 2, the inverse).
   function automatic int unsigned pow_mul(input int unsigned i);
     pow_mul = (i % 2) + 2 * (i / 6);
+  endfunction
+  function automatic int unsigned pow_step(input int unsigned g, input int unsigned m);
+    pow_step = 6 * (g / 2) + (g % 2) + 2 * m;
   endfunction
   // Group g's steps' issue times (words of rc_fp_shared's Time; those past the group's last step
   // are not read).
   function automatic logic [127:0] pow_times(input int unsigned g);
     pow_times = '0;
     for (int unsigned m = 0; m < 3; m++) begin
-      pow_times[16*m +: 16] = 16'(TimeNh + (6 * (g / 2) + (g % 2) + 2 * m) * PowStep);
+      pow_times[16*m +: 16] = 16'(TimeNh + pow_step(g, m) * PowStep);
     end
   endfunction
-  // Group g's steps: 6 (g / 2) + (g mod 2) + 2 m, m = 0 .. pow_steps(g) - 1.
+  // Group g's steps: pow_step(g, m) for m = 0 .. pow_steps(g) - 1.
   function automatic int unsigned pow_steps(input int unsigned g);
     pow_steps = 0;
     for (int unsigned m = 0; m < 3; m++) begin
-      if (6 * (g / 2) + (g % 2) + 2 * m < ExpBits) pow_steps = pow_steps + 1;
+      if (pow_step(g, m) < ExpBits) pow_steps = pow_steps + 1;
     end
   endfunction
 
@@ -426,16 +430,15 @@ module rc_light_term #(
   end
 
   for (genvar g = 0; g < PowMuls; g++) begin : g_pow_mul
-    localparam int unsigned N  = pow_steps(g);
-    localparam int unsigned I0 = 6 * (g / 2) + (g % 2);  // the group's first step
+    localparam int unsigned N = pow_steps(g);
     logic [N-1:0]   issue, due;
     logic [N*W-1:0] ga, gb;
     for (genvar m = 0; m < N; m++) begin : g_step
-      assign issue[m]        = step_issue[I0 + 2*m];
-      assign ga[m*W +: W]    = step_a[(I0 + 2*m)*W +: W];
-      assign gb[m*W +: W]    = step_b[(I0 + 2*m)*W +: W];
-      assign due[m]          = at[TimeNh + (I0 + 2*m)*PowStep + Lm] |
-                               at[TimeNh + (I0 + 2*m)*PowStep + Lm + 1];
+      localparam int unsigned I = pow_step(g, m);
+      assign issue[m]     = step_issue[I];
+      assign ga[m*W +: W] = step_a[I*W +: W];
+      assign gb[m*W +: W] = step_b[I*W +: W];
+      assign due[m]       = at[TimeNh + I*PowStep + Lm] | at[TimeNh + I*PowStep + Lm + 1];
     end
     if (N == 1) begin : g_alone
       // A last group of one step: its own multiplier.
