@@ -292,7 +292,7 @@ module rc_tracer #(
   logic [127:0]             core_pkt_pixel, core_pkt_start_tri;
   logic [rc_pkg::RayKindBits-1:0] core_pkt_kind;
 
-  // The shadow packet queue and the tree packet queue (two entries each).
+  // The shadow packet queue and the tree packet queue (one entry each, below).
   localparam int unsigned ShqW = 4 + 24 * W + 4 * W + 128 + SpW;
   localparam int unsigned BqW  = 1 + 4 + 28 * W + 128 + SlotW;
   logic            shq_push, shq_valid, shq_pop;
