@@ -202,45 +202,75 @@ module rc_list_unit #(
   assign lreq_free = ~lsk_v_q;
 
   // The issue of a list entry (lu_busy_q & tag_avail_q & lreq_free) drives some 250 enables and
-  // selects in both halves of this unit, so it is registered from the next values, twice:
-  // li_take_q for the tag pool (tag_first_q, tf_q, the pool's writes) and li_wait_q, its inverse
-  // (rc_flag_pair), for the request side (lu_*, the request registers, the in-flight counts).
-  // Both equal the expression above (LiTake_A).
-  logic lu_busy_d, lsk_v_d, li_take_d, li_take_q, li_wait_q, li_take_r;
-  assign li_take   = li_take_q;
-  assign li_take_r = ~li_wait_q;
+  // selects in both halves of this unit, so it is registered from the next values, in kept copies
+  // (rc_reg_copies): li_take_q for the tag pool (tag_first_q, tf_q, the pool's writes) and
+  // li_take_r for the request side (lu_*, the request registers, the in-flight counts). Both
+  // equal the expression above (LiTake_A).
+  //
+  // Whether the unit issues in the next cycle depends on whether it issues in this one (the
+  // leaf's count, the skid buffer, the free tags): a one-cycle loop. It does not run through the
+  // flags that drive the enables: a flip-flop with hundreds of loads is placed among them, and
+  // the loop then crosses the chip twice (run 70 seed 2: the take flag, through lu_left_q's
+  // compare with 1, back to the take flag, 10.49 ns routed, -1.96 ns). The loop reads copies of
+  // its own instead, read by the next values below only: the issue (li_take_l), the busy flag
+  // (lu_busy_l), the skid buffer's valid (lsk_v_l) and the request register's valid (lreq_v_l),
+  // each equal to the flag the datapath reads (LoopCopy_A); and lu_last_q, whether the entry to
+  // issue is the leaf's last (lu_left_q == 1, LuLast_A), so the loop holds no compare. All of
+  // these flags are kept copies: Yosys would merge a plain flip-flop into a kept one with the
+  // same input.
+  logic lu_busy_d, lsk_v_d, lreq_v_d, li_take_d, li_take_q, li_take_r;
+  logic li_take_l, lu_busy_l, lsk_v_l, lreq_v_l, lout_free_l, lu_last_q, lu_last_d;
+  assign li_take     = li_take_q;
+  assign lout_free_l = ~lreq_v_l | list_req_ready_i;
   always_comb begin
-    lu_busy_d = lu_busy_q;
-    if (lp_take) lu_busy_d = 1'b1;
-    if (li_take_r && lu_left_q == 32'd1) lu_busy_d = 1'b0;
+    lu_busy_d = lu_busy_l;
+    if (!lu_busy_l && (qa_valid || leaf_b_valid_i)) lu_busy_d = 1'b1;  // lp_take
+    if (li_take_l && lu_last_q) lu_busy_d = 1'b0;
   end
-  assign lsk_v_d     = lsk_v_q ? ~lout_free : (li_take_r & ~lout_free);
-  assign tag_avail_d = li_take ? |tf_rest : |tf_q;
+  assign lsk_v_d     = lsk_v_l ? ~lout_free_l : (li_take_l & ~lout_free_l);
+  assign lreq_v_d    = lout_free_l ? (lsk_v_l | li_take_l) : lreq_v_l;
+  assign tag_avail_d = li_take_l ? |tf_rest : |tf_q;
   assign li_take_d   = lu_busy_d & tag_avail_d & ~lsk_v_d;
-  rc_flag_pair u_li_take (
+  rc_reg_copies #(
+    .Width   (1),
+    .Copies  (3),
+    .HasReset(1'b1)
+  ) u_li_take (
     .clk_i,
     .rst_ni,
-    .d_i (li_take_d),
-    .q_o (li_take_q),
-    .qn_o(li_wait_q)
+    .d_i   (li_take_d),
+    .q_o   ({li_take_l, li_take_r, li_take_q})
   );
+  rc_reg_copies #(
+    .Width   (3),
+    .Copies  (2),
+    .HasReset(1'b1)
+  ) u_flags (
+    .clk_i,
+    .rst_ni,
+    .d_i   ({lu_busy_d, lsk_v_d, lreq_v_d}),
+    .q_o   ({lu_busy_l, lsk_v_l, lreq_v_l, lu_busy_q, lsk_v_q, list_req_valid_q})
+  );
+  always_comb begin
+    lu_last_d = lu_last_q;
+    if (lp_take) lu_last_d = lp_item.count == 32'd1;
+    if (li_take_r) lu_last_d = lu_left_q == 32'd2;
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      lu_busy_q        <= 1'b0;
       turn_b_q         <= 1'b0;
       lu_thr_q         <= '0;
       lu_mask_q        <= '0;
       lu_idx_q         <= '0;
       lu_left_q        <= '0;
-      list_req_valid_q <= 1'b0;
       list_req_tag_q   <= '0;
       list_req_index_q <= '0;
-      lsk_v_q          <= 1'b0;
       lsk_tag_q        <= '0;
       lsk_index_q      <= '0;
+      lu_last_q        <= 1'b0;
     end else begin
-      lu_busy_q <= lu_busy_d;
+      lu_last_q <= lu_last_d;
       if (lp_take) begin
         turn_b_q  <= ~take_b;
         lu_thr_q  <= ThrW'(lp_item.thr);
@@ -249,11 +279,9 @@ module rc_list_unit #(
         lu_left_q <= lp_item.count;
       end
       if (lout_free) begin
-        list_req_valid_q <= lsk_v_q | li_take_r;
         list_req_tag_q   <= lsk_v_q ? lsk_tag_q : tag_new;
         list_req_index_q <= lsk_v_q ? lsk_index_q : lu_idx_q;
       end
-      lsk_v_q <= lsk_v_d;
       if (!lsk_v_q) begin
         lsk_tag_q   <= tag_new;
         lsk_index_q <= lu_idx_q;
@@ -469,6 +497,13 @@ module rc_list_unit #(
   LiTake_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                              li_take == (lu_busy_q & tag_avail_q & lreq_free) &&
                              li_take_r == li_take);
+  // The issue loop's copies are the flags the datapath reads.
+  LoopCopy_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               {li_take_l, lu_busy_l, lsk_v_l, lreq_v_l} ==
+                               {li_take, lu_busy_q, lsk_v_q, list_req_valid_q});
+  // lu_last_q is the leaf's count's compare with 1 (the count is 0 while idle).
+  LuLast_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             lu_last_q == (lu_left_q == 32'd1));
   // A list entry waits in the skid buffer only behind a request the port has not taken.
   ListSkid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                lsk_v_q |-> list_req_valid_q);

@@ -305,12 +305,10 @@ module rc_setup_unit #(
     end else if (su_take && last_q) begin
       feed_busy_d = 1'b0;
     end
-    feed_r_d = feed_r_q;
-    if (acc_take_f) begin
-      feed_r_d = '0;
-    end else if (su_take) begin
-      feed_r_d = feed_r_q + 2'd1;
-    end
+    // The ray counter needs no reset at a take: the feeder is idle then, with the counter at 0
+    // and no set-up unit offered a ray (FeedIdle_A, SuValid_A), so the pick's valid stays out of the
+    // counter and last_q (run 70 seed 2: any_q to last_q, -0.55 ns).
+    feed_r_d = su_take ? feed_r_q + 2'd1 : feed_r_q;
     for (int unsigned u = 0; u < NU; u++) begin
       hot_d[u]  = su_take ? hot_q[(u + NU - 1) % NU] : hot_q[u];
       su_v_d[u] = (su_v_q[(u + NU - 1) % NU] & su_ready_all[(u + NU - 1) % NU] & ~last_q) |
@@ -683,9 +681,10 @@ module rc_setup_unit #(
   // every_free_q is the AND of the free bits.
   EveryFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 every_free_q == (&free_q));
-  // The feeder's idle flag is its busy flag's inverse (both copies agree: rc_reg_copies).
+  // The feeder's idle flag is its busy flag's inverse (both copies agree: rc_reg_copies), and
+  // the idle feeder's ray counter is 0 (so a take need not reset it; SuValid_A: no unit offered).
   FeedIdle_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               feed_idle_q == !feed_busy_q);
+                               feed_idle_q == !feed_busy_q && (feed_busy_q || feed_r_q == 2'd0));
   // The take's condition is its expression's value (the pair's halves agree: rc_flag_pair).
   TakeOk_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             take_ok_q == (pin_v_q & ~feed_busy_q));
