@@ -396,7 +396,7 @@ module rc_board #(
     localparam int unsigned CountW = $clog2(MaxLights + 1);
     localparam int unsigned DepthW = $clog2(rc_pkg::LightBounceLimit + 1);
     localparam int unsigned LMatW  =
-        8 * (rc_pkg::ImageMaterialTransmit + 4 - rc_pkg::ImageMaterialKd);
+        8 * (rc_pkg::ImageMaterialEta + 4 - rc_pkg::ImageMaterialKd);
     logic [CountW-1:0]        light_count;
     logic [MaxLights-1:0]     light_dir;
     logic [MaxLights*3*W-1:0] light_pos, light_col;

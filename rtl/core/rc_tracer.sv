@@ -17,7 +17,7 @@
 //       configuration);
 //     lshd_*: shading records for the lighting (the core's shd record: material word, unit
 //       normal, |n|), tag FetchW bits;
-//     lmat_*: materials for the lighting: bytes [image_material] kd .. transmit + 4 of a record
+//     lmat_*: materials for the lighting: bytes [image_material] kd .. eta + 4 of a record
 //       (LMatW bits, the field at byte offset o at [(o - kd)*8 +: 32]), tag FetchW bits.
 //   Both follow the memory protocol of docs/architecture.md ("Memory ports").
 // - Packet input: primary packets only (pkt_kind_i, pkt_t_hi_i and pkt_start_tri_i are not
@@ -36,7 +36,7 @@
 //   {0, slot, lane} as its pixel ids, a shadow packet {1, shadow packet, lane}; the core's writes
 //   come back here and are always taken. When a packet's writes are all back, its lanes go to the
 //   fetch in lane order: a hit to a shading request, then a material request (Ns through
-//   rc_fp_to_exp, 1 / ior through rc_fp_div: eta_enter), put back in order in FetchEntries
+//   rc_fp_to_exp; eta_enter = 1 / ior is the record's eta), put back in order in FetchEntries
 //   entries, then to rc_hit_light with the packet's ray and weight; a miss below a mirror or
 //   refraction ray (depth > 0) to fix(bg x weight). A sample at light 0 adds the hit's ambient
 //   term; a present sample's ray goes into the light's shadow packet, which takes one of
@@ -81,7 +81,7 @@ module rc_tracer #(
   parameter int unsigned CountW         = $clog2(MaxLights + 1),
   parameter int unsigned DepthW         = $clog2(MaxBounces + 1),
   parameter int unsigned LMatW          =
-      8 * (rc_pkg::ImageMaterialTransmit + 4 - rc_pkg::ImageMaterialKd)
+      8 * (rc_pkg::ImageMaterialEta + 4 - rc_pkg::ImageMaterialKd)
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -228,6 +228,7 @@ module rc_tracer #(
   localparam int unsigned IorLsb = 8 * (rc_pkg::ImageMaterialIor - rc_pkg::ImageMaterialKd);
   localparam int unsigned MirLsb = 8 * (rc_pkg::ImageMaterialMirror - rc_pkg::ImageMaterialKd);
   localparam int unsigned TrLsb  = 8 * (rc_pkg::ImageMaterialTransmit - rc_pkg::ImageMaterialKd);
+  localparam int unsigned EtaLsb = 8 * (rc_pkg::ImageMaterialEta - rc_pkg::ImageMaterialKd);
   localparam int unsigned NrmLsb = 8 * rc_pkg::ImageShadingFirstValue +
                                    W * rc_pkg::ImageShadingNormal;
   localparam int unsigned MatLsb = 8 * rc_pkg::ImageShadingMaterial;
@@ -669,15 +670,16 @@ module rc_tracer #(
   assign lmat_rsp_ready_o = 1'b1;
   assign lmat_take        = lmat_rsp_valid_i;
 
-  // Ns as the integer exponent (one cycle) and eta_enter = 1 / ior (FpStagesDiv cycles), the
-  // entry beside them; the entry is complete with eta_enter.
-  logic [W-1:0]      lmat_ns, lmat_ior;
-  logic              ns_valid, eta_valid;
+  // Ns as the integer exponent (one cycle), the entry beside it; the entry is complete with Ns.
+  // eta_enter = 1 / ior is the record's eta (the image holds it rounded once, as the rules
+  // compute it); a failed read gives ior 0 and eta +inf, which is 1 / 0.
+  logic [W-1:0]      lmat_ns, lmat_ior, lmat_eta;
+  logic              ns_valid;
   logic [ExpB-1:0]   ns_val;
-  logic [W-1:0]      eta_val;
-  logic [FetchW-1:0] ns_tag_q, eta_tag;
+  logic [FetchW-1:0] ns_tag_q;
   assign lmat_ns  = lmat_rsp_error_i ? W'(0) : lmat_rsp_data_i[NsLsb +: W];
   assign lmat_ior = lmat_rsp_error_i ? W'(0) : lmat_rsp_data_i[IorLsb +: W];
+  assign lmat_eta = lmat_rsp_error_i ? FpInf : lmat_rsp_data_i[EtaLsb +: W];
   rc_fp_to_exp #(
     .ExpW   (ExpW),
     .FracW  (FracW),
@@ -689,26 +691,6 @@ module rc_tracer #(
     .x_i    (lmat_ns),
     .valid_o(ns_valid),
     .ns_o   (ns_val)
-  );
-  rc_fp_div #(
-    .ExpW (ExpW),
-    .FracW(FracW)
-  ) u_eta (
-    .clk_i,
-    .rst_ni,
-    .valid_i(lmat_take),
-    .a_i    (FpOne),
-    .b_i    (lmat_ior),
-    .valid_o(eta_valid),
-    .res_o  (eta_val)
-  );
-  rc_delay #(
-    .Width (FetchW),
-    .Cycles(rc_pkg::FpStagesDiv)
-  ) u_eta_tag (
-    .clk_i,
-    .data_i(lmat_rsp_tag_i),
-    .data_o(eta_tag)
   );
 
   logic fetch_err;
@@ -773,9 +755,9 @@ module rc_tracer #(
       fe_ior_q[lmat_rsp_tag_i] <= lmat_ior;
       fe_mir_q[lmat_rsp_tag_i] <= lmat_rsp_error_i ? '0 : lmat_rsp_data_i[MirLsb +: W];
       fe_tr_q[lmat_rsp_tag_i]  <= lmat_rsp_error_i ? '0 : lmat_rsp_data_i[TrLsb +: W];
+      fe_eta_q[lmat_rsp_tag_i] <= lmat_eta;
     end
     if (ns_valid) fe_ns_q[ns_tag_q] <= ns_val;
-    if (eta_valid) fe_eta_q[eta_tag] <= eta_val;
   end
 
   ////////////////////////////////
@@ -806,7 +788,7 @@ module rc_tracer #(
       if (hl_take) fe_head_q <= fe_head_q + 1'b1;
       fe_count_q <= fe_count_q + (FetchW + 1)'(fs_alloc) - (FetchW + 1)'(hl_take);
       for (int e = 0; e < FetchEntries; e++) begin
-        if (eta_valid && eta_tag == FetchW'(e)) fe_done_q[e] <= 1'b1;
+        if (ns_valid && ns_tag_q == FetchW'(e)) fe_done_q[e] <= 1'b1;
         else if (hl_take && fe_head_q == FetchW'(e)) fe_done_q[e] <= 1'b0;
       end
     end

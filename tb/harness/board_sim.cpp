@@ -30,8 +30,7 @@ constexpr std::array<const char*, kCorePorts> kRomNames = {"nodes", "lists", "tr
 // The lit board's two more ROMs (rc_tracer's lighting ports) and their line bits.
 constexpr std::array<const char*, 2> kLightRomNames = {"lshading", "lmaterials"};
 constexpr std::array<uint32_t, 2> kLightRecordBits = {
-    32 + 4 * kW,
-    static_cast<uint32_t>(8 * (spec::kImageMaterialTransmit + 4 - spec::kImageMaterialKd))};
+    32 + 4 * kW, static_cast<uint32_t>(8 * (spec::kImageMaterialEta + 4 - spec::kImageMaterialKd))};
 
 // A ROM's lines: the port's response for each index (for the nodes: records k and k + 1).
 BoardRom rom_of(const MemoryPort& p, const char* name, uint32_t width) {

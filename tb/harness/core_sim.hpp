@@ -73,7 +73,7 @@ std::vector<std::unique_ptr<MemoryPort>> make_core_ports(
     const scene::SceneImage& image, const std::array<MemoryParams, kCorePorts>& memory);
 
 // rc_tracer's two lighting ports (lshd_*, lmat_*): the shading section, and each material's
-// bytes [image_material] kd .. transmit + 4, with the given timing (their own stall seeds).
+// bytes [image_material] kd .. eta + 4, with the given timing (their own stall seeds).
 std::vector<std::unique_ptr<MemoryPort>> make_light_ports(const scene::SceneImage& image,
                                                           const MemoryParams& shading,
                                                           const MemoryParams& materials);

@@ -82,7 +82,7 @@ std::vector<std::unique_ptr<MemoryPort>> make_light_ports(const scene::SceneImag
   mp.seed = mix_seed(mp.seed ^ 0x11648u);
   ports.push_back(std::make_unique<MemoryPort>(
       image, static_cast<uint32_t>(spec::kImageSectionIdShading), sp, 1u));
-  const auto len = static_cast<uint32_t>(spec::kImageMaterialTransmit + 4 - spec::kImageMaterialKd);
+  const auto len = static_cast<uint32_t>(spec::kImageMaterialEta + 4 - spec::kImageMaterialKd);
   ports.push_back(material_port(image, len, mp, "materials.lit"));
   return ports;
 }

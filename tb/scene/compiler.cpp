@@ -206,6 +206,7 @@ Compiled compile_scene(const Scene& scene, const CompileOptions& options) {
       put_le(&mat_bytes, r + spec::kImageMaterialTransmit, fmt.encode(m.transmit()), 4);
       put_le(&mat_bytes, r + spec::kImageMaterialDissolve, fmt.encode(m.dissolve), 4);
       put_le(&mat_bytes, r + spec::kImageMaterialIor, fmt.encode(m.ior), 4);
+      put_le(&mat_bytes, r + spec::kImageMaterialEta, material_eta(fmt, fmt.encode(m.ior)), 4);
     }
   }
 

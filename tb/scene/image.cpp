@@ -78,6 +78,10 @@ float get_f32(const uint8_t* p) {
   return f;
 }
 
+uint32_t material_eta(const NumberFormat& format, uint32_t ior_bits) {
+  return format.encode(1.0 / format.decode(ior_bits));
+}
+
 uint32_t image_checksum(const std::vector<uint8_t>& image) {
   const size_t at = spec::kImageHeaderChecksum;
   const uint8_t zero[4] = {0, 0, 0, 0};
@@ -281,6 +285,18 @@ void SceneImage::check() {
   if (root_node() >= node_count())
     fail("root node " + std::to_string(root_node()) + " out of range (" +
          std::to_string(node_count()) + " nodes)");
+  // Before version 1.2 a material's eta bytes were reserved (zero): the reader fills them in, so
+  // every user (the memory ports the hardware reads) sees a version 1.2 record.
+  constexpr uint32_t kMinorWithEta = 2;  // docs/memory-format.md, "Versioning"
+  if (version_minor() < kMinorWithEta) {
+    const SectionInfo& mats = section(spec::kImageSectionIdMaterials);
+    for (uint32_t i = 0; i < mats.count; ++i) {
+      const size_t r = mats.offset + size_t{i} * mats.stride;
+      const auto ior =
+          static_cast<uint32_t>(get_le(bytes_.data() + r + spec::kImageMaterialIor, 4));
+      put_le(&bytes_, r + spec::kImageMaterialEta, material_eta(format_, ior), 4);
+    }
+  }
 }
 
 const SectionInfo& SceneImage::section(uint32_t id) const {
@@ -374,6 +390,7 @@ MaterialRecord SceneImage::material(size_t i) const {
   m.transmit = word(spec::kImageMaterialTransmit);
   m.dissolve = word(spec::kImageMaterialDissolve);
   m.ior = word(spec::kImageMaterialIor);
+  m.eta = word(spec::kImageMaterialEta);
   const SectionInfo& strings = section(spec::kImageSectionIdStrings);
   const uint32_t off = word(spec::kImageMaterialName);
   if (off < strings.bytes) {
@@ -559,6 +576,10 @@ Validation SceneImage::validation(size_t max_listed) const {
     if (off >= strings.bytes || std::find(s + off, s + strings.bytes, 0) == s + strings.bytes)
       problem("material " + std::to_string(i) + ": name offset " + std::to_string(off) +
               " is not a NUL-terminated string in the string section");
+    const MaterialRecord m = material(i);
+    if (m.eta != material_eta(f, m.ior))
+      problem("material " + std::to_string(i) + ": eta " + hex32(m.eta) + " is not 1 / ior (" +
+              hex32(material_eta(f, m.ior)) + ")");
   }
   const ViewRecord v = view();
   if (v.width == 0 || v.height == 0) problem("view: zero resolution");

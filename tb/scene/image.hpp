@@ -95,10 +95,14 @@ struct MaterialRecord {
   std::string name;
   uint32_t illum = 0;
   uint32_t flags = 0;
-  // Format values (bit patterns): kd, ks, ke, tf rgb; ns, ior, dissolve, mirror, transmit.
+  // Format values (bit patterns): kd, ks, ke, tf rgb; ns, ior, dissolve, mirror, transmit, eta.
   std::array<uint32_t, 3> kd{}, ks{}, ke{}, tf{};
-  uint32_t ns = 0, ior = 0, dissolve = 0, mirror = 0, transmit = 0;
+  uint32_t ns = 0, ior = 0, dissolve = 0, mirror = 0, transmit = 0, eta = 0;
 };
+
+// A material's eta (docs/memory-format.md, "Materials"): 1 / ior, computed in double from ior's
+// format value (bits) and rounded to the format once.
+uint32_t material_eta(const NumberFormat& format, uint32_t ior_bits);
 
 struct ViewRecord {
   std::array<float, 3> eye{}, look{}, up{};

@@ -112,6 +112,11 @@ TEST(Image, WriteReadRoundTrip) {
     EXPECT_EQ(m.dissolve, img.format().encode(want.dissolve));
     EXPECT_EQ(m.mirror, img.format().encode(want.mirror()));
     EXPECT_EQ(m.transmit, img.format().encode(want.transmit()));
+    // eta: the format value nearest 1 / ior (ior as stored), checked against both neighbours.
+    const NumberFormat& f = img.format();
+    const double inv = 1.0 / f.decode(m.ior), eta = f.decode(m.eta);
+    EXPECT_LE(std::abs(eta - inv), std::abs(f.next_up(eta) - inv)) << want.name;
+    EXPECT_LE(std::abs(eta - inv), std::abs(f.next_down(eta) - inv)) << want.name;
   }
   const auto view = img.view();
   EXPECT_EQ(view.width, scene.width);
@@ -268,6 +273,34 @@ TEST(Image, LoadErrors) {
 }
 
 // validate(): hand-made malformed trees and records in an otherwise valid image.
+// Materials: an image of version 1.1 (no eta, its bytes zero) reads with every eta filled in as
+// the compiler writes it; an eta that is not 1 / ior is a validate() problem.
+TEST(Image, MaterialEta) {
+  const SceneImage good = SceneImage::from_bytes(cornell().image);
+  const auto& mats = good.section(spec::kImageSectionIdMaterials);
+  ASSERT_GT(mats.count, 0u);
+  std::vector<uint8_t> old = cornell().image;
+  patch(&old, spec::kImageHeaderVersionMinor, 1, 2);
+  for (uint32_t i = 0; i < mats.count; ++i)
+    patch(&old, mats.offset + i * mats.stride + spec::kImageMaterialEta, 0, 4);
+  fix_checksum(&old);
+  const SceneImage read = SceneImage::from_bytes(old);
+  EXPECT_EQ(read.version_minor(), 1u);
+  for (uint32_t i = 0; i < mats.count; ++i) {
+    EXPECT_NE(good.material(i).eta, 0u);
+    EXPECT_EQ(read.material(i).eta, good.material(i).eta) << "material " << i;
+  }
+  EXPECT_TRUE(read.validate().empty());
+
+  std::vector<uint8_t> bad = cornell().image;
+  patch(&bad, mats.offset + spec::kImageMaterialEta, good.material(0).eta + 1, 4);
+  fix_checksum(&bad);
+  const auto problems = SceneImage::from_bytes(bad).validate();
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("material 0: eta"), std::string::npos) << problems[0];
+  EXPECT_NE(problems[0].find("is not 1 / ior"), std::string::npos) << problems[0];
+}
+
 TEST(Image, ValidateFindsMalformedTrees) {
   const SceneImage good = SceneImage::from_bytes(cornell().image);
   ASSERT_TRUE(good.validate().empty());
