@@ -272,7 +272,6 @@ TEST(Image, LoadErrors) {
   }
 }
 
-// validate(): hand-made malformed trees and records in an otherwise valid image.
 // Materials: an image of version 1.1 (no eta, its bytes zero) reads with every eta filled in as
 // the compiler writes it; an eta that is not 1 / ior is a validate() problem.
 TEST(Image, MaterialEta) {
@@ -301,6 +300,7 @@ TEST(Image, MaterialEta) {
   EXPECT_NE(problems[0].find("is not 1 / ior"), std::string::npos) << problems[0];
 }
 
+// validate(): hand-made malformed trees and records in an otherwise valid image.
 TEST(Image, ValidateFindsMalformedTrees) {
   const SceneImage good = SceneImage::from_bytes(cornell().image);
   ASSERT_TRUE(good.validate().empty());
