@@ -181,7 +181,7 @@ module rc_isect_unit #(
     logic            pass1_q, pass2_q;
     logic [4:0]      hold_q;
     logic            xf_valid, xf_ready, xf_pass2;
-    logic [3*W-1:0]  xf_r;
+    logic [3*W-1:0]  xf_r, xf_rt;
     logic [SbW-1:0]  xf_sb;
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -245,7 +245,7 @@ module rc_isect_unit #(
       .clk_i, .rst_ni,
       .valid_i(pass1_q | pass2_q), .ready_o(xf_ready), .m_i(m_q), .v_i(v_q),
       .translate_i(pass2_q), .tag_i({sb_q, pass2_q}),
-      .valid_o(xf_valid), .ready_i(1'b1), .r_o(xf_r), .tag_o({xf_sb, xf_pass2})
+      .valid_o(xf_valid), .ready_i(1'b1), .r_o(xf_r), .rt_o(xf_rt), .tag_o({xf_sb, xf_pass2})
     );
 
     // d' is read one cycle after it leaves, with o' (PassOrder_A), so the register loads at
@@ -256,7 +256,10 @@ module rc_isect_unit #(
       xd_q <= xf_r;
     end
     assign xo_valid = xf_valid & xf_pass2;
-    assign xo       = xf_r;
+    // o' is read only from pass 2's results, which are translated: the unselected rows (rt_o),
+    // so the transform's row select is not in the divider's path (run 71 seed 3: sel_o_q into
+    // u_div_t's first slot, 10 cells, -1.71 ns).
+    assign xo       = xf_rt;
     assign xd       = xd_q;
     assign sb_x     = xf_sb;
 
@@ -277,7 +280,8 @@ module rc_isect_unit #(
 `endif
   end else begin : g_two_xforms
     // Two transform units side by side, one pair per cycle.
-    logic xo_ready, xd_ready, xd_valid, xd_tag;
+    logic           xo_ready, xd_ready, xd_valid, xd_tag;
+    logic [3*W-1:0] xo_t, xd_t;  // the translated rows: o' is r_o itself (translate_i = 1)
 
     rc_xform_unit #(
       .ExpW(ExpW), .FracW(FracW), .TagW(SbW), .MulStages(MulStages), .AddStages(AddStages),
@@ -286,7 +290,7 @@ module rc_isect_unit #(
       .clk_i, .rst_ni,
       .valid_i(in_fire), .ready_o(xo_ready), .m_i, .v_i({3{org_i}}), .translate_i(1'b1),
       .tag_i(sb_in),
-      .valid_o(xo_valid), .ready_i(1'b1), .r_o(xo), .tag_o(sb_x)
+      .valid_o(xo_valid), .ready_i(1'b1), .r_o(xo), .rt_o(xo_t), .tag_o(sb_x)
     );
 
     rc_xform_unit #(
@@ -296,13 +300,13 @@ module rc_isect_unit #(
       .clk_i, .rst_ni,
       .valid_i(in_fire), .ready_o(xd_ready), .m_i, .v_i({3{dir_i}}), .translate_i(1'b0),
       .tag_i(1'b0),
-      .valid_o(xd_valid), .ready_i(1'b1), .r_o(xd), .tag_o(xd_tag)
+      .valid_o(xd_valid), .ready_i(1'b1), .r_o(xd), .rt_o(xd_t), .tag_o(xd_tag)
     );
 
     assign issue_busy = 1'b0;
 
     logic unused_x2;
-    assign unused_x2 = ^{xo_ready, xd_ready, xd_tag};
+    assign unused_x2 = ^{xo_ready, xd_ready, xd_tag, xo_t, xd_t};
 
 `ifndef SYNTHESIS
     // The two transforms run in lockstep; diverging valids would mean misaligned delay lines.

@@ -292,10 +292,18 @@ module rc_setup_unit #(
   // (last_q: feed_r_q is 3), stays at u while u is not ready, and starts at u when a packet is
   // taken with the rotation at u (arm_q[u]: the take's condition and the rotation at u, both
   // registered from the next values; acc_any, the pick's valid, completes the take).
+  //
+  // arm_q[u]'s next value, the take's condition and the next rotation at u, is written from the
+  // state it can be reached from, so that it reads unit u - 1's ready only, not the take of
+  // whichever unit holds the offer (run 71 seed 4: a unit's in_free_q into arm_q across the
+  // chip, 9.36 ns of routing, -1.07 ns). A busy feeder offers at the rotation (su_v_q = hot_q,
+  // SuValid_A) and cannot take (take_ok_q = 0, TakeOk_A): the condition holds after it hands
+  // its last ray to unit u - 1, and the rotation moves on to u. An idle feeder offers nothing
+  // (su_v_q = 0): the rotation stays, and the condition holds unless a take now makes it busy.
   logic          feed_idle_q, last_q;
   logic [NU-1:0] st_idle_q;
   logic [1:0]    st_r_q [NU];
-  logic [NU-1:0] su_v_q, hot_q, hot_d, arm_q, su_v_d;
+  logic [NU-1:0] su_v_q, hot_q, hot_d, arm_q, arm_d, su_v_d;
   logic [1:0]    feed_r_d;
   assign su_take = |(su_v_q & su_ready_all);
   always_comb begin
@@ -313,6 +321,9 @@ module rc_setup_unit #(
       hot_d[u]  = su_take ? hot_q[(u + NU - 1) % NU] : hot_q[u];
       su_v_d[u] = (su_v_q[(u + NU - 1) % NU] & su_ready_all[(u + NU - 1) % NU] & ~last_q) |
                   (su_v_q[u] & ~su_ready_all[u]) | (arm_q[u] & acc_any);
+      // take_ok_d ? hot_d[u] : 0, from the reachable states (above; ArmNext_A checks it).
+      arm_d[u]  = pin_v_d & ((su_v_q[(u + NU - 1) % NU] & su_ready_all[(u + NU - 1) % NU] &
+                              last_q) | (~feed_busy_q & ~acc_take_f & hot_q[u]));
     end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -325,7 +336,7 @@ module rc_setup_unit #(
     end else begin
       su_v_q      <= su_v_d;
       hot_q       <= hot_d;
-      arm_q       <= take_ok_d ? hot_d : '0;
+      arm_q       <= arm_d;
       last_q      <= feed_r_d == 2'd3;
       if (acc_take_f) feed_thr_q <= acc_thr;
     end
@@ -693,6 +704,10 @@ module rc_setup_unit #(
   SuValid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               $onehot(hot_q) && su_v_q == (feed_busy_q ? hot_q : '0) &&
                               arm_q == (take_ok_q ? hot_q : '0) && last_q == (feed_r_q == 2'd3));
+  // arm_q's next value, written from the reachable states, is the take's condition and the
+  // next rotation.
+  ArmNext_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              arm_d == (take_ok_d ? hot_d : '0));
   // A packet is taken into a free thread.
   AccChoiceFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     acc_take |-> free_q[acc_thr] && gacc_q[acc_thr] == 1'b0);

@@ -12,6 +12,11 @@
 //   of the vector for row r: one copy per row, so that a caller can place a register beside
 //   each row's multipliers (every caller passes the same vector three times; the rows use only
 //   their own copy). r_o[r*W +: W] = row r. tag_i is carried unchanged to tag_o.
+// - rt_o (Backpressure = 0 only; 0 with Backpressure = 1): the rows' results as if translate
+//   were 1, without the row select: equal to r_o whenever valid_o is 1 for a vector with
+//   translate = 1 (RtEq_A). A caller that reads only translated results takes them from here,
+//   so no select flip-flop is in its path (rc_isect_unit's divider: run 71 seed 3, sel_o_q into
+//   the divider's first slot, -1.71 ns).
 // - Handshake (Backpressure = 1): valid_i/ready_o at the input, valid_o/ready_i at the output,
 //   AXI-style (a transfer happens on a clock edge where valid and ready are both 1). valid_o never
 //   depends on ready_i, ready_o depends only on registered state, and once valid_o is 1 it stays
@@ -63,6 +68,7 @@ module rc_xform_unit #(
   output logic                         valid_o,
   input  logic                         ready_i,
   output logic [3*(1+ExpW+FracW)-1:0]  r_o,
+  output logic [3*(1+ExpW+FracW)-1:0]  rt_o,
   output logic [TagW-1:0]              tag_o
 );
 
@@ -94,7 +100,7 @@ module rc_xform_unit #(
   ////////////////
 
   logic [2:0]     mul_valid, add_a_valid, add_b_valid, add_c_valid;
-  logic [3*W-1:0] res;
+  logic [3*W-1:0] res, res_t;
 
   // Tag and translate flag ride along for the whole pipeline.
   logic [PipeLat*TagW-1:0] tag_dly_q;
@@ -180,7 +186,8 @@ module rc_xform_unit #(
       b_dly_q <= (b_dly_q << W) | (AddStages * W)'(sum_b);
     end
 
-    assign res[r*W +: W] = row_sel[r] ? sum_c : b_dly_q[AddStages*W-1 -: W];
+    assign res[r*W +: W]   = row_sel[r] ? sum_c : b_dly_q[AddStages*W-1 -: W];
+    assign res_t[r*W +: W] = sum_c;
   end
 
   logic            pipe_valid;
@@ -203,10 +210,14 @@ module rc_xform_unit #(
       .clk_i, .rst_ni, .take_i(in_fire), .credit_o(ready_o), .wr_valid_i(pipe_valid),
       .wr_data_i({pipe_tag, res}), .valid_o, .ready_i, .data_o({tag_o, r_o})
     );
+    assign rt_o = '0;
+    logic unused_res_t;
+    assign unused_res_t = ^res_t;
   end else begin : g_nofifo
     assign ready_o = 1'b1;
     assign valid_o = pipe_valid;
     assign r_o     = res;
+    assign rt_o    = res_t;
     assign tag_o   = pipe_tag;
     logic unused_ready;
     assign unused_ready = ready_i;
@@ -231,6 +242,9 @@ module rc_xform_unit #(
   // Each row's select is translate whenever the row's result is valid.
   RowSel_A: assert property (@(posedge clk_i) disable iff (chk_on_q !== 1'b1)
                              add_c_valid[0] |-> row_sel == {3{tr_end_q[AddStages-1]}});
+  // rt_o is r_o for a translated vector (Backpressure = 0; the FIFO build ties it to 0).
+  RtEq_A: assert property (@(posedge clk_i) disable iff (chk_on_q !== 1'b1)
+                           !Backpressure && valid_o && tr_end_q[AddStages-1] |-> rt_o == r_o);
   // The consumer qualifies everything with valid_o, so it must be known once out of reset.
   ValidKnown_A: assert property (@(posedge clk_i) disable iff (chk_on_q !== 1'b1)
                                  !$isunknown({valid_o, ready_o}));
