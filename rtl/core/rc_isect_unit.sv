@@ -165,6 +165,7 @@ module rc_isect_unit #(
   end
   logic           xo_valid;
   logic [3*W-1:0] xo, xd;
+  logic [W-1:0]   oz;  // o'z for the divider
   logic           issue_busy;  // the input side cannot take a pair this cycle
 
   if (SharedXform) begin : g_shared_xform
@@ -256,15 +257,18 @@ module rc_isect_unit #(
       xd_q <= xf_r;
     end
     assign xo_valid = xf_valid & xf_pass2;
-    // o' is read only from pass 2's results, which are translated: the unselected rows (rt_o),
-    // so the transform's row select is not in the divider's path (run 71 seed 3: sel_o_q into
-    // u_div_t's first slot, 10 cells, -1.71 ns).
-    assign xo       = xf_rt;
+    assign xo       = xf_r;
+    // The divider reads o'z from the unselected rows (rt_o; o' is a pass-2 result, translated),
+    // so the transform's row select is not in its path (run 71 seed 3: sel_o_q into u_div_t's
+    // first slot, 10 cells, -1.71 ns). The delay line beside the divider keeps xf_r's o'x and o'y:
+    // d' is xf_r a cycle earlier, so they are the flip-flops of the line's d'x and d'y one stage
+    // back (and of xd_q), which synthesis shares.
+    assign oz       = xf_rt[2*W +: W];
     assign xd       = xd_q;
     assign sb_x     = xf_sb;
 
     logic unused_xf;
-    assign unused_xf = xf_ready;
+    assign unused_xf = ^{xf_ready, xf_rt[2*W-1:0], xo[3*W-1:2*W]};  // o'z: oz
 
 `ifndef SYNTHESIS
     // Passes alternate d', o': a pass-2 result always follows a pass-1 result by one cycle.
@@ -292,6 +296,7 @@ module rc_isect_unit #(
       .tag_i(sb_in),
       .valid_o(xo_valid), .ready_i(1'b1), .r_o(xo), .rt_o(xo_t), .tag_o(sb_x)
     );
+    assign oz = xo[2*W +: W];
 
     rc_xform_unit #(
       .ExpW(ExpW), .FracW(FracW), .TagW(1), .MulStages(MulStages), .AddStages(AddStages),
@@ -319,9 +324,8 @@ module rc_isect_unit #(
   // t = -o'z / d'z            //
   ///////////////////////////////
 
-  logic [W-1:0] oz, neg_oz, t;
+  logic [W-1:0] neg_oz, t;
   logic         t_valid;
-  assign oz     = xo[2*W +: W];
   assign neg_oz = {~oz[W-1], oz[W-2:0]};
 
   rc_fp_div #(.ExpW(ExpW), .FracW(FracW), .Stages(DivStages)) u_div_t (
