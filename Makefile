@@ -194,9 +194,9 @@ FPGA_SCENE ?= scenes/cornell.json
 FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
-# nextpnr's seed: 1, the one with the most slack on HEAD's netlist (run 71, 3b6a3e6's RTL:
-# seed 1 98.23 MHz, -0.18 ns; seeds 2 to 4 96.81, 85.43 and 90.35; none closes 100 MHz; seed 5
-# not measured; docs/fpga.md, "Status"). Every netlist needs its own sweep.
+# nextpnr's seed: 1, the one with the most slack on HEAD's netlist (run 72, 0043580's RTL: seed 1
+# 106.39 MHz, PASS; seed 2 88.04; seeds 3 to 5 not measured; docs/fpga.md, "Status"). Every
+# netlist needs its own sweep.
 FPGA_SEED  ?= 1
 ECPPACK    ?= yowasp-ecppack
 # The board build synthesises with YoWASP's Yosys (PyPI, a 2026 Yosys whose synth_ecp5 maps with
