@@ -32,11 +32,11 @@
 //   size_error and no frame), with Lit also the light count (1 .. LightMaxLights) and the depth
 //   (at most LightBounceLimit; else status bit config_error and no frame), and the ray
 //   generation unit starts. BoardRegPerfLo/Hi show the
-//   core's counter BoardRegPerfSel through two register levels (rc_core's perf_o is a cycle
-//   late, then perf_rd_q, loaded every cycle): a read shows the counter selected three cycles
-//   before its address is given, so after writing PerfSel wait two cycles before reading
-//   PerfLo/Hi. The counters' 64-bit multiplexer thus ends at flip-flops and does not reach the
-//   read data's register in one cycle.
+//   core's counter BoardRegPerfSel through three register levels (rc_core's perf_o is
+//   CorePerfReadLatency (2) cycles late, then perf_rd_q, loaded every cycle): a read shows the
+//   counter selected four cycles before its address is given, so after writing PerfSel wait
+//   three cycles before reading PerfLo/Hi. The counters are exact CorePerfSettleCycles cycles
+//   after the core's last event (rc_core's contract), so read them that long after done_o.
 // - Frame: the core renders every pixel into the framebuffer (pixel id y * width + x, 24-bit
 //   RGB). done_o rises two cycles after the first cycle in which the last packet has been
 //   generated and the core is idle; it stays until the next start. BoardRegCycles holds the

@@ -42,13 +42,16 @@
 //   CoreStatus* bits: malformed node, bad address (also any error response), stack overflow,
 //   watchdog (work held and no handshake completed for WatchdogCycles cycles; error_o shows it
 //   from the edge WatchdogCycles + 2 after the last handshake's).
-// - Performance counters: perf_o = counter number perf_sel_i (CorePerf* of rc_pkg) a cycle late:
-//   from a clock edge on, perf_o shows the counter numbered by perf_sel_i at that edge, as it
-//   was before the edge (rc_core_status); numbers >= CorePerfCount read 0. The counters count an
-//   event one cycle after it (registered increments): set perf_sel_i from the cycle after idle_o
-//   rises on, and read perf_o after the next edge. Rays, traversal steps and triangle tests are
-//   also counted per ray kind, under their packet's pkt_kind_i (rc_kind_perf; with Secondary = 0
-//   the primary ones read the totals and the others 0).
+// - Performance counters: perf_o = counter number perf_sel_i (CorePerf* of rc_pkg)
+//   CorePerfReadLatency (2) cycles late: after the edge that follows the one sampling
+//   perf_sel_i, perf_o shows that counter's word as it was before the sampling edge
+//   (rc_core_status); numbers >= CorePerfCount read 0. The counters count an event one cycle
+//   after it (registered increments), and a word is exact when it is sampled
+//   CorePerfSettleCycles or more cycles after its counter's last event (before, it is the
+//   counter's value of some recent cycle, never ahead of it): from CorePerfSettleCycles cycles
+//   after idle_o rises, set perf_sel_i and read perf_o two edges later. Rays, traversal steps
+//   and triangle tests are also counted per ray kind, under their packet's pkt_kind_i
+//   (rc_kind_perf; with Secondary = 0 the primary ones read the totals and the others 0).
 // - Debug: dbg_thread_state_o, every thread's state (rc_pkg::thread_state_e, ThreadStateBits per
 //   thread), kept from the units' events in simulation (zero in synthesis); no logic depends on
 //   it.

@@ -130,11 +130,13 @@ BoardSimResult simulate(const BoardImage& b, const std::filesystem::path& dir,
   res.error_bits =
       (res.status >> spec::kBoardStatusCoreErrorLsb) & ((1u << spec::kCoreStatusBits) - 1u);
   res.cycles = read_reg(spec::kBoardRegCycles);
+  // The counters are exact core.perf_settle_cycles edges after the core's last event; a counter
+  // reaches perf_lo/perf_hi core.perf_read_latency + 1 edges after it is named (rc_board's
+  // contract), and the register write that names it takes effect at its own edge.
+  for (int64_t i = 0; i < spec::kCorePerfSettleCycles; ++i) tick();
   for (int k = 0; k < kCorePerfCount; ++k) {
     write_reg(spec::kBoardRegPerfSel, static_cast<uint32_t>(k));
-    // The counter reaches perf_lo/perf_hi through two register levels (rc_board's contract).
-    tick();
-    tick();
+    for (int64_t i = 0; i < spec::kCorePerfReadLatency + 1; ++i) tick();
     const uint64_t lo = read_reg(spec::kBoardRegPerfLo);
     const uint64_t hi = read_reg(spec::kBoardRegPerfHi);
     res.perf[static_cast<size_t>(k)] = lo | hi << 32;

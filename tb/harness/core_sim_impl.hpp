@@ -513,11 +513,13 @@ CoreSimResult CoreSim<Model>::run(const Feed& feed) {
                  static_cast<unsigned long long>(s.miss_payload));
 
   // ---- Status and counters ----
-  // perf_o is a cycle late (rc_core's contract): one edge per counter. The core is idle, so only
-  // the cycle counter moves on meanwhile.
+  // A counter is exact core.perf_settle_cycles edges after its last event, and perf_o shows the
+  // number perf_sel_i named core.perf_read_latency edges before (rc_core's contract). The core is
+  // idle, so only the cycle counter moves on meanwhile.
+  for (int64_t i = 0; i < spec::kCorePerfSettleCycles; ++i) tb.tick();
   for (int k = 0; k < kCorePerfCount; ++k) {
     m.perf_sel_i = static_cast<uint8_t>(k);
-    tb.tick();
+    for (int64_t i = 0; i < spec::kCorePerfReadLatency; ++i) tb.tick();
     res.perf[static_cast<size_t>(k)] = m.perf_o;
   }
   m.perf_sel_i = 0;
