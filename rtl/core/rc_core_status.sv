@@ -134,14 +134,16 @@ module rc_core_status #(
   logic [SpW-1:0]          depth_q, max_sp_q;
   logic [NPerf*FrontW-1:0] front_q;
   logic [AW-1:0]           sw_q, sw1_q, sw2_q;      // the sweep: its counter, one and two edges on
+  logic [NPerf-1:0]        sw_oh_q;                 // sw_q one-hot (the fronts' selects)
   logic                    sw_v1_q, sw_v2_q;        // a visit one and two edges on
   logic                    init_q, init1_q, init2_q; // the first round after reset: words from 0
   logic [FrontW-1:0]       take_d, take1_q, take2_q; // the visited front's value, on its way
   logic [63:0]             word_rd, word_wr;
+  // The visited front: an AND-OR over the one-hot sweep (one level of selects, no chain).
   always_comb begin
     take_d = '0;
     for (int unsigned k = 0; k < NPerf; k++) begin
-      if (counted(k) && sw_q == AW'(k)) take_d = front_q[k*FrontW +: FrontW];
+      if (counted(k)) take_d = take_d | ({FrontW{sw_oh_q[k]}} & front_q[k*FrontW +: FrontW]);
     end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -151,6 +153,7 @@ module rc_core_status #(
       max_sp_q   <= '0;
       front_q    <= '0;
       sw_q       <= '0;
+      sw_oh_q    <= NPerf'(1);
       sw1_q      <= '0;
       sw2_q      <= '0;
       sw_v1_q    <= 1'b0;
@@ -167,11 +170,12 @@ module rc_core_status #(
       for (int unsigned k = 0; k < NPerf; k++) begin
         if (counted(k)) begin
           front_q[k*FrontW +: FrontW] <=
-              ((sw_q == AW'(k)) ? FrontW'(0) : front_q[k*FrontW +: FrontW]) +
+              (sw_oh_q[k] ? FrontW'(0) : front_q[k*FrontW +: FrontW]) +
               FrontW'(perf_inc_q[3*k +: 3]);
         end
       end
       sw_q    <= (sw_q == AW'(NPerf - 1)) ? '0 : sw_q + AW'(1);
+      sw_oh_q <= {sw_oh_q[NPerf-2:0], sw_oh_q[NPerf-1]};
       sw1_q   <= sw_q;
       sw2_q   <= sw1_q;
       sw_v1_q <= 1'b1;
@@ -248,6 +252,18 @@ module rc_core_status #(
     .raddr_i(rd_addr),
     .rdata_o(rd_word)
   );
+`ifndef SYNTHESIS
+  logic checks_on;
+  rc_checks_on u_checks_on (
+    .clk_i,
+    .rst_ni,
+    .on_o (checks_on)
+  );
+  // The one-hot sweep and the sweep's number name the same counter (the fronts' selects and the
+  // words' addresses agree).
+  SweepOneHot_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  sw_oh_q == (NPerf'(1) << sw_q));
+`endif
   assign perf_o = zero_q[1] ? 64'd0 : mx_q[1] ? 64'(max2_q) : coll_q[1] ? fwd1_q : rd_word;
 
 endmodule
