@@ -81,7 +81,7 @@ class Picker {
   explicit Picker(int n) : n_(n) {
     tb_->req_i = 0;
     tb_->take_i = 0;
-    tb_.reset(0);
+    tb_.reset(2);
     for (int i = 0; i < 4; ++i) tb_.tick();
   }
 
@@ -290,7 +290,7 @@ class Checked {
   Checked(int n, const char* what, bool needs_choice) : n_(n), what_(what), ref_(n, needs_choice) {
     put_bits(tb_->req_i, Bits{});
     tb_->take_i = 0;
-    tb_.reset(0);
+    tb_.reset(2);
     for (int i = 0; i < 4; ++i) tb_.tick();
   }
 
