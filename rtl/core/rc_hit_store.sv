@@ -340,8 +340,7 @@ module rc_hit_store #(
   assign wc_old_t   = hit_all[wc_rid_q] ? sh_t[wc_rid_q] : rc_pkg::CoreFpPosInf;
   assign wc_old_tri = hit_all[wc_rid_q] ? sh_tri[wc_rid_q] : '1;
   WbForward_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                wc_we_q |-> (wc_q.t < wc_old_t) ||
-                                            (wc_q.t == wc_old_t && wc_q.tri_idx < wc_old_tri));
+                                wc_we_q |-> lt_hit(wc_q.t, wc_q.tri_idx, wc_old_t, wc_old_tri));
   assign wb_now_t   = hit_all[wb_rid_q] ? sh_t[wb_rid_q] : rc_pkg::CoreFpPosInf;
   assign wb_now_tri = hit_all[wb_rid_q] ? sh_tri[wb_rid_q] : '1;
   assign wb_same_c  = wc_we_q && wc_rid_q == wb_rid_q;

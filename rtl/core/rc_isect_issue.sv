@@ -212,10 +212,11 @@ module rc_isect_issue #(
     end
   end
 
-  // One test every IsectInterval cycles: pace_q counts the cycles since the last one. Two kept
-  // copies (rc_reg_copies): pace_ok for the test's outputs (the ray store's read, i1, the
-  // counter) and pace_ctl for the issue register's own control (ti_free, ti_load and the rays
-  // left), so the flip-flop those read can sit beside the issue register (run 73 seeds 2 and 4:
+  // One test every IsectInterval cycles: the pace register u_pace is 1 when a test may be taken
+  // (at interval 2, the cycle after a take is not). Two kept copies (rc_reg_copies): pace_ok for
+  // the test's outputs (the ray store's read, i1, the counter) and pace_ctl for the issue
+  // register's own control (ti_free, ti_load and the rays left), so the flip-flop those read can
+  // sit beside the issue register (run 73 seeds 2 and 4, then with a single pace_q register:
   // pace_q through ti_free and the response's valid into ti_rem_q, ti_last_q and ti_r, -0.33 and
   // -0.18 ns, 8.5 to 8.8 ns of routing in 4 to 5 cells).
   if (IsectInterval == 1) begin : g_pace1
