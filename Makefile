@@ -17,6 +17,7 @@
 #                     VIVADO_SCENE=<directory written by `raycore board-image`>)
 #   make deps         installs the Debian/PyPI packages the project needs when they are missing
 #   make bench-core   the core's benchmark: scenes x memory latency x threads, bit for bit
+#   make bench-models the cores only bench-core runs (16 and 64 threads, one and two set-up units)
 #   make fuzz         libFuzzer targets for the OBJ/MTL, scene JSON and image readers
 #                     (FUZZ_SECONDS each, default 60; tests/fuzz/fuzz.mk; not part of CI)
 # Every target that needs a dependency calls `deps` first, so a fresh machine needs no extra step.
@@ -134,7 +135,8 @@ synth-units: deps $(GEN_PKG)
 
 # The whole core (rc_core at its default parameters) through Yosys synth_ecp5: utilisation and its
 # share of the LFE5U-85F, then fpga/logic_depth.py: the slowest register-to-register paths by an
-# estimate of cell and net delays (the netlist is BUILD/synth/rc_core.json). About 4 minutes.
+# estimate of cell and net delays (the netlist is BUILD/synth/rc_core.json). 8 to 12 minutes of
+# Yosys on one core; not part of CI (.ci/run).
 synth-core: deps $(GEN_PKG)
 	$(PYTHON) fpga/synth_units.py --build $(BUILD) --units rc_core $(RTL_FILES)
 	$(PYTHON) fpga/logic_depth.py $(BUILD)/synth/rc_core.json --top 15 --paths 3
@@ -249,12 +251,19 @@ include tests/fuzz/fuzz.mk
 # (tests/bench/bench_core.py; build/bench/core.md keeps it). BENCH_ARGS passes more options, e.g.
 # BENCH_ARGS="--lit-only --scenes conference,sponza,spheres --no-host".
 MODELS_DIR ?= $(or $(RAYCORE_MODELS_PATH),../shared/models)
-.PHONY: bench-core
-bench-core: raycore
-	cmake --build $(BUILD) -j$(JOBS) --target rc_core_bench_modules
+.PHONY: bench-core bench-models
+bench-core: bench-models
 	@mkdir -p $(BUILD)/bench
 	$(PYTHON) tests/bench/bench_core.py $(BUILD)/tb/app/raycore --models $(MODELS_DIR) \
 	  --jobs $(JOBS) --markdown $(BUILD)/bench/core.md $(BENCH_ARGS)
+
+# The cores only the benchmark runs (16 and 64 threads, one and two ray set-up units): the build
+# directory verilates them once configured with RAYCORE_BENCH_MODELS=ON (one more configure, once;
+# `make` and CI leave them out: Verilator runs at configure time, about 12 s a model).
+bench-models: raycore
+	@grep -q '^RAYCORE_BENCH_MODELS:BOOL=ON' $(BUILD)/CMakeCache.txt || \
+	  cmake -S . -B $(BUILD) -DRAYCORE_BENCH_MODELS=ON
+	cmake --build $(BUILD) -j$(JOBS) --target rc_core_bench_modules
 
 # Scene compiler benchmark: build time and SAH cost for bunny, Sponza and the conference room.
 .PHONY: bench-scene

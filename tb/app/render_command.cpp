@@ -21,6 +21,7 @@
 #include "embree_engine.hpp"
 #include "error.hpp"
 #include "geometry.hpp"
+#include "image_file.hpp"
 #include "job.hpp"
 #include "output_paths.hpp"
 

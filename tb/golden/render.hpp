@@ -173,11 +173,5 @@ Frame render_golden(const Geometry<T>& g, const RenderOptions& opt);
 // Writes the hits file: "RCHITS1\0", uint32 width, uint32 height, then per pixel (top row first)
 // int32 triangle index (-1: miss) and float32 t, little-endian.
 void write_hits(const std::string& path, const Frame& f);
-// Writes rgb through OpenImageIO (format from the file name: PNG, EXR, ...).
-void write_image(const std::string& path, uint32_t width, uint32_t height,
-                 const std::vector<uint8_t>& rgb);
-// Throws std::runtime_error when OpenImageIO has no writer for the file name's extension, before
-// any work (creates no file).
-void check_image_name(const std::string& path);
 
 }  // namespace rc

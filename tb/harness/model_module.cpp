@@ -25,7 +25,8 @@ void* module_symbol(const std::string& name, const char* symbol) {
       const char* why = ::dlerror();
       throw scene::Error("the verilated model " + name + " is not built (" +
                          (why ? why : path.c_str()) + "): run `make` (or `cmake --build build " +
-                         "--target " + name + "`) first");
+                         "--target " + name + "`) first; `make bench-models` for the cores only " +
+                         "the benchmark uses");
     }
   }
   ::dlerror();
