@@ -27,8 +27,8 @@ equal the original cell's with its constant carry-in (the CCU2C of Yosys's ECP5 
 share/yosys/ecp5/cells_sim.v, transcribed in ccu2c() below; the test proves the fold with
 Yosys's own model). --no-fold turns the fold off.
 
-Prints the number of carry-outs cut and of carry-ins folded. Used by fpga_ecp5.py between synthesis and place and
-route; tests/fpga/carry_outs_test.py checks it on hand-made netlists.
+Prints the number of carry-outs cut and of carry-ins folded. Used by fpga_ecp5.py between
+synthesis and place and route; tests/fpga/carry_outs_test.py checks it on hand-made netlists.
 """
 import json
 import sys
@@ -147,7 +147,8 @@ def fold_one(cell, read):
 
 
 def fold_constant_carry_ins(netlist):
-    """Fold every qualifying chain start's constant carry-in (module docstring); returns how many."""
+    """Fold every qualifying chain start's constant carry-in (module docstring); returns the
+    number folded."""
     folded = 0
     for module in netlist.get("modules", {}).values():
         if module.get("attributes", {}).get("blackbox"):
