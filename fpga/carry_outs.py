@@ -53,9 +53,9 @@ def readers(module):
     return count
 
 
-def cut_unused_carry_outs(netlist):
-    """Disconnect every CCU2C COUT that nothing reads, in every module; returns how many."""
-    cut = 0
+def carry_cells(netlist):
+    """Every CCU2C of every module that is not a black box, with its module's readers() (counted
+    once per module, before the caller changes any of its cells)."""
     for module in netlist.get("modules", {}).values():
         if module.get("attributes", {}).get("blackbox"):
             continue
@@ -64,12 +64,18 @@ def cut_unused_carry_outs(netlist):
             continue
         read = readers(module)
         for cell in cells.values():
-            if cell.get("type") != "CCU2C":
-                continue
-            cout = cell.get("connections", {}).get("COUT")
-            if cout and isinstance(cout[0], int) and read.get(cout[0], 0) == 0:
-                cell["connections"]["COUT"] = ["x"]
-                cut += 1
+            if cell.get("type") == "CCU2C":
+                yield cell, read
+
+
+def cut_unused_carry_outs(netlist):
+    """Disconnect every CCU2C COUT that nothing reads, in every module; returns how many."""
+    cut = 0
+    for cell, read in carry_cells(netlist):
+        cout = cell.get("connections", {}).get("COUT")
+        if cout and isinstance(cout[0], int) and read.get(cout[0], 0) == 0:
+            cell["connections"]["COUT"] = ["x"]
+            cut += 1
     return cut
 
 
@@ -150,23 +156,14 @@ def fold_constant_carry_ins(netlist):
     """Fold every qualifying chain start's constant carry-in (module docstring); returns the
     number folded."""
     folded = 0
-    for module in netlist.get("modules", {}).values():
-        if module.get("attributes", {}).get("blackbox"):
+    for cell, read in carry_cells(netlist):
+        params = fold_one(cell, read)
+        if params is None:
             continue
-        cells = module.get("cells", {})
-        if not any(c.get("type") == "CCU2C" for c in cells.values()):
-            continue
-        read = readers(module)
-        for cell in cells.values():
-            if cell.get("type") != "CCU2C":
-                continue
-            params = fold_one(cell, read)
-            if params is None:
-                continue
-            cell.setdefault("parameters", {}).update(params)
-            con = cell["connections"]
-            con["C0"], con["D0"], con["CIN"], con["S0"] = ["1"], ["1"], ["x"], ["x"]
-            folded += 1
+        cell.setdefault("parameters", {}).update(params)
+        con = cell["connections"]
+        con["C0"], con["D0"], con["CIN"], con["S0"] = ["1"], ["1"], ["x"], ["x"]
+        folded += 1
     return folded
 
 
