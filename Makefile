@@ -197,8 +197,8 @@ FPGA_SIZE  ?= 128x96
 FPGA_FREQ  ?= 100
 FPGA_ARGS  ?=
 # nextpnr's seed: 1. It closes the last netlist placed through the current flow (run 76,
-# c5ff065's RTL with fpga_ecp5.py's step 4b: 102.45 MHz, the only seed placed; docs/fpga.md,
-# "Status"). Every netlist needs its own sweep.
+# c5ff065's RTL with fpga_ecp5.py's step 4b: 102.45 MHz; seed 2 94.03; docs/fpga.md, "Status").
+# Every netlist needs its own sweep.
 FPGA_SEED  ?= 1
 ECPPACK    ?= yowasp-ecppack
 # The board build synthesises with YoWASP's Yosys (PyPI, a 2026 Yosys whose synth_ecp5 maps with
