@@ -1,6 +1,8 @@
 # raycore: the commands people type. CMake does the build (in $(BUILD)); this is the front end.
 #   make              Release build in build/
-#   make test         everything through ctest, with a summary of the cases each test ran
+#   make test         everything through ctest, with a summary of the cases each test ran,
+#                     except the tests labelled `long`
+#   make test-long    the tests labelled `long` (the netlist's exhaustive pass; not part of CI)
 #   make render       the main job on the built-in default scene (out/default.png and stats)
 #   make lint         Verilator --lint-only -Wall over all RTL, plus a Yosys read of all RTL
 #   make synth-units  Yosys synth_ecp5 of each arithmetic unit: LUTs, flip-flops, multipliers
@@ -40,7 +42,7 @@ RTL_FILES  = $(patsubst build/%,$(BUILD)/%,$(shell grep -v '^\s*\#' rtl/rtl_file
 TB_RTL    := $(wildcard tests/rtl/*.sv)
 WAIVERS   := rtl/lint_waivers.vlt
 
-.PHONY: all build raycore configure configure-tests deps test render lint synth-units synth-core \
+.PHONY: all build raycore configure configure-tests deps test test-long render lint synth-units synth-core \
         synth-xilinx pnr-units fpga-deps fpga-vivado fpga-ecp5 format clean
 
 all: build
@@ -91,11 +93,16 @@ raycore: configure
 # ctest writes this run's results to a JUnit file of its own (another ctest call cannot overwrite
 # it); tests/ctest_summary.py prints the [cases] lines from it and a last line "ctest: N passed,
 # N failed, N skipped", and fails on any skipped test unless RAYCORE_ALLOW_SKIPS=1.
-test: build
-	@junit=$$(mktemp "$(abspath $(BUILD))/ctest-junit.XXXXXX"); \
-	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) --output-junit "$$junit"; rc=$$?; \
+# `make test` leaves out the tests labelled `long` (minutes of CPU each: the netlist's exhaustive
+# pass); `make test-long` runs those alone.
+CTEST_RUN = junit=$$(mktemp "$(abspath $(BUILD))/ctest-junit.XXXXXX"); \
+	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) --output-junit "$$junit" $(1); rc=$$?; \
 	$(PYTHON) $(CURDIR)/tests/ctest_summary.py "$$junit" || rc=1; \
 	rm -f "$$junit"; exit $$rc
+test: build
+	@$(call CTEST_RUN,-LE long)
+test-long: build
+	@$(call CTEST_RUN,-L long)
 
 # The main job on the built-in default scene: rendered by the verilated RTL core under the scene's
 # light (shadow rays through the core; docs/architecture.md, "Lighting"), checked bit for bit
