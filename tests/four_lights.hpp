@@ -27,7 +27,8 @@ inline RenderInput with_four_lights(const RenderInput& in) {
   s.lights.push_back(b);
   s.lights.push_back(d);
   const scene::Compiled cc = scene::compile_scene(s, scene::CompileOptions{});
-  return RenderInput{s.name, s, scene::SceneImage::from_bytes(cc.image, s.name), std::nullopt};
+  return RenderInput{s.name, s, scene::SceneImage::from_bytes(cc.image, s.name), std::nullopt,
+                     s.camera};
 }
 
 }  // namespace rc::test

@@ -20,14 +20,15 @@ RenderInput load_render_input(const std::string& input, const scene::LoadOptions
                               const scene::NumberFormat& format) {
   if (ends_with(input, ".rcimg")) {
     scene::SceneImage img = scene::SceneImage::load(input);
-    return {input, std::nullopt, std::move(img), std::nullopt};
+    return {input, std::nullopt, std::move(img), std::nullopt, std::nullopt};
   }
   scene::Scene s = scene::load_scene(input, load);
   scene::CompileOptions opt;
   opt.format = format;
   scene::Compiled c = scene::compile_scene(s, opt);
   scene::SceneImage img = scene::SceneImage::from_bytes(std::move(c.image), input);
-  return {input, std::move(s), std::move(img), std::move(c.stats)};
+  std::optional<scene::Camera> camera = s.camera;
+  return {input, std::move(s), std::move(img), std::move(c.stats), std::move(camera)};
 }
 
 void require_valid(const scene::SceneImage& image) {
@@ -55,11 +56,11 @@ RenderOptions input_options(const RenderInput& in) {
   for (int c = 0; c < 3; ++c) o.background[c] = to_byte(v.background[c]);
   if (v.flags & spec::kImageViewFlagAutoCamera) {
     o.camera = auto_camera_for(in.image);
-  } else if (in.scene && in.scene->camera) {  // the scene's camera in double
-    o.camera.eye = in.scene->camera->eye;
-    o.camera.look = in.scene->camera->look;
-    o.camera.up = in.scene->camera->up;
-    o.camera.fov_deg = in.scene->camera->fov_deg;
+  } else if (in.camera) {  // the scene's camera in double
+    o.camera.eye = in.camera->eye;
+    o.camera.look = in.camera->look;
+    o.camera.up = in.camera->up;
+    o.camera.fov_deg = in.camera->fov_deg;
   } else {  // an image file: its view record in float32
     o.camera.eye = glm::dvec3(v.eye[0], v.eye[1], v.eye[2]);
     o.camera.look = glm::dvec3(v.look[0], v.look[1], v.look[2]);

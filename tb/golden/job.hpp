@@ -17,6 +17,9 @@ struct RenderInput {
   std::optional<scene::Scene> scene;  // absent for an .rcimg input
   scene::SceneImage image;
   std::optional<scene::BuildStats> build;  // when compiled here
+  // The scene's camera in double, when the input is a scene that names one: input_options() takes
+  // it before the image's view record, which holds it in float32.
+  std::optional<scene::Camera> camera;
 };
 
 // Loads `input`; a path ending in .rcimg is read as an image, anything else is loaded as a scene

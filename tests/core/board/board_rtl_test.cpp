@@ -21,6 +21,7 @@
 #include "four_lights.hpp"
 #include "geometry.hpp"
 #include "job.hpp"
+#include "scene_cache.hpp"
 
 namespace rc::test {
 namespace {
@@ -133,7 +134,7 @@ TEST_P(BoardRtl, MatchesGoldenBitForBit) {
   const SceneCase c = GetParam();
   const std::string in = c.input;
   const std::string path = in.rfind("builtin:", 0) == 0 ? in : kRoot + "/" + in;
-  const RenderInput ri = load_render_input(path, scene::LoadOptions{}, scene::NumberFormat::fp24());
+  const RenderInput ri = cached_render_input(path);
   RenderOptions opt = input_options(ri);
   opt.width = c.width;
   opt.height = c.height;
@@ -184,9 +185,11 @@ class BoardRtlLit : public testing::TestWithParam<SceneCase> {};
 
 TEST_P(BoardRtlLit, MatchesGoldenBitForBit) {
   const SceneCase c = GetParam();
-  RenderInput ri =
-      load_render_input(kRoot + "/" + c.input, scene::LoadOptions{}, scene::NumberFormat::fp24());
-  if (c.four_lights) ri = with_four_lights(ri);
+  const std::string path = kRoot + "/" + c.input;
+  const RenderInput ri = c.four_lights
+                             ? with_four_lights(load_render_input(path, scene::LoadOptions{},
+                                                                  scene::NumberFormat::fp24()))
+                             : cached_render_input(path);
   RenderOptions opt = input_options(ri);
   opt.width = c.width;
   opt.height = c.height;
@@ -219,8 +222,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, BoardRtlLit,
 // each light's position and colour, as the golden model loads them; a depth above the limit is
 // refused before any work; the headlight board for a scene without --lighting scene.
 TEST(BoardImage, LightRegisters) {
-  const RenderInput ri = load_render_input(kRoot + "/scenes/conference.json", scene::LoadOptions{},
-                                           scene::NumberFormat::fp24());
+  const RenderInput ri = cached_render_input(kRoot + "/scenes/conference.json");
   RenderOptions opt = input_options(ri);
   opt.width = 16;
   opt.height = 12;

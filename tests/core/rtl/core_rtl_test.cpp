@@ -7,12 +7,16 @@
 // shadow counters too. Corrupted images (the error paths) must give the golden model's error
 // bits, counters and (all-miss) pixels, and must not hang.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <ostream>
 #include <random>
 #include <string>
@@ -23,6 +27,7 @@
 #include "geometry.hpp"
 #include "job.hpp"
 #include "models_dir.hpp"
+#include "scene_cache.hpp"
 
 namespace rc::test {
 namespace {
@@ -158,9 +163,7 @@ RenderOptions case_options(const SceneCase& c, const RenderInput& in) {
   return opt;
 }
 
-RenderInput case_input(const SceneCase& c) {
-  return load_render_input(input_path(c), scene::LoadOptions{}, scene::NumberFormat::fp24());
-}
+RenderInput case_input(const SceneCase& c) { return cached_render_input(input_path(c)); }
 
 // Skips the test when the case needs the shared models and they are not there (make test then
 // fails: a skipped check is not a pass).
@@ -176,6 +179,53 @@ SceneCase half_size(SceneCase c) {
   c.width = (c.width + 1) / 2;
   c.height = (c.height + 1) / 2;
   return c;
+}
+
+// The shared scene cache (tests/scene_cache.hpp) gives what load_render_input() gives: the same
+// image bytes and the same camera to the last bit, when it compiles the input (cold) and when it
+// reads the files another process wrote (warm); a scene without a camera stays without one. The
+// scene file's camera has values no short decimal holds (0.1, 1/3, 39.3 + 1e-9).
+TEST(SceneCache, SameImageAndCameraAsACompile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() /
+                       ("rc_scene_cache_test_" + std::to_string(static_cast<long>(::getpid())));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "src");
+  const std::string scene_file = (dir / "src" / "box.json").string();
+  {
+    std::ofstream f(scene_file);
+    f << R"({"meshes": [{"builtin": "cornell"}], "camera": {"eye": [0.1, 1.0000000001, )"
+      << R"(3.3333333333333335], "look": [0, 0.9999999999, 0], "up": [0, 1, 0], )"
+      << R"("fov": 39.300000001}, "lights": [{"position": [0, 1.9, 0]}]})";
+  }
+  const char* old = std::getenv("RC_TEST_SCENE_CACHE");
+  const std::string saved = old ? old : "";
+  ASSERT_EQ(::setenv("RC_TEST_SCENE_CACHE", (dir / "cache").c_str(), 1), 0);
+  for (const std::string& input : {scene_file, std::string("builtin:spheres")}) {
+    const RenderInput ref =
+        load_render_input(input, scene::LoadOptions{}, scene::NumberFormat::fp24());
+    for (const char* pass : {"cold", "warm"}) {
+      const RenderInput in = cached_render_input(input);
+      EXPECT_EQ(in.name, ref.name) << input << " " << pass;
+      EXPECT_TRUE(in.image.bytes() == ref.image.bytes()) << input << " " << pass;
+      ASSERT_EQ(in.camera.has_value(), ref.camera.has_value()) << input << " " << pass;
+      if (ref.camera) {
+        const scene::Camera& a = *in.camera;
+        const scene::Camera& b = *ref.camera;
+        const double av[10] = {a.eye.x,  a.eye.y, a.eye.z, a.look.x, a.look.y,
+                               a.look.z, a.up.x,  a.up.y,  a.up.z,   a.fov_deg};
+        const double bv[10] = {b.eye.x,  b.eye.y, b.eye.z, b.look.x, b.look.y,
+                               b.look.z, b.up.x,  b.up.y,  b.up.z,   b.fov_deg};
+        EXPECT_EQ(std::memcmp(av, bv, sizeof av), 0) << input << " " << pass << ": camera";
+      }
+    }
+  }
+  EXPECT_TRUE(fs::exists(dir / "cache" / "builtin_spheres.rcimg")) << "the cache was written";
+  if (old)
+    ::setenv("RC_TEST_SCENE_CACHE", saved.c_str(), 1);
+  else
+    ::unsetenv("RC_TEST_SCENE_CACHE");
+  fs::remove_all(dir);
 }
 
 class CoreRtl : public testing::TestWithParam<std::tuple<SceneCase, int>> {};
@@ -393,7 +443,7 @@ TEST(CoreRtlLitDirected, QuadBeyondTheLightInTheSameLeafDoesNotShadow) {
   scene::CompileOptions co;
   co.kd.max_depth = 0;
   const scene::Compiled c = scene::compile_scene(s, co);
-  RenderInput in{s.name, s, scene::SceneImage::from_bytes(c.image, s.name), std::nullopt};
+  RenderInput in{s.name, s, scene::SceneImage::from_bytes(c.image, s.name), std::nullopt, s.camera};
   ASSERT_EQ(in.image.node_count(), 1u) << "the quads share one leaf";
   RenderOptions opt = input_options(in);
   opt.progress = false;
@@ -430,8 +480,7 @@ class CoreRtlKinds : public testing::TestWithParam<int> {};
 
 TEST_P(CoreRtlKinds, MixedKindsMatchGoldenPerKind) {
   const Mode& mode = kModes[GetParam()];
-  const RenderInput in = load_render_input(kRoot + "/scenes/spheres.json", scene::LoadOptions{},
-                                           scene::NumberFormat::fp24());
+  const RenderInput in = cached_render_input(kRoot + "/scenes/spheres.json");
   RenderOptions opt = input_options(in);
   opt.width = 48;
   opt.height = 36;

@@ -18,6 +18,7 @@
 #include "four_lights.hpp"
 #include "geometry.hpp"
 #include "job.hpp"
+#include "scene_cache.hpp"
 
 namespace rc::test {
 namespace {
@@ -43,9 +44,10 @@ void PrintTo(const TracerCase& c, std::ostream* os) {
 
 // The case's scene, with its extra lights when asked for.
 RenderInput case_input(const TracerCase& c) {
-  RenderInput in =
-      load_render_input(kRoot + "/" + c.scene, scene::LoadOptions{}, scene::NumberFormat::fp24());
-  return c.four_lights ? with_four_lights(in) : in;
+  const std::string path = kRoot + "/" + c.scene;
+  return c.four_lights ? with_four_lights(load_render_input(path, scene::LoadOptions{},
+                                                            scene::NumberFormat::fp24()))
+                       : cached_render_input(path);
 }
 
 uint64_t differ(const std::vector<int32_t>& a, const std::vector<int32_t>& b) {
