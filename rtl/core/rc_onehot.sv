@@ -38,9 +38,14 @@ module rc_onehot #(
     for (genvar i = 0; i < NHi; i++) begin : g_hi
       assign hi[i] = valid_i && idx_i[IdxW-1:4] == HiW'(i);
     end
-    for (genvar i = 0; i < N; i++) begin : g_out
-      assign hot_o[i] = hi[i / 16] & lo[i % 16];
+    // Sixteen outputs at a time: the same ANDs as one assign per output, written so that the
+    // verilated model computes a 16-bit AND per line instead of one operation per bit.
+    localparam int unsigned NPad = NHi * 16;
+    logic [NPad-1:0] hot;
+    for (genvar g = 0; g < NHi; g++) begin : g_out
+      assign hot[g*16 +: 16] = {16{hi[g]}} & lo;
     end
+    assign hot_o = hot[N-1:0];
   end
 
 endmodule
