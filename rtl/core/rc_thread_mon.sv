@@ -12,12 +12,16 @@
 //     pick -> Popping, done -> Done (the walk ended), spick -> Shade, free, free0 -> Free.
 //   cont_i: the issue in this cycle is a continuation (the decision's own thread).
 // - Checks (assertions, on from the cycle after reset): a thread has at most one event a cycle
-//   (EventsExclusive_A); each event applies to a thread in the state it leaves (EventState_A);
-//   the units' work belongs to threads in their hands: a node step (step_*), a triangle response
-//   (load_*), an intersection result (fin_*) to a thread in LeafRun, a hit commit (commit_*) to
-//   one in LeafRun or Pop, a framebuffer write (fb_*) to one in Shade.
+//   (EventsExclusive_A); each event applies to a thread in the state it leaves (EventState_A,
+//   LendState_A for lend_i); the units' work belongs to threads in their hands: a node step
+//   (step_*) to a thread in Node, a triangle response (load_*) and an intersection result (fin_*)
+//   to one in LeafRun, a hit commit (commit_*) to one in LeafRun or Pop, a framebuffer write
+//   (fb_*) to one in Shade.
 // - Output: state_o, thread t's rc_pkg::thread_state_e at [t*ThreadStateBits +: ThreadStateBits],
 //   registered; every thread is Free after reset.
+// - Structure: each event writes and checks its own thread's state by index, so the verilated
+//   model does work per event rather than per thread and event (with one comparator per thread
+//   and event it was an eighth of a default core model's C++).
 // - Parameters: Threads (>= 1); ThrW: thread index bits.
 // - Reset: rst_ni (active low, asynchronous) sets every thread Free.
 module rc_thread_mon #(
@@ -71,7 +75,13 @@ module rc_thread_mon #(
 
   localparam int unsigned SB = rc_pkg::ThreadStateBits;
 
-  rc_pkg::thread_state_e st_q [0:Threads-1];
+  // Thread t's state at [t*SB +: SB] (the layout of state_o).
+  logic [Threads*SB-1:0] st_q, st_d;
+
+  function automatic logic [SB-1:0] st_of(input logic [Threads*SB-1:0] v,
+                                           input logic [ThrW-1:0] t);
+    st_of = v[32'(t)*SB +: SB];
+  endfunction
 
   logic checks_on;
   rc_checks_on u_checks_on (
@@ -80,88 +90,141 @@ module rc_thread_mon #(
     .on_o (checks_on)
   );
 
-  function automatic logic at(input logic v, input logic [ThrW-1:0] thr,
-                              input logic [ThrW-1:0] t);
-    at = v && thr == t;
+  // The events that name one thread each, and the group of each: a thread has at most one
+  // group's event a cycle (lend_i, a bit per thread, is in group GPop with req_tr, req_nr, own).
+  localparam int unsigned NEv = 14;
+  localparam int unsigned GPop = 5;
+  function automatic int unsigned ev_group(input int unsigned e);
+    case (e)
+      0, 1, 2:       ev_group = e;     // acc, tq, iss
+      3, 4:          ev_group = 3;     // leaf_tr, leaf_stk
+      5:             ev_group = 4;     // take
+      6, 7, 8:       ev_group = GPop;  // req_tr, req_nr, own
+      9, 10, 11:     ev_group = e - 3; // pick, done, spick
+      default:       ev_group = 9;     // free, free0
+    endcase
   endfunction
+  function automatic logic [SB-1:0] ev_next(input int unsigned e);
+    case (e)
+      0:             ev_next = rc_pkg::StSetup;
+      1:             ev_next = rc_pkg::StFetch;
+      2:             ev_next = rc_pkg::StNode;
+      3, 4:          ev_next = rc_pkg::StLeaf;
+      5:             ev_next = rc_pkg::StLeafRun;
+      6, 7, 8:       ev_next = rc_pkg::StPop;
+      9:             ev_next = rc_pkg::StPopping;
+      10:            ev_next = rc_pkg::StDone;
+      11:            ev_next = rc_pkg::StShade;
+      default:       ev_next = rc_pkg::StFree;
+    endcase
+  endfunction
+  // Bit e of ev_v and field e of ev_thr (ThrW bits each) are event e, in this order: acc, tq,
+  // iss, leaf_tr, leaf_stk, take, req_tr, req_nr, own, pick, done, spick, free, free0
+  // (ev_group() and ev_next() follow it; the concatenations list them from the last down).
+  logic [NEv-1:0]           ev_v;
+  logic [NEv*ThrW-1:0]      ev_thr;
+  assign ev_v   = {free0_valid_i, free_valid_i, spick_valid_i, done_valid_i, pick_valid_i,
+                   own_valid_i, req_nr_valid_i, req_tr_valid_i, take_valid_i, leaf_stk_valid_i,
+                   leaf_tr_valid_i, iss_valid_i, tq_valid_i, acc_valid_i};
+  assign ev_thr = {free0_thr_i, free_thr_i, spick_thr_i, done_thr_i, pick_thr_i, own_thr_i,
+                   req_nr_thr_i, req_tr_thr_i, take_thr_i, leaf_stk_thr_i, leaf_tr_thr_i,
+                   iss_thr_i, tq_thr_i, acc_thr_i};
 
-  for (genvar t = 0; t < Threads; t++) begin : g_state
-    logic e_acc, e_tq, e_iss, e_cont, e_leaf_tr, e_req_tr, e_req_nr, e_leaf_stk, e_take;
-    logic e_lend, e_own, e_pick, e_done, e_spick, e_free;
-    assign e_acc      = at(acc_valid_i, acc_thr_i, ThrW'(t));
-    assign e_tq       = at(tq_valid_i, tq_thr_i, ThrW'(t));
-    assign e_iss      = at(iss_valid_i, iss_thr_i, ThrW'(t));
-    assign e_leaf_tr  = at(leaf_tr_valid_i, leaf_tr_thr_i, ThrW'(t));
-    assign e_req_tr   = at(req_tr_valid_i, req_tr_thr_i, ThrW'(t));
-    assign e_req_nr   = at(req_nr_valid_i, req_nr_thr_i, ThrW'(t));
-    assign e_leaf_stk = at(leaf_stk_valid_i, leaf_stk_thr_i, ThrW'(t));
-    assign e_take     = at(take_valid_i, take_thr_i, ThrW'(t));
-    assign e_lend     = lend_i[t];
-    assign e_own      = at(own_valid_i, own_thr_i, ThrW'(t));
-    assign e_pick     = at(pick_valid_i, pick_thr_i, ThrW'(t));
-    assign e_done     = at(done_valid_i, done_thr_i, ThrW'(t));
-    assign e_spick    = at(spick_valid_i, spick_thr_i, ThrW'(t));
-    assign e_free     = at(free_valid_i, free_thr_i, ThrW'(t)) |
-                        at(free0_valid_i, free0_thr_i, ThrW'(t));
-    assign e_cont     = e_iss && cont_i;
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        st_q[t] <= rc_pkg::StFree;
-      end else begin
-        // The decision's leaf and pop outputs come a cycle before their thread could be issued
-        // again, and only one of them at a time (the decision routes a thread one way).
-        if (e_acc) st_q[t] <= rc_pkg::StSetup;
-        if (e_tq) st_q[t] <= rc_pkg::StFetch;
-        if (e_iss) st_q[t] <= rc_pkg::StNode;
-        if (e_leaf_tr || e_leaf_stk) st_q[t] <= rc_pkg::StLeaf;
-        if (e_take) st_q[t] <= rc_pkg::StLeafRun;
-        if (e_req_tr || e_req_nr || e_lend || e_own) st_q[t] <= rc_pkg::StPop;
-        if (e_pick) st_q[t] <= rc_pkg::StPopping;
-        if (e_done) st_q[t] <= rc_pkg::StDone;
-        if (e_spick) st_q[t] <= rc_pkg::StShade;
-        if (e_free) st_q[t] <= rc_pkg::StFree;
+  // An event applies to its thread when the thread exists (a thread number at or above Threads
+  // names none). The events write in the order of the list, lend_i between req_nr and own; the
+  // checks below make the order irrelevant (one group's event per thread and cycle).
+  always_comb begin
+    st_d = st_q;
+    for (int unsigned e = 0; e < NEv; e++) begin
+      if (e == 8) begin
+        for (int unsigned t = 0; t < Threads; t++)
+          if (lend_i[t]) st_d[t*SB +: SB] = rc_pkg::StPop;
       end
+      if (ev_v[e] && 32'(ev_thr[e*ThrW +: ThrW]) < Threads)
+        st_d[32'(ev_thr[e*ThrW +: ThrW])*SB +: SB] = ev_next(e);
     end
-    assign state_o[t*SB +: SB] = st_q[t];
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) st_q <= {Threads{rc_pkg::StFree}};
+    else         st_q <= st_d;
+  end
+  assign state_o = st_q;
 
 `ifndef SYNTHESIS
+  // Each thread's state under a name of its own (g_state[t].st, for the waveform), and the check
+  // of lend_i, the one event given as a bit per thread: a thread lent to the pop unit is in
+  // LeafRun (LendState_A; the other events' checks are EventState_A below).
+  for (genvar t = 0; t < Threads; t++) begin : g_state
     rc_pkg::thread_state_e st;
-    assign st = st_q[t];
-    EventsExclusive_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                        $onehot0({e_acc, e_tq, e_iss, e_leaf_tr | e_leaf_stk,
-                                                  e_take, e_req_tr | e_req_nr | e_lend | e_own,
-                                                  e_pick, e_done, e_spick, e_free}));
-    EventState_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                                   (!e_acc || st == rc_pkg::StFree) &&
-                                   (!e_tq || st == rc_pkg::StSetup || st == rc_pkg::StPopping) &&
-                                   (!e_iss || (e_cont ? st == rc_pkg::StNode :
-                                                        st == rc_pkg::StFetch)) &&
-                                   (!e_leaf_tr || st == rc_pkg::StNode) &&
-                                   (!e_leaf_stk || st == rc_pkg::StSetup ||
-                                    st == rc_pkg::StPopping) &&
-                                   (!e_take || st == rc_pkg::StLeaf) &&
-                                   (!e_req_tr || st == rc_pkg::StNode) &&
-                                   (!e_req_nr || st == rc_pkg::StNode) &&
-                                   (!e_lend || st == rc_pkg::StLeafRun) &&
-                                   (!e_own || st == rc_pkg::StSetup ||
-                                    st == rc_pkg::StPopping) &&
-                                   (!e_pick || st == rc_pkg::StPop) &&
-                                   (!e_done || st == rc_pkg::StPopping) &&
-                                   (!e_spick || st == rc_pkg::StDone) &&
-                                   (!e_free || st == rc_pkg::StShade));
-`endif
+    assign st = rc_pkg::thread_state_e'(st_q[t*SB +: SB]);
+    LendState_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                  lend_i[t] |-> st == rc_pkg::StLeafRun);
   end
+`endif
+
+`ifndef SYNTHESIS
+  // The checks, with the first offending thread for the message: two groups' events for one
+  // thread in a cycle (excl_bad), an event for a thread not in the state it leaves (state_bad).
+  logic            excl_bad, state_bad;
+  logic [ThrW-1:0] excl_thr, state_thr;
+  always_comb begin
+    excl_bad  = 1'b0;
+    state_bad = 1'b0;
+    excl_thr  = '0;
+    state_thr = '0;
+    for (int unsigned e = 0; e < NEv; e++) begin
+      logic [ThrW-1:0] thr;
+      thr = ev_thr[e*ThrW +: ThrW];
+      if (ev_v[e] && 32'(thr) < Threads) begin
+        logic [SB-1:0] st;
+        logic ok;
+        st = st_of(st_q, thr);
+        for (int unsigned f = e + 1; f < NEv; f++) begin
+          if (ev_group(f) != ev_group(e) && ev_v[f] && ev_thr[f*ThrW +: ThrW] == thr &&
+              !excl_bad) begin
+            excl_bad = 1'b1;
+            excl_thr = thr;
+          end
+        end
+        if (ev_group(e) != GPop && lend_i[thr] && !excl_bad) begin
+          excl_bad = 1'b1;
+          excl_thr = thr;
+        end
+        case (e)
+          0:          ok = st == rc_pkg::StFree;                                // acc
+          1, 4, 8:    ok = st == rc_pkg::StSetup || st == rc_pkg::StPopping; // tq, leaf_stk, own
+          2:          ok = cont_i ? st == rc_pkg::StNode : st == rc_pkg::StFetch; // iss
+          3, 6, 7:    ok = st == rc_pkg::StNode;                                // leaf_tr, req_*
+          5:          ok = st == rc_pkg::StLeaf;                                // take
+          9:          ok = st == rc_pkg::StPop;                                 // pick
+          10:         ok = st == rc_pkg::StPopping;                             // done
+          11:         ok = st == rc_pkg::StDone;                                // spick
+          default:    ok = st == rc_pkg::StShade;                               // free, free0
+        endcase
+        if (!ok && !state_bad) begin
+          state_bad = 1'b1;
+          state_thr = thr;
+        end
+      end
+    end
+  end
+  EventsExclusive_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1) !excl_bad)
+    else $error("rc_thread_mon: thread %0d has events of two units in one cycle", excl_thr);
+  EventState_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1) !state_bad)
+    else $error("rc_thread_mon: an event for thread %0d in a state it does not leave (%0d)",
+                state_thr, st_of(st_q, state_thr));
+`endif
 
 `ifndef SYNTHESIS
   // The units' work belongs to threads in their hands.
-  rc_pkg::thread_state_e st_step, st_load, st_fin, st_commit, st_fb;
+  logic [SB-1:0] st_step, st_load, st_fin, st_commit, st_fb;
   always_comb begin
-    st_step   = st_q[step_thr_i];
-    st_load   = st_q[load_thr_i];
-    st_fin    = st_q[fin_thr_i];
-    st_commit = st_q[commit_thr_i];
-    st_fb     = st_q[fb_thr_i];
+    st_step   = st_of(st_q, step_thr_i);
+    st_load   = st_of(st_q, load_thr_i);
+    st_fin    = st_of(st_q, fin_thr_i);
+    st_commit = st_of(st_q, commit_thr_i);
+    st_fb     = st_of(st_q, fb_thr_i);
   end
   StepOwner_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 step_valid_i |-> st_step == rc_pkg::StNode);
