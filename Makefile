@@ -42,8 +42,8 @@ RTL_FILES  = $(patsubst build/%,$(BUILD)/%,$(shell grep -v '^\s*\#' rtl/rtl_file
 TB_RTL    := $(wildcard tests/rtl/*.sv)
 WAIVERS   := rtl/lint_waivers.vlt
 
-.PHONY: all build raycore configure configure-tests deps test test-long render lint synth-units synth-core \
-        synth-xilinx pnr-units fpga-deps fpga-vivado fpga-ecp5 format clean
+.PHONY: all build raycore configure configure-tests deps test test-long render lint synth-units \
+        synth-core synth-xilinx pnr-units fpga-deps fpga-vivado fpga-ecp5 format clean
 
 all: build
 
