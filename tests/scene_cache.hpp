@@ -14,6 +14,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -29,6 +30,12 @@
 #include "job.hpp"
 
 namespace rc::test {
+
+// A camera's ten doubles: eye, look, up, fov_deg (the order of the .camera file).
+inline std::array<double, 10> camera_values(const scene::Camera& c) {
+  return {c.eye.x,  c.eye.y, c.eye.z, c.look.x, c.look.y,
+          c.look.z, c.up.x,  c.up.y,  c.up.z,   c.fov_deg};
+}
 
 namespace scene_cache_detail {
 
@@ -52,11 +59,9 @@ inline std::string read_all(const std::filesystem::path& path) {
 // "none", or the ten doubles eye, look, up, fov_deg in %a form (exact in both directions).
 inline std::string camera_text(const std::optional<scene::Camera>& cam) {
   if (!cam) return "none\n";
-  const double v[10] = {cam->eye.x,  cam->eye.y, cam->eye.z, cam->look.x, cam->look.y,
-                        cam->look.z, cam->up.x,  cam->up.y,  cam->up.z,   cam->fov_deg};
   std::string s;
   char buf[64];
-  for (double d : v) {
+  for (double d : camera_values(*cam)) {
     std::snprintf(buf, sizeof buf, "%a\n", d);
     s += buf;
   }
@@ -85,7 +90,8 @@ inline std::optional<scene::Camera> parse_camera(const std::string& text, const 
 }  // namespace scene_cache_detail
 
 // load_render_input(input, LoadOptions{}, fp24), through the cache when ctest set one up. The
-// result has the compiled image and the scene's camera, and neither the scene itself nor the build
+// result has the compiled image (read through SceneImage::load(), so its checks run and it is
+// named by its cache file) and the scene's camera, and neither the scene itself nor the build
 // statistics (a test that needs those calls load_render_input()).
 inline RenderInput cached_render_input(const std::string& input) {
   namespace fs = std::filesystem;
@@ -110,11 +116,8 @@ inline RenderInput cached_render_input(const std::string& input) {
     const std::vector<uint8_t>& bytes = in.image.bytes();
     d::write_atomically(image_path, std::string(bytes.begin(), bytes.end()));
   }
-  const std::string bytes = d::read_all(image_path);
-  return RenderInput{
-      input, std::nullopt,
-      scene::SceneImage::from_bytes(std::vector<uint8_t>(bytes.begin(), bytes.end()), input),
-      std::nullopt, d::parse_camera(d::read_all(camera_path), camera_path.string())};
+  return RenderInput{input, std::nullopt, scene::SceneImage::load(image_path.string()),
+                     std::nullopt, d::parse_camera(d::read_all(camera_path), camera_path.string())};
 }
 
 }  // namespace rc::test

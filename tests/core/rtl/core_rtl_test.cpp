@@ -210,13 +210,10 @@ TEST(SceneCache, SameImageAndCameraAsACompile) {
       EXPECT_TRUE(in.image.bytes() == ref.image.bytes()) << input << " " << pass;
       ASSERT_EQ(in.camera.has_value(), ref.camera.has_value()) << input << " " << pass;
       if (ref.camera) {
-        const scene::Camera& a = *in.camera;
-        const scene::Camera& b = *ref.camera;
-        const double av[10] = {a.eye.x,  a.eye.y, a.eye.z, a.look.x, a.look.y,
-                               a.look.z, a.up.x,  a.up.y,  a.up.z,   a.fov_deg};
-        const double bv[10] = {b.eye.x,  b.eye.y, b.eye.z, b.look.x, b.look.y,
-                               b.look.z, b.up.x,  b.up.y,  b.up.z,   b.fov_deg};
-        EXPECT_EQ(std::memcmp(av, bv, sizeof av), 0) << input << " " << pass << ": camera";
+        const auto a = camera_values(*in.camera);
+        const auto b = camera_values(*ref.camera);
+        EXPECT_EQ(std::memcmp(a.data(), b.data(), sizeof a), 0)
+            << input << " " << pass << ": camera";
       }
     }
   }
