@@ -57,9 +57,10 @@
 //   rc_pkg::BoardLitSetupUnits, [board] lit_setup_units; the board without Lit keeps the core's
 //   default); with Lit, LitThreads (the lit core's packet threads, instead of Threads), LitSlots
 //   and LitShadowPackets (rc_tracer's Slots and ShadowPackets; defaults [board] lit_threads,
-//   lit_slots, lit_shadow_packets: fewer than the chip's, for area, docs/fpga.md "Status"); the
-//   ROM depths and hex files; FbPixels. CoreThreads is derived: the threads of the core built
-//   (LitThreads with Lit, else Threads).
+//   lit_slots, lit_shadow_packets: fewer than the chip's, for area, docs/fpga.md "Status") and
+//   LitRaygenPeriod (rc_ray_gen's Period with Lit, [board] lit_raygen_period; without Lit it is
+//   [board] raygen_period); the ROM depths and hex files; FbPixels. CoreThreads is derived: the
+//   threads of the core built (LitThreads with Lit, else Threads).
 // - Illegal input: none on the register port (writes while busy are ignored); reading registers
 //   that do not exist returns 0.
 // - Reset: rst_ni (active low, asynchronous) clears control state; the register file, ROMs and
@@ -72,6 +73,7 @@ module rc_board #(
   parameter int unsigned LitThreads = rc_pkg::BoardLitThreads,
   parameter int unsigned LitSlots  = rc_pkg::BoardLitSlots,
   parameter int unsigned LitShadowPackets = rc_pkg::BoardLitShadowPackets,
+  parameter int unsigned LitRaygenPeriod = rc_pkg::BoardLitRaygenPeriod,
   parameter int unsigned NodeDepth = 1,
   parameter int unsigned ListDepth = 1,
   parameter int unsigned TriDepth  = 1,
@@ -285,8 +287,9 @@ module rc_board #(
   logic [127:0]      pkt_pixel;
 
   rc_ray_gen #(
-    .ExpW (ExpW),
-    .FracW(FracW)
+    .ExpW  (ExpW),
+    .FracW (FracW),
+    .Period(Lit ? LitRaygenPeriod : rc_pkg::BoardRaygenPeriod)
   ) u_ray_gen (
     .clk_i,
     .rst_ni,

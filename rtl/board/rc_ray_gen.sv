@@ -20,14 +20,23 @@
 //   [r*32 +: 32]). pkt_valid_o and the packet come from registers, never depend on pkt_ready_i,
 //   and hold until taken.
 // - Latency: Latency cycles (the localparam: 2 + 2 * MulStages + 4 * AddStages + SqrtStages +
-//   DivStages of rc_pkg's [fp_stages]) from a ray being taken to its FIFO entry; then 4 cycles to
-//   collect a packet. Throughput: one ray every 3 cycles (the arithmetic is one component lane:
-//   x, y, z of a ray pass on consecutive cycles through 3 multipliers and 2 adders, then the
-//   length's 2 adders, the square root and the divider see one operation per ray) while the ray
-//   FIFO has credits (RayFifoDepth rays in flight or stored): a packet every 12 cycles at best,
-//   the rate of rc_core's ray set-up (one ray per 3 cycles).
+//   DivStages of rc_pkg's [fp_stages], 4 more with Period 6) from a ray being taken to its FIFO
+//   entry; then 4 cycles to collect a packet.
+// - Throughput: one ray every Period cycles while the ray FIFO has credits (RayFifoDepth rays in
+//   flight or stored). The arithmetic is one component lane: x, y, z of a ray pass on
+//   consecutive cycles through the multipliers and adders of the direction, then the length's
+//   two sums, the square root and the divider see one operation per ray.
+//   Period 3: three multipliers (X * cx, Y * cy, dir * dir) and four adders (c0 + X cx, + Y cy,
+//   the length's two sums), a ray every 3 cycles: a packet every 12 cycles at best, the rate of
+//   one rc_ray_setup.
+//   Period 6 (the lit board, [board] lit_raygen_period): a ray is taken only at phase 0 of a
+//   free-running count modulo 6, and operators whose uses fall at different phases share
+//   (rc_fp_shared): X * cx and Y * cy one multiplier (Y * cy three cycles later), c0 + X cx and
+//   + Y cy one adder (the second three cycles later than at Period 3), the length's two sums one
+//   adder (the second a cycle later): two multipliers and two adders, bit for bit the same
+//   results.
 // - Parameters: ExpW, FracW: the format; CoordW: bits of width_i/height_i (CoordW <= FracW + 1,
-//   so every coordinate converts exactly); RayFifoDepth: rays buffered (>= 4).
+//   so every coordinate converts exactly); RayFifoDepth: rays buffered (>= 4); Period: 3 or 6.
 // - Illegal input: start_i while busy_o; camera or size inputs changing while busy_o or in the
 //   cycle before start_i (the last packet column and row are registered from the size).
 //   Assertions catch the first and a width/height change.
@@ -38,6 +47,7 @@ module rc_ray_gen #(
   parameter int unsigned FracW        = rc_pkg::Fp24FracW,
   parameter int unsigned CoordW       = rc_pkg::BoardCoordBits,
   parameter int unsigned RayFifoDepth = rc_pkg::BoardRayFifo,
+  parameter int unsigned Period       = rc_pkg::BoardRaygenPeriod,
   // Derived (do not override).
   parameter int unsigned W            = 1 + ExpW + FracW
 ) (
@@ -76,16 +86,27 @@ module rc_ray_gen #(
   if (RayFifoDepth < 4) begin : g_fifo_check
     $error("rc_ray_gen: RayFifoDepth must be >= 4 (one packet)");
   end
+  if (Period != 3 && Period != 6) begin : g_period_check
+    $error("rc_ray_gen: Period must be 3 or 6");
+  end
 
   localparam int unsigned MulStages  = rc_pkg::FpStagesMul;
   localparam int unsigned AddStages  = rc_pkg::FpStagesAdd;
   localparam int unsigned SqrtStages = rc_pkg::FpStagesSqrt;
   localparam int unsigned DivStages  = rc_pkg::FpStagesDiv;
-  // Slot 0 (x) of a ray taken in cycle T is registered at T + 1; its square at T + 1 + 2M + 2A;
-  // y's square a cycle later starts the sum; the ray enters the FIFO at T + Latency.
-  localparam int unsigned Latency    = 2 + 2 * MulStages + 4 * AddStages + SqrtStages + DivStages;
-  // The direction is complete (z in dir_sr_q) at T + 4 + M + 2A and then waits for inv_len.
-  localparam int unsigned DirWait    = Latency - (4 + MulStages + 2 * AddStages);
+  localparam bit          Shared     = Period == 6;
+  // Period 6: + Y cy starts ShiftCy cycles later than at Period 3, the length's second sum
+  // ShiftL2 cycles later (so that each shares an operator at a phase of its own).
+  localparam int unsigned ShiftCy    = Shared ? 3 : 0;
+  localparam int unsigned ShiftL2    = Shared ? 1 : 0;
+  // Slot 0 (x) of a ray taken in cycle T is registered at T + 1; its square at
+  // T + 1 + 2M + 2A + ShiftCy; y's square a cycle later starts the sum; the ray enters the FIFO at
+  // T + Latency.
+  localparam int unsigned Latency    = 2 + 2 * MulStages + 4 * AddStages + SqrtStages + DivStages +
+                                       ShiftCy + ShiftL2;
+  // The direction is complete (z in dir_sr_q) at T + 4 + M + 2A + ShiftCy and then waits for
+  // inv_len.
+  localparam int unsigned DirWait    = Latency - (4 + MulStages + 2 * AddStages + ShiftCy);
   localparam int unsigned Bias       = (1 << (ExpW - 1)) - 1;
   localparam logic [W-1:0] One       = W'(Bias) << FracW;
 
@@ -134,7 +155,21 @@ module rc_ray_gen #(
   // A ray takes three consecutive slot cycles (its x, y, z components); a new ray may start
   // only when the previous one's slots are done.
   logic [1:0] rem_q;  // slots of the current ray still to come
-  assign take        = issuing_q & credit & (rem_q == 2'd0);
+  logic       phase0;  // a ray may start (Period 6: phase 0 of the count modulo 6)
+  assign take        = issuing_q & credit & (rem_q == 2'd0) & phase0;
+  if (Shared) begin : g_phase
+    logic [2:0] phase_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        phase_q <= '0;
+      end else begin
+        phase_q <= (phase_q == 3'd5) ? 3'd0 : phase_q + 3'd1;
+      end
+    end
+    assign phase0 = phase_q == 3'd0;
+  end else begin : g_no_phase
+    assign phase0 = 1'b1;
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -199,64 +234,11 @@ module rc_ray_gen #(
   ////////////////
 
   // The components stream through one lane, x, y, z on consecutive cycles; `first` marks x.
-  logic         mx_valid, my_valid, s1_valid, d_valid, q_valid, s01_valid, l2_valid;
-  logic         sq_valid, inv_valid;
-  logic [W-1:0] mx, my, my_d, c0_d, s1, d, q, q_prev, q_z, s01, l2, sq, inv;
+  logic         d_valid, q_valid, l2_valid, sq_valid, inv_valid;
+  logic [W-1:0] d, q, q_prev, l2, sq, inv;
   logic         d_first, q_first;
 
-  // X * cx[a] and Y * cy[a].
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW)) u_mul_x (
-    .clk_i, .rst_ni,
-    .valid_i(s0_valid_q),
-    .a_i    (fx_q),
-    .b_i    (cxs_q),
-    .valid_o(mx_valid),
-    .res_o  (mx)
-  );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW)) u_mul_y (
-    .clk_i, .rst_ni,
-    .valid_i(s0_valid_q),
-    .a_i    (fy_q),
-    .b_i    (cys_q),
-    .valid_o(my_valid),
-    .res_o  (my)
-  );
-  rc_delay #(.Width(W), .Cycles(MulStages)) u_delay_c0 (
-    .clk_i,
-    .data_i(c0s_q),
-    .data_o(c0_d)
-  );
-  // c0[a] + X * cx[a], while Y * cy[a] waits.
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_c0 (
-    .clk_i, .rst_ni,
-    .valid_i(mx_valid),
-    .sub_i  (1'b0),
-    .a_i    (c0_d),
-    .b_i    (mx),
-    .valid_o(s1_valid),
-    .res_o  (s1)
-  );
-  rc_delay #(.Width(W), .Cycles(AddStages)) u_delay_my (
-    .clk_i,
-    .data_i(my),
-    .data_o(my_d)
-  );
-  // dir[a] = (c0[a] + X * cx[a]) + Y * cy[a].
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_cy (
-    .clk_i, .rst_ni,
-    .valid_i(s1_valid),
-    .sub_i  (1'b0),
-    .a_i    (s1),
-    .b_i    (my_d),
-    .valid_o(d_valid),
-    .res_o  (d)
-  );
-  rc_delay #(.Width(1), .Cycles(2 * MulStages + 2 * AddStages)) u_delay_first_q (
-    .clk_i,
-    .data_i(s0_first_q),
-    .data_o(q_first)
-  );
-  rc_delay #(.Width(1), .Cycles(MulStages + 2 * AddStages)) u_delay_first_d (
+  rc_delay #(.Width(1), .Cycles(MulStages + 2 * AddStages + ShiftCy)) u_delay_first_d (
     .clk_i,
     .data_i(s0_first_q),
     .data_o(d_first)
@@ -270,9 +252,12 @@ module rc_ray_gen #(
     .valid_o(q_valid),
     .res_o  (q)
   );
-
-  // (dir x^2 + dir y^2) when y's square arrives, the cycle after x's; then + dir z^2, which
-  // arrives the cycle after y's and waits AddStages - 1 cycles for the sum.
+  rc_delay #(.Width(1), .Cycles(2 * MulStages + 2 * AddStages + ShiftCy)) u_delay_first_q (
+    .clk_i,
+    .data_i(s0_first_q),
+    .data_o(q_first)
+  );
+  // x's square and y's (the cycle after) start the length's first sum.
   logic q_first_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -284,29 +269,189 @@ module rc_ray_gen #(
   always_ff @(posedge clk_i) begin
     q_prev <= q;
   end
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_q01 (
-    .clk_i, .rst_ni,
-    .valid_i(q_first_q),
-    .sub_i  (1'b0),
-    .a_i    (q_prev),
-    .b_i    (q),
-    .valid_o(s01_valid),
-    .res_o  (s01)
-  );
-  rc_delay #(.Width(W), .Cycles(AddStages - 1)) u_delay_qz (
-    .clk_i,
-    .data_i(q),
-    .data_o(q_z)
-  );
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_l2 (
-    .clk_i, .rst_ni,
-    .valid_i(s01_valid),
-    .sub_i  (1'b0),
-    .a_i    (s01),
-    .b_i    (q_z),
-    .valid_o(l2_valid),
-    .res_o  (l2)
-  );
+
+  if (!Shared) begin : g_plain
+    logic         mx_valid, my_valid, s1_valid, s01_valid;
+    logic [W-1:0] mx, my, my_d, c0_d, s1, q_z, s01;
+    // X * cx[a] and Y * cy[a].
+    rc_fp_mul #(.ExpW(ExpW), .FracW(FracW)) u_mul_x (
+      .clk_i, .rst_ni,
+      .valid_i(s0_valid_q),
+      .a_i    (fx_q),
+      .b_i    (cxs_q),
+      .valid_o(mx_valid),
+      .res_o  (mx)
+    );
+    rc_fp_mul #(.ExpW(ExpW), .FracW(FracW)) u_mul_y (
+      .clk_i, .rst_ni,
+      .valid_i(s0_valid_q),
+      .a_i    (fy_q),
+      .b_i    (cys_q),
+      .valid_o(my_valid),
+      .res_o  (my)
+    );
+    rc_delay #(.Width(W), .Cycles(MulStages)) u_delay_c0 (
+      .clk_i,
+      .data_i(c0s_q),
+      .data_o(c0_d)
+    );
+    // c0[a] + X * cx[a], while Y * cy[a] waits.
+    rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_c0 (
+      .clk_i, .rst_ni,
+      .valid_i(mx_valid),
+      .sub_i  (1'b0),
+      .a_i    (c0_d),
+      .b_i    (mx),
+      .valid_o(s1_valid),
+      .res_o  (s1)
+    );
+    rc_delay #(.Width(W), .Cycles(AddStages)) u_delay_my (
+      .clk_i,
+      .data_i(my),
+      .data_o(my_d)
+    );
+    // dir[a] = (c0[a] + X * cx[a]) + Y * cy[a].
+    rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_cy (
+      .clk_i, .rst_ni,
+      .valid_i(s1_valid),
+      .sub_i  (1'b0),
+      .a_i    (s1),
+      .b_i    (my_d),
+      .valid_o(d_valid),
+      .res_o  (d)
+    );
+    // (dir x^2 + dir y^2) when y's square arrives, the cycle after x's; then + dir z^2, which
+    // arrives the cycle after y's and waits AddStages - 1 cycles for the sum.
+    rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_q01 (
+      .clk_i, .rst_ni,
+      .valid_i(q_first_q),
+      .sub_i  (1'b0),
+      .a_i    (q_prev),
+      .b_i    (q),
+      .valid_o(s01_valid),
+      .res_o  (s01)
+    );
+    rc_delay #(.Width(W), .Cycles(AddStages - 1)) u_delay_qz (
+      .clk_i,
+      .data_i(q),
+      .data_o(q_z)
+    );
+    rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_l2 (
+      .clk_i, .rst_ni,
+      .valid_i(s01_valid),
+      .sub_i  (1'b0),
+      .a_i    (s01),
+      .b_i    (q_z),
+      .valid_o(l2_valid),
+      .res_o  (l2)
+    );
+    // u_mul_y runs in lock step with u_mul_x, whose valid drives the next step.
+    logic unused_valid;
+    assign unused_valid = my_valid;
+  end else begin : g_shared
+    // Rays start at phase 0 modulo 6. Times after a ray's take (T): X * cx issues at T + 1 ..
+    // T + 3 (s0_valid_q), Y * cy TimeY later on the same multiplier; c0 + X cx at
+    // T + 1 + MulStages, + Y cy TimeCy after X * cx on the same adder (its operands waited: s1
+    // ShiftCy cycles, Y * cy AddStages); dir leaves HistW cycles after X * cx.
+    localparam int unsigned TimeY  = 3;
+    localparam int unsigned TimeCy = TimeY + MulStages + AddStages;
+    localparam int unsigned HistW  = TimeCy + AddStages;
+    // The length's sums: x^2 + y^2 at TimeL0 after the take (q_first_q), + z^2 AddStages + 1
+    // later on the same adder (the sum waited a cycle, z^2 AddStages).
+    localparam int unsigned TimeL0 = 2 + 2 * MulStages + 2 * AddStages + ShiftCy;
+
+    // vh_q[k]: s0_valid_q k cycles ago; lh_q[k]: q_first_q k cycles ago.
+    logic [HistW:1]         vh_q;
+    logic [2*AddStages+1:1] lh_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        vh_q <= '0;
+        lh_q <= '0;
+      end else begin
+        vh_q <= {vh_q[HistW-1:1], s0_valid_q};
+        lh_q <= {lh_q[2*AddStages:1], q_first_q};
+      end
+    end
+
+    logic         mxy_valid, dsum_valid, lsum_valid;
+    logic [W-1:0] cys_d, mxy, c0_d, dsum, s1_d, my_d, lsum, s01_d, q_z;
+    // X * cx[a], then Y * cy[a] TimeY cycles later (fy_q holds its ray until the next take, at
+    // least 6 cycles after this one).
+    rc_delay #(.Width(W), .Cycles(TimeY)) u_delay_cy (
+      .clk_i,
+      .data_i(cys_q),
+      .data_o(cys_d)
+    );
+    rc_fp_shared #(
+      .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
+      .Time(128'({16'(1 + TimeY), 16'(1)})), .Cycles(16'h000f)
+    ) u_mul_xy (
+      .clk_i, .rst_ni,
+      .issue_i({vh_q[TimeY], s0_valid_q}),
+      .a_i    ({fy_q, fx_q}),
+      .b_i    ({cys_d, cxs_q}),
+      .valid_o(mxy_valid),
+      .res_o  (mxy)
+    );
+    rc_delay #(.Width(W), .Cycles(MulStages)) u_delay_c0 (
+      .clk_i,
+      .data_i(c0s_q),
+      .data_o(c0_d)
+    );
+    rc_delay #(.Width(W), .Cycles(ShiftCy)) u_delay_s1 (
+      .clk_i,
+      .data_i(dsum),
+      .data_o(s1_d)
+    );
+    rc_delay #(.Width(W), .Cycles(AddStages)) u_delay_my (
+      .clk_i,
+      .data_i(mxy),
+      .data_o(my_d)
+    );
+    // c0[a] + X * cx[a], then dir[a] = (c0[a] + X * cx[a]) + Y * cy[a].
+    rc_fp_shared #(
+      .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(2), .Period(Period),
+      .Time(128'({16'(1 + TimeCy), 16'(1 + MulStages)})), .Cycles(16'h000f)
+    ) u_add_dir (
+      .clk_i, .rst_ni,
+      .issue_i({vh_q[TimeCy], vh_q[MulStages]}),
+      .a_i    ({s1_d, c0_d}),
+      .b_i    ({my_d, mxy}),
+      .valid_o(dsum_valid),
+      .res_o  (dsum)
+    );
+    assign d       = dsum;
+    assign d_valid = vh_q[HistW];
+
+    // dir x^2 + dir y^2, then + dir z^2.
+    always_ff @(posedge clk_i) begin
+      s01_d <= lsum;
+    end
+    rc_delay #(.Width(W), .Cycles(AddStages)) u_delay_qz (
+      .clk_i,
+      .data_i(q),
+      .data_o(q_z)
+    );
+    rc_fp_shared #(
+      .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(2), .Period(Period),
+      .Time(128'({16'(TimeL0 + AddStages + 1), 16'(TimeL0)})), .Cycles(16'h0005)
+    ) u_add_len (
+      .clk_i, .rst_ni,
+      .issue_i({lh_q[AddStages+1], q_first_q}),
+      .a_i    ({s01_d, q_prev}),
+      .b_i    ({q_z, q}),
+      .valid_o(lsum_valid),
+      .res_o  (lsum)
+    );
+    assign l2       = lsum;
+    assign l2_valid = lh_q[2*AddStages+1];
+
+    // The shared operators' valids are both users' results; each user's own comes from vh_q or
+    // lh_q.
+    logic unused_valid;
+    assign unused_valid = ^{mxy_valid, dsum_valid, lsum_valid};
+  end
+
   // 1 / sqrt(|dir|^2).
   rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW)) u_sqrt (
     .clk_i, .rst_ni,
@@ -435,10 +580,6 @@ module rc_ray_gen #(
   assign pkt_dir_o     = pkt_dir_q;
   assign pkt_inv_len_o = pkt_inv_q;
   assign pkt_pixel_o   = {pix2 + 32'd1, pix2, pix0 + 32'd1, pix0};
-
-  // u_mul_y runs in lock step with u_mul_x, whose valid drives the next step.
-  logic unused_valid;
-  assign unused_valid = my_valid;
 
   ////////////////
   // Assertions //

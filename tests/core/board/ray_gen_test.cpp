@@ -1,8 +1,9 @@
-// The ray generation unit (rtl/board/rc_ray_gen.sv), verilated, against the golden second ray
-// source (rc::raygen_ray(), rc::PacketSource with RaySource::kRayGen in tb/golden/render.hpp):
-// every packet of a frame, in order, with its mask, pixel ids and every ray's origin, direction
-// and inv_len bit for bit, under seeded random back-pressure on the packet port. Cameras from real
-// scenes, odd and tiny frame sizes, and random register contents (special values included).
+// The ray generation unit (rtl/board/rc_ray_gen.sv), verilated at both periods (3, and 6 with its
+// shared operators), against the golden second ray source (rc::raygen_ray(), rc::PacketSource
+// with RaySource::kRayGen in tb/golden/render.hpp): every packet of a frame, in order, with its
+// mask, pixel ids and every ray's origin, direction and inv_len bit for bit, under seeded random
+// back-pressure on the packet port. Cameras from real scenes, odd and tiny frame sizes, and random
+// register contents (special values included).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,8 +13,10 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <type_traits>
 
-#include "Vrc_ray_gen.h"
+#include "Vrc_ray_gen_p3.h"
+#include "Vrc_ray_gen_p6.h"
 #include "camera.hpp"
 #include "render.hpp"
 #include "verilated_tb.hpp"
@@ -47,11 +50,12 @@ struct Outcome {
   uint64_t packets = 0, rays = 0, mismatches = 0;
 };
 
-// Runs one frame through the unit and checks every packet. stall: probability that pkt_ready_i
+// Runs one frame through the unit M and checks every packet. stall: probability that pkt_ready_i
 // is low in a cycle.
+template <class M>
 Outcome run_frame(const Frame& fr, double stall, uint64_t seed) {
   // Not fatal on error: a failing RTL assertion fails the test (the wrapper's TbError).
-  VerilatedTb<Vrc_ray_gen> tb("ray_gen", false);
+  VerilatedTb<M> tb("ray_gen", false);
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution low(stall);
   const auto tick = [&] { tb.tick(); };
@@ -132,6 +136,23 @@ Frame camera_frame(const Camera& cam, uint32_t w, uint32_t h) {
   return {round_registers<fp24>(camera_registers(cam, w, h)), w, h};
 }
 
+// The unit at each period: a test suite per model.
+template <class M>
+class RayGenRtl : public ::testing::Test {};
+using RayGenModels = ::testing::Types<Vrc_ray_gen_p3, Vrc_ray_gen_p6>;
+struct RayGenNames {
+  template <class M>
+  static std::string GetName(int) {
+    return std::is_same_v<M, Vrc_ray_gen_p3> ? "Period3" : "Period6";
+  }
+};
+TYPED_TEST_SUITE(RayGenRtl, RayGenModels, RayGenNames);
+
+template <class M>
+const char* period_name() {
+  return std::is_same_v<M, Vrc_ray_gen_p3> ? "period 3" : "period 6";
+}
+
 void report(const std::string& what, const Outcome& o) {
   std::printf("[cases] ray_gen rtl %s: %llu cases, %llu mismatches (%llu packets)\n", what.c_str(),
               static_cast<unsigned long long>(o.rays),
@@ -149,7 +170,7 @@ Camera test_camera() {
   return c;
 }
 
-TEST(RayGenRtl, CameraFrames) {
+TYPED_TEST(RayGenRtl, CameraFrames) {
   Outcome all;
   const Camera cam = test_camera();
   const std::array<std::array<uint32_t, 2>, 5> sizes = {
@@ -157,15 +178,17 @@ TEST(RayGenRtl, CameraFrames) {
   uint64_t seed = 1;
   for (const auto& s : sizes)
     for (double stall : {0.0, 0.4}) {
-      const Outcome o = run_frame(camera_frame(cam, s[0], s[1]), stall, seed++);
+      const Outcome o = run_frame<TypeParam>(camera_frame(cam, s[0], s[1]), stall, seed++);
       all.packets += o.packets;
       all.rays += o.rays;
       all.mismatches += o.mismatches;
     }
-  report("camera frames (64x48, 33x17, 1x1, 2x7, 129x3; no stalls and 40% stalls)", all);
+  report(std::string(period_name<TypeParam>()) + ": " +
+             "camera frames (64x48, 33x17, 1x1, 2x7, 129x3; no stalls and 40% stalls)",
+         all);
 }
 
-TEST(RayGenRtl, WideAngleAndOddCameras) {
+TYPED_TEST(RayGenRtl, WideAngleAndOddCameras) {
   Outcome all;
   Camera c = test_camera();
   uint64_t seed = 10;
@@ -174,17 +197,19 @@ TEST(RayGenRtl, WideAngleAndOddCameras) {
       c.fov_deg = fov;
       c.up = up;
       c.eye = {-2e3, 5e-3, 7.5};
-      const Outcome o = run_frame(camera_frame(c, 40, 30), 0.25, seed++);
+      const Outcome o = run_frame<TypeParam>(camera_frame(c, 40, 30), 0.25, seed++);
       all.packets += o.packets;
       all.rays += o.rays;
       all.mismatches += o.mismatches;
     }
-  report("fov 1, 90, 170 degrees, tilted up vectors, far eye (40x30, 25% stalls)", all);
+  report(std::string(period_name<TypeParam>()) + ": " +
+             "fov 1, 90, 170 degrees, tilted up vectors, far eye (40x30, 25% stalls)",
+         all);
 }
 
 // Register contents no camera produces: random bit patterns, including zeros, infinities and
 // NaNs, so the unit's special-value paths (and the format's) are exercised.
-TEST(RayGenRtl, RandomRegisters) {
+TYPED_TEST(RayGenRtl, RandomRegisters) {
   Outcome all;
   std::mt19937_64 rng(7);
   const std::array<uint32_t, 6> specials = {0x000000u, 0x800000u, 0x7f0000u,
@@ -207,22 +232,24 @@ TEST(RayGenRtl, RandomRegisters) {
     }
     fr.width = 1 + static_cast<uint32_t>(rng() % 37);
     fr.height = 1 + static_cast<uint32_t>(rng() % 29);
-    const Outcome o = run_frame(fr, (k % 3) * 0.3, 100 + static_cast<uint64_t>(k));
+    const Outcome o = run_frame<TypeParam>(fr, (k % 3) * 0.3, 100 + static_cast<uint64_t>(k));
     all.packets += o.packets;
     all.rays += o.rays;
     all.mismatches += o.mismatches;
   }
-  report("random registers with special values (12 frames up to 37x29, 0-60% stalls)", all);
+  report(std::string(period_name<TypeParam>()) + ": " +
+             "random registers with special values (12 frames up to 37x29, 0-60% stalls)",
+         all);
 }
 
-TEST(RayGenRtl, EmptyFrameEndsAtOnce) {
+TYPED_TEST(RayGenRtl, EmptyFrameEndsAtOnce) {
   Frame fr = camera_frame(test_camera(), 8, 8);
   fr.width = 0;
-  const Outcome o = run_frame(fr, 0.0, 5);
+  const Outcome o = run_frame<TypeParam>(fr, 0.0, 5);
   EXPECT_EQ(o.packets, 0u);
   fr.width = 8;
   fr.height = 0;
-  EXPECT_EQ(run_frame(fr, 0.0, 6).packets, 0u);
+  EXPECT_EQ(run_frame<TypeParam>(fr, 0.0, 6).packets, 0u);
 }
 
 // The second ray source is close to the first: the fp24 arithmetic of the ray generation unit
