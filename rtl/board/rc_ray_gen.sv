@@ -269,10 +269,23 @@ module rc_ray_gen #(
   always_ff @(posedge clk_i) begin
     q_prev <= q;
   end
+  // c0[a] waits for X * cx[a]; dir z^2 for the length's first sum (ShiftL2 cycles more at
+  // Period 6).
+  logic [W-1:0] c0_d, q_z;
+  rc_delay #(.Width(W), .Cycles(MulStages)) u_delay_c0 (
+    .clk_i,
+    .data_i(c0s_q),
+    .data_o(c0_d)
+  );
+  rc_delay #(.Width(W), .Cycles(AddStages - 1 + ShiftL2)) u_delay_qz (
+    .clk_i,
+    .data_i(q),
+    .data_o(q_z)
+  );
 
   if (!Shared) begin : g_plain
     logic         mx_valid, my_valid, s1_valid, s01_valid;
-    logic [W-1:0] mx, my, my_d, c0_d, s1, q_z, s01;
+    logic [W-1:0] mx, my, my_d, s1, s01;
     // X * cx[a] and Y * cy[a].
     rc_fp_mul #(.ExpW(ExpW), .FracW(FracW)) u_mul_x (
       .clk_i, .rst_ni,
@@ -289,11 +302,6 @@ module rc_ray_gen #(
       .b_i    (cys_q),
       .valid_o(my_valid),
       .res_o  (my)
-    );
-    rc_delay #(.Width(W), .Cycles(MulStages)) u_delay_c0 (
-      .clk_i,
-      .data_i(c0s_q),
-      .data_o(c0_d)
     );
     // c0[a] + X * cx[a], while Y * cy[a] waits.
     rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_c0 (
@@ -331,11 +339,6 @@ module rc_ray_gen #(
       .valid_o(s01_valid),
       .res_o  (s01)
     );
-    rc_delay #(.Width(W), .Cycles(AddStages - 1)) u_delay_qz (
-      .clk_i,
-      .data_i(q),
-      .data_o(q_z)
-    );
     rc_fp_add #(.ExpW(ExpW), .FracW(FracW)) u_add_l2 (
       .clk_i, .rst_ni,
       .valid_i(s01_valid),
@@ -352,29 +355,30 @@ module rc_ray_gen #(
     // Rays start at phase 0 modulo 6. Times after a ray's take (T): X * cx issues at T + 1 ..
     // T + 3 (s0_valid_q), Y * cy TimeY later on the same multiplier; c0 + X cx at
     // T + 1 + MulStages, + Y cy TimeCy after X * cx on the same adder (its operands waited: s1
-    // ShiftCy cycles, Y * cy AddStages); dir leaves HistW cycles after X * cx.
-    localparam int unsigned TimeY  = 3;
+    // ShiftCy cycles, Y * cy AddStages, so Y * cy is ShiftCy later than X * cx); dir leaves
+    // HistW cycles after X * cx.
+    localparam int unsigned TimeY  = ShiftCy;
     localparam int unsigned TimeCy = TimeY + MulStages + AddStages;
     localparam int unsigned HistW  = TimeCy + AddStages;
-    // The length's sums: x^2 + y^2 at TimeL0 after the take (q_first_q), + z^2 AddStages + 1
-    // later on the same adder (the sum waited a cycle, z^2 AddStages).
+    // The length's sums: x^2 + y^2 at TimeL0 after the take (q_first_q), + z^2 AddStages +
+    // ShiftL2 later on the same adder (the sum waited ShiftL2 cycles, z^2 AddStages).
     localparam int unsigned TimeL0 = 2 + 2 * MulStages + 2 * AddStages + ShiftCy;
 
     // vh_q[k]: s0_valid_q k cycles ago; lh_q[k]: q_first_q k cycles ago.
     logic [HistW:1]         vh_q;
-    logic [2*AddStages+1:1] lh_q;
+    logic [2*AddStages+ShiftL2:1] lh_q;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         vh_q <= '0;
         lh_q <= '0;
       end else begin
         vh_q <= {vh_q[HistW-1:1], s0_valid_q};
-        lh_q <= {lh_q[2*AddStages:1], q_first_q};
+        lh_q <= {lh_q[2*AddStages+ShiftL2-1:1], q_first_q};
       end
     end
 
     logic         mxy_valid, dsum_valid, lsum_valid;
-    logic [W-1:0] cys_d, mxy, c0_d, dsum, s1_d, my_d, lsum, s01_d, q_z;
+    logic [W-1:0] cys_d, mxy, dsum, s1_d, my_d, lsum, s01_d;
     // X * cx[a], then Y * cy[a] TimeY cycles later (fy_q holds its ray until the next take, at
     // least 6 cycles after this one).
     rc_delay #(.Width(W), .Cycles(TimeY)) u_delay_cy (
@@ -392,11 +396,6 @@ module rc_ray_gen #(
       .b_i    ({cys_d, cxs_q}),
       .valid_o(mxy_valid),
       .res_o  (mxy)
-    );
-    rc_delay #(.Width(W), .Cycles(MulStages)) u_delay_c0 (
-      .clk_i,
-      .data_i(c0s_q),
-      .data_o(c0_d)
     );
     rc_delay #(.Width(W), .Cycles(ShiftCy)) u_delay_s1 (
       .clk_i,
@@ -424,27 +423,24 @@ module rc_ray_gen #(
     assign d_valid = vh_q[HistW];
 
     // dir x^2 + dir y^2, then + dir z^2.
-    always_ff @(posedge clk_i) begin
-      s01_d <= lsum;
-    end
-    rc_delay #(.Width(W), .Cycles(AddStages)) u_delay_qz (
+    rc_delay #(.Width(W), .Cycles(ShiftL2)) u_delay_s01 (
       .clk_i,
-      .data_i(q),
-      .data_o(q_z)
+      .data_i(lsum),
+      .data_o(s01_d)
     );
     rc_fp_shared #(
       .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(2), .Period(Period),
-      .Time(128'({16'(TimeL0 + AddStages + 1), 16'(TimeL0)})), .Cycles(16'h0005)
+      .Time(128'({16'(TimeL0 + AddStages + ShiftL2), 16'(TimeL0)})), .Cycles(16'h0005)
     ) u_add_len (
       .clk_i, .rst_ni,
-      .issue_i({lh_q[AddStages+1], q_first_q}),
+      .issue_i({lh_q[AddStages+ShiftL2], q_first_q}),
       .a_i    ({s01_d, q_prev}),
       .b_i    ({q_z, q}),
       .valid_o(lsum_valid),
       .res_o  (lsum)
     );
     assign l2       = lsum;
-    assign l2_valid = lh_q[2*AddStages+1];
+    assign l2_valid = lh_q[2*AddStages+ShiftL2];
 
     // The shared operators' valids are both users' results; each user's own comes from vh_q or
     // lh_q.

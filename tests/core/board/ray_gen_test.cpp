@@ -136,26 +136,24 @@ Frame camera_frame(const Camera& cam, uint32_t w, uint32_t h) {
   return {round_registers<fp24>(camera_registers(cam, w, h)), w, h};
 }
 
-// The unit at each period: a test suite per model.
+// The unit at each period (the models' -GPeriod): a test suite per model.
+template <class M>
+constexpr unsigned kPeriod = std::is_same_v<M, Vrc_ray_gen_p3> ? 3 : 6;
 template <class M>
 class RayGenRtl : public ::testing::Test {};
 using RayGenModels = ::testing::Types<Vrc_ray_gen_p3, Vrc_ray_gen_p6>;
 struct RayGenNames {
   template <class M>
   static std::string GetName(int) {
-    return std::is_same_v<M, Vrc_ray_gen_p3> ? "Period3" : "Period6";
+    return "Period" + std::to_string(kPeriod<M>);
   }
 };
 TYPED_TEST_SUITE(RayGenRtl, RayGenModels, RayGenNames);
 
 template <class M>
-const char* period_name() {
-  return std::is_same_v<M, Vrc_ray_gen_p3> ? "period 3" : "period 6";
-}
-
 void report(const std::string& what, const Outcome& o) {
-  std::printf("[cases] ray_gen rtl %s: %llu cases, %llu mismatches (%llu packets)\n", what.c_str(),
-              static_cast<unsigned long long>(o.rays),
+  std::printf("[cases] ray_gen rtl period %u: %s: %llu cases, %llu mismatches (%llu packets)\n",
+              kPeriod<M>, what.c_str(), static_cast<unsigned long long>(o.rays),
               static_cast<unsigned long long>(o.mismatches),
               static_cast<unsigned long long>(o.packets));
   EXPECT_EQ(o.mismatches, 0u);
@@ -183,9 +181,7 @@ TYPED_TEST(RayGenRtl, CameraFrames) {
       all.rays += o.rays;
       all.mismatches += o.mismatches;
     }
-  report(std::string(period_name<TypeParam>()) + ": " +
-             "camera frames (64x48, 33x17, 1x1, 2x7, 129x3; no stalls and 40% stalls)",
-         all);
+  report<TypeParam>("camera frames (64x48, 33x17, 1x1, 2x7, 129x3; no stalls and 40% stalls)", all);
 }
 
 TYPED_TEST(RayGenRtl, WideAngleAndOddCameras) {
@@ -202,9 +198,7 @@ TYPED_TEST(RayGenRtl, WideAngleAndOddCameras) {
       all.rays += o.rays;
       all.mismatches += o.mismatches;
     }
-  report(std::string(period_name<TypeParam>()) + ": " +
-             "fov 1, 90, 170 degrees, tilted up vectors, far eye (40x30, 25% stalls)",
-         all);
+  report<TypeParam>("fov 1, 90, 170 degrees, tilted up vectors, far eye (40x30, 25% stalls)", all);
 }
 
 // Register contents no camera produces: random bit patterns, including zeros, infinities and
@@ -237,9 +231,8 @@ TYPED_TEST(RayGenRtl, RandomRegisters) {
     all.rays += o.rays;
     all.mismatches += o.mismatches;
   }
-  report(std::string(period_name<TypeParam>()) + ": " +
-             "random registers with special values (12 frames up to 37x29, 0-60% stalls)",
-         all);
+  report<TypeParam>("random registers with special values (12 frames up to 37x29, 0-60% stalls)",
+                    all);
 }
 
 TYPED_TEST(RayGenRtl, EmptyFrameEndsAtOnce) {
