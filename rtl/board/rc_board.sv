@@ -59,7 +59,7 @@
 //   and LitShadowPackets (rc_tracer's Slots and ShadowPackets; defaults [board] lit_threads,
 //   lit_slots, lit_shadow_packets: fewer than the chip's, for area, docs/fpga.md "Status") and
 //   LitRaygenPeriod (rc_ray_gen's Period with Lit, [board] lit_raygen_period; without Lit it is
-//   [board] raygen_period); the ROM depths and hex files; FbPixels. CoreThreads is derived: the
+//   [board] raygen_period); LitLightPeriod (rc_tracer's LightPeriod, [board] lit_light_period); the ROM depths and hex files; FbPixels. CoreThreads is derived: the
 //   threads of the core built (LitThreads with Lit, else Threads).
 // - Illegal input: none on the register port (writes while busy are ignored); reading registers
 //   that do not exist returns 0.
@@ -74,6 +74,7 @@ module rc_board #(
   parameter int unsigned LitSlots  = rc_pkg::BoardLitSlots,
   parameter int unsigned LitShadowPackets = rc_pkg::BoardLitShadowPackets,
   parameter int unsigned LitRaygenPeriod = rc_pkg::BoardLitRaygenPeriod,
+  parameter int unsigned LitLightPeriod = rc_pkg::BoardLitLightPeriod,
   parameter int unsigned NodeDepth = 1,
   parameter int unsigned ListDepth = 1,
   parameter int unsigned TriDepth  = 1,
@@ -447,7 +448,8 @@ module rc_board #(
       .Threads   (LitThreads),
       .SetupUnits(LitSetupUnits),
       .Slots     (LitSlots),
-      .ShadowPackets(LitShadowPackets)
+      .ShadowPackets(LitShadowPackets),
+      .LightPeriod(LitLightPeriod)
     ) u_tracer (
     .clk_i,
     .rst_ni,

@@ -31,10 +31,12 @@
 //   fall at different phases share an operator and no two jobs meet there. Modulo 3: one square
 //   root and one divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after
 //   its sum), and cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H 1).
-//   Modulo 6 (rc_fp_shared, which checks the phases at elaboration): the power's steps i, i + 2
-//   and i + 4 share a multiplier (4 for 10 steps), three multipliers each take two streams (kd *
-//   ambient and ks * spec, ka * w and kd * cos, L * inv and the term's last * w), one the two
-//   scalars dist and nh, and dist2's two sums go through the adders of the streams L and H.
+//   Every product outside the dot products (the streams L * L, L * inv, kd * ambient, ka * w, kd * cos, ks * spec,
+//   sum * lcol and its * w, the scalars dist and nh, the power's steps) is a user of one pool of
+//   multipliers (rc_fp_pool), which places each on the first multiplier whose users' phases
+//   modulo Period it does not meet: 9 multipliers at Period 6, 6 at 12. Modulo 6 (rc_fp_shared,
+//   which checks the phases at elaboration), dist2's two sums go through the adders of the
+//   streams L and H.
 //   Values wait for their operations in rc_delay lines (short) and rc_delay_ram memories (long),
 //   so a job may follow another after Period cycles or after any gap (rc_serial_sched keeps the
 //   slots and the job times). The last stage collects each stream's three components into the
@@ -230,34 +232,22 @@ module rc_light_term #(
   //////////////////////////////////////////////////////////
 
   logic [W-1:0] l_s, dist2, l_at_inv, d2_at_inv, lh_pt, dist_res;
-  logic [W-1:0] ll, ll_d1, ll_dz, la, d01;
-  logic         la_vld, ll_vld;
+  logic [W-1:0] ll, ll_d1, ll_dz, d01;
 
-  // dist2 = (L.x L.x + L.y L.y) + L.z L.z, as rc_serial_dot3: x + y as y's product leaves, then
-  // + z. Its two scalar sums (phase 5 of 6) go through the adders of the streams L = lpos - p and
-  // H = lh - v (phases 0 to 2): x + y through u_add_l, + z through u_add_h (below).
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(2), .Sub(8'b01), .Period(Period),
-    .Time(128'({16'(TimeLl + 1), 16'(0)})), .Cycles(16'h0007)
-  ) u_add_l (
-    .clk_i, .rst_ni, .issue_i({at[TimeLl + 1], strm[0]}), .a_i({ll_d1, lp_s}), .b_i({ll, p_s}),
-    .valid_o(la_vld), .res_o(la)
-  );
-  assign l_s = la;
-  assign d01 = la;
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_ll (
-    .clk_i, .rst_ni, .valid_i(strm[TimeL]), .a_i(l_s), .b_i(l_s), .valid_o(ll_vld), .res_o(ll)
-  );
+  // L = lpos - p: in u_adds (below), as the unit's other sums outside the dot products.
+  // dist2 = (L.x L.x + L.y L.y) + L.z L.z, as rc_serial_dot3: x + y as y's product leaves (at
+  // TimeLl + 1), then + z (at TimeD01), both in u_adds.
+  // L * L: in u_muls (below), as the unit's other products outside the dot products.
   rc_delay #(.Width(W), .Cycles(1)) u_dly_llx (.clk_i, .data_i(ll), .data_o(ll_d1));
   rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_llz (.clk_i, .data_i(ll), .data_o(ll_dz));
   rc_delay_ram #(.Width(W), .Cycles(TimeInv - TimeL)) u_dly_l (
     .clk_i, .rst_ni, .data_i(l_s), .data_o(l_at_inv)
   );
-  // lh = L * inv: in u_mul_lhw (below, with the terms' last product).
+  // lh = L * inv: in u_muls.
   rc_delay_ram #(.Width(W), .Cycles(TimeInv - TimeD2)) u_dly_d2 (
     .clk_i, .rst_ni, .data_i(dist2), .data_o(d2_at_inv)
   );
-  // dist = dist2 * inv: in u_mul_dnh (below, with nh).
+  // dist = dist2 * inv: in u_muls (below).
 
   // A directional light: its vector and +inf instead (the light's kind and vector wait here).
   logic [W-1:0] lp_at_lh, lh_s, thi_s;
@@ -286,19 +276,8 @@ module rc_light_term #(
   logic [W-1:0] h_s, h_s1, dots, nhd, ih, nhd_d;
   logic [W-1:0] nh;
   logic [2:0]   dp_vld;
-  logic         hd_vld, dxy_vld, dots_vld;
-  logic         dnh_vld;
-  // H = lh - v, and dist2's + z (at TimeD01).
-  logic [W-1:0] hd;
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(2), .Sub(8'b01), .Period(Period),
-    .Time(128'({16'(TimeD01), 16'(TimeLh)})), .Cycles(16'h0007)
-  ) u_add_h (
-    .clk_i, .rst_ni, .issue_i({at[TimeD01], strm[TimeLh]}), .a_i({d01, lh_s}),
-    .b_i({ll_dz, v_at_lh}), .valid_o(hd_vld), .res_o(hd)
-  );
-  assign h_s   = hd;
-  assign dist2 = hd;
+  logic         dxy_vld, dots_vld;
+  // H = lh - v: in u_adds.
   rc_delay #(.Width(W), .Cycles(1)) u_dly_h1 (.clk_i, .data_i(h_s), .data_o(h_s1));
   // cos = N.lh, H.H and N.H, each (x + y) + z, through two adders shared by phase: N.lh's stream
   // issued 2 cycles late, H.H's on time, N.H's 1 late, so their sums come at times that differ
@@ -338,60 +317,22 @@ module rc_light_term #(
   rc_delay_ram #(.Width(W), .Cycles(TimeIh - TimeHh - 1)) u_dly_nhd (
     .clk_i, .rst_ni, .data_i(nhd), .data_o(nhd_d)
   );
-  // One multiplier for the two scalar products dist = dist2 * inv (at TimeInv) and
-  // nh = N.H * (1 / sqrt(H.H)) (at TimeIh): their times differ modulo Period.
-  logic [W-1:0] dnh;
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
-    .Time(128'({16'(TimeIh), 16'(TimeInv)})), .Cycles(16'h5555)
-  ) u_mul_dnh (
-    .clk_i, .rst_ni, .issue_i({at[TimeIh], at[TimeInv]}), .a_i({nhd_d, d2_at_inv}),
-    .b_i({ih, inv_res}), .valid_o(dnh_vld), .res_o(dnh)
-  );
-  assign dist_res = dnh;
-  assign nh       = dnh;
+  // dist = dist2 * inv (at TimeInv) and nh = N.H * (1 / sqrt(H.H)) (at TimeIh): in u_muls.
+  logic [W-1:0] dist_p, nh_p;
+  assign dist_res = dist_p;
+  assign nh       = nh_p;
 
   //////////////////////////////////////////////////////////
   // spec = lt(0, nh) ? pow(nh, ns) : +0                  //
   //////////////////////////////////////////////////////////
 
-  // Step i at T_i = TimeNh + i * PowStep: b * b at T_i, r * b at T_i + 1. Word i of b_src and
-  // r_src holds b_i and r_i at T_i (flat: Yosys 0.23 reads no multi-dimensional packed arrays);
-  // r_src's word ExpBits is the power at TimeSpec. The steps share PowMuls multipliers: step i
-  // uses PowMul(i) = (i mod 2) + 2 (i / 6), with the steps i + 2 and i + 4, which issue 2 PowStep
-  // and 4 PowStep cycles later (with PowStep 5 and Period 6 each step's two cycles are a
-  // different pair of every six; rc_fp_shared checks the phases).
-  localparam int unsigned PowMuls = 2 * (ExpBits / 6) + ((ExpBits % 6 == 0) ? 0 :
-                                                          (ExpBits % 6 == 1) ? 1 : 2);
-
-  // Step i's multiplier (its group), and group g's step m (m = 0 .. 2, the inverse).
-  function automatic int unsigned pow_mul(input int unsigned i);
-    pow_mul = (i % 2) + 2 * (i / 6);
-  endfunction
-  function automatic int unsigned pow_step(input int unsigned g, input int unsigned m);
-    pow_step = 6 * (g / 2) + (g % 2) + 2 * m;
-  endfunction
-  // Group g's steps' issue times (words of rc_fp_shared's Time; those past the group's last step
-  // are not read).
-  function automatic logic [127:0] pow_times(input int unsigned g);
-    pow_times = '0;
-    for (int unsigned m = 0; m < 3; m++) begin
-      pow_times[16*m +: 16] = 16'(TimeNh + pow_step(g, m) * PowStep);
-    end
-  endfunction
-  // Group g's steps: pow_step(g, m) for m = 0 .. pow_steps(g) - 1.
-  function automatic int unsigned pow_steps(input int unsigned g);
-    pow_steps = 0;
-    for (int unsigned m = 0; m < 3; m++) begin
-      if (pow_step(g, m) < ExpBits) pow_steps = pow_steps + 1;
-    end
-  endfunction
-
+  // Step i at T_i = TimeNh + i * PowStep: b * b at T_i, r * b at T_i + 1 (u_muls' user 10 + i,
+  // two cycles). Word i of b_src and r_src holds b_i and r_i at T_i (flat: Yosys 0.23 reads no
+  // multi-dimensional packed arrays); r_src's word ExpBits is the power at TimeSpec.
   logic [ExpBits*W-1:0]     b_src, b_d1_q, r_d1_q, step_a, step_b;
   logic [(ExpBits+1)*W-1:0] r_src;
   logic [ExpBits-1:0]       step_issue;
-  logic [PowMuls*W-1:0]     pow_prod;
-  logic [PowMuls-1:0]       pow_vld, pow_vld_ok;
+  logic [ExpBits*W-1:0]     pow_prod;
   logic [ExpBits-1:0]       ns_at_nh;
 
   rc_delay_ram #(.Width(ExpBits), .Cycles(TimeNh)) u_dly_ns (
@@ -412,7 +353,7 @@ module rc_light_term #(
     assign step_issue[i]     = at[TimeNh + i*PowStep] | at[TimeNh + i*PowStep + 1];
     assign step_a[i*W +: W] = at[TimeNh + i*PowStep + 1] ? r_d1_q[i*W +: W] : b_src[i*W +: W];
     assign step_b[i*W +: W] = at[TimeNh + i*PowStep + 1] ? b_d1_q[i*W +: W] : b_src[i*W +: W];
-    assign prod = pow_prod[pow_mul(i)*W +: W];
+    assign prod = pow_prod[i*W +: W];
     // r_i waits from T_i + 1 to T_{i+1}; bit i of ns arrives at T_{i+1}.
     rc_delay #(.Width(W), .Cycles(Lm)) u_dly_r (
       .clk_i, .data_i(r_d1_q[i*W +: W]), .data_o(r_keep)
@@ -429,35 +370,6 @@ module rc_light_term #(
     end
   end
 
-  for (genvar g = 0; g < PowMuls; g++) begin : g_pow_mul
-    localparam int unsigned N = pow_steps(g);
-    logic [N-1:0]   issue, due;
-    logic [N*W-1:0] ga, gb;
-    for (genvar m = 0; m < N; m++) begin : g_step
-      localparam int unsigned I = pow_step(g, m);
-      assign issue[m]     = step_issue[I];
-      assign ga[m*W +: W] = step_a[I*W +: W];
-      assign gb[m*W +: W] = step_b[I*W +: W];
-      assign due[m]       = at[TimeNh + I*PowStep + Lm] | at[TimeNh + I*PowStep + Lm + 1];
-    end
-    if (N == 1) begin : g_alone
-      // A last group of one step: its own multiplier.
-      rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_pow (
-        .clk_i, .rst_ni, .valid_i(issue[0]), .a_i(ga), .b_i(gb), .valid_o(pow_vld[g]),
-        .res_o(pow_prod[g*W +: W])
-      );
-    end else begin : g_shared
-      rc_fp_shared #(
-        .ExpW(ExpW), .FracW(FracW), .Users(N), .Period(Period),
-        .Time(pow_times(g)), .Cycles(16'haaaa)
-      ) u_mul_pow (
-        .clk_i, .rst_ni, .issue_i(issue), .a_i(ga), .b_i(gb), .valid_o(pow_vld[g]),
-        .res_o(pow_prod[g*W +: W])
-      );
-    end
-    assign pow_vld_ok[g] = pow_vld[g] == (|due);
-  end
-
   logic nh_pos_at_spec;
   rc_delay #(.Width(1), .Cycles(ExpBits * PowStep)) u_dly_nhpos (
     .clk_i, .data_i(pos(nh)), .data_o(nh_pos_at_spec)
@@ -469,45 +381,30 @@ module rc_light_term #(
   //////////////////////////////////////////////////////////
 
   logic [W-1:0] kd_at_cos, kdcos, kdcos_d, ks_at_spec, ksspec, sum, lc_at_sum, sl, w_at_sl, x_s;
-  logic         sum_vld, sl_vld, lhw_vld;
   rc_delay_ram #(.Width(W), .Cycles(TimeCos)) u_dly_kd (
     .clk_i, .rst_ni, .data_i(kd_s), .data_o(kd_at_cos)
   );
-  // kd * cos: in u_mul_kca (below, with the ambient term's ka * w).
+  // kd * cos: in u_muls (below).
   rc_delay_ram #(.Width(W), .Cycles(TimeSpec - TimeCos)) u_dly_kdcos (
     .clk_i, .rst_ni, .data_i(kdcos), .data_o(kdcos_d)
   );
   rc_delay_ram #(.Width(W), .Cycles(TimeSpec)) u_dly_ks (
     .clk_i, .rst_ni, .data_i(ks_s), .data_o(ks_at_spec)
   );
-  // ks * spec: in u_mul_kas (below, with kd * ambient).
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_sum (
-    .clk_i, .rst_ni, .valid_i(strm[TimeSpec + Lm]), .sub_i(1'b0), .a_i(kdcos_d), .b_i(ksspec),
-    .valid_o(sum_vld), .res_o(sum)
-  );
+  // ks * spec: in u_muls.
+  // kd cos + ks spec: in u_adds.
   rc_delay_ram #(.Width(W), .Cycles(TimeSum)) u_dly_lc (
     .clk_i, .rst_ni, .data_i(lc_s), .data_o(lc_at_sum)
   );
-  rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(Lm)) u_mul_lc (
-    .clk_i, .rst_ni, .valid_i(strm[TimeSum]), .a_i(sum), .b_i(lc_at_sum), .valid_o(sl_vld),
-    .res_o(sl)
-  );
+  // (...) * lcol: in u_muls.
   // w is the input register's: a delay of T gives it at T, T + 1, T + 2.
   rc_delay_ram #(.Width(W), .Cycles(TimeSum + Lm)) u_dly_w (
     .clk_i, .rst_ni, .data_i(w_q), .data_o(w_at_sl)
   );
-  // One multiplier for the streams lh = L * inv (at TimeInv) and (... * lcol) * w (at
-  // TimeSum + Lm): their three cycles fall at different phases modulo Period.
-  logic [W-1:0] lhw;
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
-    .Time(128'({16'(TimeSum + Lm), 16'(TimeInv)})), .Cycles(16'hffff)
-  ) u_mul_lhw (
-    .clk_i, .rst_ni, .issue_i({strm[TimeSum + Lm], strm[TimeInv]}), .a_i({sl, l_at_inv}),
-    .b_i({w_at_sl, inv_b}), .valid_o(lhw_vld), .res_o(lhw)
-  );
+  // lh = L * inv (at TimeInv) and (... * lcol) * w (at TimeSum + Lm): in u_muls.
+  logic [W-1:0] lhw, xw;
   assign lh_pt = lhw;
-  assign x_s   = lhw;
+  assign x_s   = xw;
   logic [FW-1:0] term_s;
   logic          term_vld;
   rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_t (
@@ -524,35 +421,88 @@ module rc_light_term #(
 
   logic [W-1:0]  ka, w_at_ka, aw;
   logic [FW-1:0] amb_s, amb_at_fix;
-  logic          kas_vld, kca_vld, amb_vld;
-  // Two multipliers, each for two streams at different phases modulo Period: kd * ambient (at
-  // 0) with ks * spec (at TimeSpec), and ka * w (at Lm) with kd * cos (at TimeCos).
-  logic [W-1:0] kas, kca;
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
-    .Time(128'({16'(TimeSpec), 16'(0)})), .Cycles(16'hffff)
-  ) u_mul_kas (
-    .clk_i, .rst_ni, .issue_i({strm[TimeSpec], strm[0]}), .a_i({ks_at_spec, kd_s}),
-    .b_i({spec_b, ambient_i}), .valid_o(kas_vld), .res_o(kas)
-  );
-  assign ka     = kas;
-  assign ksspec = kas;
+  logic          amb_vld;
+  // kd * ambient (at 0) and ka * w (at Lm): in u_muls.
   rc_delay #(.Width(W), .Cycles(Lm)) u_dly_wa (.clk_i, .data_i(w_q), .data_o(w_at_ka));
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
-    .Time(128'({16'(TimeCos), 16'(Lm)})), .Cycles(16'hffff)
-  ) u_mul_kca (
-    .clk_i, .rst_ni, .issue_i({strm[TimeCos], strm[Lm]}), .a_i({kd_at_cos, ka}),
-    .b_i({cos_b, w_at_ka}), .valid_o(kca_vld), .res_o(kca)
-  );
-  assign aw    = kca;
-  assign kdcos = kca;
   rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_a (
     .clk_i, .rst_ni, .valid_i(strm[2 * Lm]), .x_i(aw), .valid_o(amb_vld), .out_o(amb_s)
   );
   rc_delay_ram #(.Width(FW), .Cycles(TimeFix - (2 * Lm + 1))) u_dly_amb (
     .clk_i, .rst_ni, .data_i(amb_s), .data_o(amb_at_fix)
   );
+
+  //////////////////////////////////////////////////////////
+  // Products                                             //
+  //////////////////////////////////////////////////////////
+
+  // Every product of the unit, each a user of one pool of multipliers at its time in the
+  // schedule (three cycles for a stream, one for a scalar, two for a power step): rc_fp_pool
+  // places the users on as few multipliers as their phases modulo Period allow (9 at Period 6,
+  // 6 at 12 with the default fp_stages and ExpBits). Each product is read at its own time.
+  localparam int unsigned MulUsers = 10 + ExpBits;
+
+  // User k's issue time at [16k +: 16] and cycles at [2k +: 2].
+  function automatic logic [511:0] mul_times();
+    mul_times = '0;
+    mul_times[16*0 +: 16] = 16'(0);           // kd * ambient
+    mul_times[16*1 +: 16] = 16'(TimeSpec);    // ks * spec
+    mul_times[16*2 +: 16] = 16'(Lm);          // ka * w
+    mul_times[16*3 +: 16] = 16'(TimeCos);     // kd * cos
+    mul_times[16*4 +: 16] = 16'(TimeInv);     // lh = L * inv
+    mul_times[16*5 +: 16] = 16'(TimeSum + Lm); // (sum * lcol) * w
+    mul_times[16*6 +: 16] = 16'(TimeSum);     // sum * lcol
+    mul_times[16*7 +: 16] = 16'(TimeL);       // L * L
+    mul_times[16*8 +: 16] = 16'(TimeInv);     // dist = dist2 * inv
+    mul_times[16*9 +: 16] = 16'(TimeIh);      // nh = N.H * (1 / sqrt(H.H))
+    for (int unsigned i = 0; i < ExpBits; i++) begin
+      mul_times[16*(10+i) +: 16] = 16'(TimeNh + i * PowStep);  // power step i
+    end
+  endfunction
+  function automatic logic [63:0] mul_cycles();
+    mul_cycles = '0;
+    for (int unsigned k = 0; k < 8; k++) mul_cycles[2*k +: 2] = 2'd3;
+    mul_cycles[2*8 +: 2] = 2'd1;
+    mul_cycles[2*9 +: 2] = 2'd1;
+    for (int unsigned i = 0; i < ExpBits; i++) mul_cycles[2*(10+i) +: 2] = 2'd2;
+  endfunction
+
+  logic [MulUsers-1:0]   mul_issue, mul_vld;
+  logic [MulUsers*W-1:0] mul_a, mul_b, mul_res;
+  assign mul_issue = {step_issue, at[TimeIh], at[TimeInv], strm[TimeL], strm[TimeSum],
+                      strm[TimeSum + Lm], strm[TimeInv], strm[TimeCos], strm[Lm],
+                      strm[TimeSpec], strm[0]};
+  assign mul_a     = {step_a, nhd_d, d2_at_inv, l_s, sum, sl, l_at_inv, kd_at_cos, ka,
+                      ks_at_spec, kd_s};
+  assign mul_b     = {step_b, ih, inv_res, l_s, lc_at_sum, w_at_sl, inv_b, cos_b, w_at_ka,
+                      spec_b, ambient_i};
+  rc_fp_pool #(
+    .ExpW(ExpW), .FracW(FracW), .Users(MulUsers), .Period(Period), .Time(mul_times()),
+    .Cycles(mul_cycles())
+  ) u_muls (
+    .clk_i, .rst_ni, .issue_i(mul_issue), .a_i(mul_a), .b_i(mul_b), .valid_o(mul_vld),
+    .res_o(mul_res)
+  );
+  assign {pow_prod, nh_p, dist_p, ll, sl, xw, lhw, kdcos, aw, ksspec, ka} = mul_res;
+
+  // The sums outside the dot products, likewise in one pool of adders (3 at Period 6, 2 at 12):
+  // the streams L = lpos - p (at 0), H = lh - v (at TimeLh) and kd cos + ks spec (at TimeSpec +
+  // Lm), and dist2's scalar sums x + y (at TimeLl + 1) and + z (at TimeD01).
+  localparam logic [511:0] AddTimes  = 512'({16'(TimeD01), 16'(TimeLl + 1), 16'(TimeSpec + Lm),
+                                              16'(TimeLh), 16'(0)});
+  localparam logic [63:0]  AddCycles = 64'({2'd1, 2'd1, 2'd3, 2'd3, 2'd3});
+  logic [4:0]   add_issue, add_vld;
+  logic [5*W-1:0] add_a, add_b, add_res;
+  assign add_issue = {at[TimeD01], at[TimeLl + 1], strm[TimeSpec + Lm], strm[TimeLh], strm[0]};
+  assign add_a     = {d01, ll_d1, kdcos_d, lh_s, lp_s};
+  assign add_b     = {ll_dz, ll, ksspec, v_at_lh, p_s};
+  rc_fp_pool #(
+    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(5), .Sub(32'b00011), .Period(Period),
+    .Time(AddTimes), .Cycles(AddCycles)
+  ) u_adds (
+    .clk_i, .rst_ni, .issue_i(add_issue), .a_i(add_a), .b_i(add_b), .valid_o(add_vld),
+    .res_o(add_res)
+  );
+  assign {dist2, d01, sum, h_s, l_s} = add_res;
 
   //////////////////////////////////////
   // Collect the streams at TimeFix   //
@@ -619,18 +569,29 @@ module rc_light_term #(
   // Each operation's result leaves at the time the schedule above gives it: the fp units' valid
   // chains agree with the stream starts, so no value is read at the wrong cycle.
   Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-      la_vld == (strm[TimeL] | at[TimeD01]) && ll_vld == strm[TimeLl] &&
-      hd_vld == (strm[TimeH] | at[TimeD2]) && rt_vld == (at[TimeSq1] | at[TimeHs + Ls]) &&
+      rt_vld == (at[TimeSq1] | at[TimeHs + Ls]) &&
       rinv_vld == (at[TimeInv] | at[TimeIh]) &&
-      lhw_vld == (strm[TimeLh] | strm[TimeX]) && dnh_vld == (at[TimeLh] | at[TimeNh]) &&
       dp_vld == {strm[TimeH + 1 + Lm], strm[TimeH + Lm], strm[TimeLh + 2 + Lm]} &&
       dxy_vld == (at[TimeLh + 2 + Lm + 1 + La] | at[TimeH + Lm + 1 + La] |
                   at[TimeH + 1 + Lm + 1 + La]) &&
       dots_vld == (at[TimeCos] | at[TimeHh] | at[TimeHh + 1]) &&
-      (&pow_vld_ok) && kca_vld == (strm[TimeCos + Lm] | strm[2 * Lm]) &&
-      kas_vld == (strm[TimeSpec + Lm] | strm[Lm]) &&
-      sum_vld == strm[TimeSum] && sl_vld == strm[TimeSum + Lm] &&
       term_vld == strm[TimeFix] && amb_vld == strm[2 * Lm + 1]);
+  // Every product leaves its multiplier when its user reads it, Lm cycles after its issue (the
+  // pool's multipliers' valid chains, which also carry the other users' products).
+  logic [MulUsers-1:0] mul_due;
+  for (genvar i = 0; i < ExpBits; i++) begin : g_pow_due
+    assign mul_due[10 + i] = at[TimeNh + i*PowStep + Lm] | at[TimeNh + i*PowStep + Lm + 1];
+  end
+  assign mul_due[9:0] = {at[TimeNh], at[TimeLh], strm[TimeLl], strm[TimeSum + Lm], strm[TimeX],
+                         strm[TimeLh], strm[TimeCos + Lm], strm[2 * Lm], strm[TimeSpec + Lm],
+                         strm[Lm]};
+  Products_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              (mul_due & ~mul_vld) == '0);
+  // Likewise every sum of u_adds, La cycles after its issue.
+  logic [4:0] add_due;
+  assign add_due = {at[TimeD2], at[TimeD01], strm[TimeSum], strm[TimeH], strm[TimeL]};
+  Sums_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                          (add_due & ~add_vld) == '0);
   // ready_o must be known once out of reset (upstream acts on it).
   ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));

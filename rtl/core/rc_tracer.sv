@@ -53,7 +53,8 @@
 //   CoreStatusBadAddress on an error response of lshd_* or lmat_* (its hit is lit as black).
 // - Parameters: the core's (passed on); Slots >= 1 ([tracer] slots); FetchEntries a power of
 //   two >= 2 ([tracer] fetch_entries); ShadowPackets >= 1 ([tracer] shadow_packets); MaxLights
-//   ([light] max_lights); MaxBounces ([light] bounce_limit).
+//   ([light] max_lights); MaxBounces ([light] bounce_limit); LightPeriod (rc_hit_light's Period,
+//   6 or 12: [light] unit_period).
 // - Illegal input: light_count_i of 0 or above MaxLights; max_bounces_i above MaxBounces; a
 //   packet kind other than primary (assertions catch all three).
 // - Reset: rst_ni (active low, asynchronous) clears control state.
@@ -71,6 +72,7 @@ module rc_tracer #(
   parameter int unsigned MaxLights      = rc_pkg::LightMaxLights,
   parameter int unsigned MaxBounces     = rc_pkg::LightBounceLimit,
   parameter int unsigned ShadowPackets  = rc_pkg::TracerShadowPackets,
+  parameter int unsigned LightPeriod    = rc_pkg::LightUnitPeriod,
   // Derived (do not override).
   parameter int unsigned W              = 1 + ExpW + FracW,
   parameter int unsigned TagW           = rc_pkg::CoreTagBits,
@@ -810,7 +812,8 @@ module rc_tracer #(
     .ExpW     (ExpW),
     .FracW    (FracW),
     .TagW     (HlTagW),
-    .MaxLights(MaxLights)
+    .MaxLights(MaxLights),
+    .Period   (LightPeriod)
   ) u_hit_light (
     .clk_i,
     .rst_ni,

@@ -26,9 +26,12 @@
 #include "Vrc_fp_to_u8.h"
 #include "Vrc_fp_twice.h"
 #include "Vrc_hit_geom.h"
+#include "Vrc_hit_geom_p12.h"
 #include "Vrc_hit_light.h"
+#include "Vrc_hit_light_p12.h"
 #include "Vrc_light_byte.h"
 #include "Vrc_light_term.h"
+#include "Vrc_light_term_p12.h"
 #include "Vrc_ray_setup.h"
 #include "Vrc_shade_unit.h"
 #include "Vrc_trav_step.h"
@@ -558,7 +561,8 @@ struct HitGeomUnit {
              w_refract == o.w_refract;
     }
   };
-  static void init(Vrc_hit_geom&) {}
+  template <class V>  // rc_hit_geom at either light period
+  static void init(V&) {}
   template <class V>  // rc_hit_geom, or rc_hit_light (the same ports for a hit)
   static void drive(V& d, const In& in) {
     for (int a = 0; a < 3; ++a) {
@@ -575,7 +579,8 @@ struct HitGeomUnit {
     d.mirror_i = in.mirror.bits();
     d.transmit_i = in.transmit.bits();
   }
-  static Out read(const Vrc_hit_geom& d) {
+  template <class V>
+  static Out read(const V& d) {
     Out o;
     o.back = d.back_o;
     o.mirror = d.mirror_o;
@@ -728,8 +733,12 @@ struct LightTermUnit {
       return present == o.present && lh == o.lh && t_hi == o.t_hi && term == o.term && amb == o.amb;
     }
   };
-  static void init(Vrc_light_term& d) { d.ambient_i = kAmbient.bits(); }
-  static void drive(Vrc_light_term& d, const In& in) {
+  template <class V>  // rc_light_term at either light period
+  static void init(V& d) {
+    d.ambient_i = kAmbient.bits();
+  }
+  template <class V>
+  static void drive(V& d, const In& in) {
     for (int a = 0; a < 3; ++a) {
       put_field(d.p_i, a * kW, kW, in.sp.p[a].bits());
       put_field(d.n_i, a * kW, kW, in.sp.n[a].bits());
@@ -743,7 +752,8 @@ struct LightTermUnit {
     d.ns_i = static_cast<uint16_t>(in.ns);
     d.w_i = in.w.bits();
   }
-  static Out read(const Vrc_light_term& d) {
+  template <class V>
+  static Out read(const V& d) {
     Out o;
     o.present = d.present_o;
     o.t_hi = d.t_hi_o;
@@ -1005,9 +1015,11 @@ TEST(CoreUnits, ShadeTiming) {
                                         shade_case);
 }
 
-TEST(CoreUnits, HitGeomRandom) {
+// V: rc_hit_geom at one of the light periods.
+template <class V>
+void hit_geom_random() {
   uint64_t back = 0, tir = 0, refracted = 0, mirrors = 0, refracts = 0, underflow = 0;
-  run_random<Vrc_hit_geom, HitGeomUnit>(
+  run_random<V, HitGeomUnit>(
       "rc_hit_geom", "hit_geometry<fp24>", 300'000, 505, hit_geom_case,
       [&](const HitGeomUnit::In& in) {
         const HitGeometry<T> h = hit_geometry(in.ray, in.t, in.dz, in.n, in.eta_enter, in.eta_leave,
@@ -1036,37 +1048,47 @@ TEST(CoreUnits, HitGeomRandom) {
   EXPECT_GT(underflow, 1'000u);
 }
 
+TEST(CoreUnits, HitGeomRandom) { hit_geom_random<Vrc_hit_geom>(); }
+TEST(CoreUnits, HitGeomRandomPeriod12) { hit_geom_random<Vrc_hit_geom_p12>(); }
+
 // rc_hit_geom's latency: input register; V, N.V, the two sums of c, c * c, 1 - c^2,
 // e^2 (1 - c^2), q, sqrt(q), g, g * N, e V - g N; y and z behind x; the output FIFO.
 constexpr int64_t kHitGeomLatency =
     1 + 2 * kMul + 1 + 2 * kAdd + 3 * kMul + 4 * kAdd + spec::kFpStagesSqrt + 2 + 1;
 
-// The light units' cycles per job (docs/spec.toml [light] unit_period, 6 or 12).
+// The light units' cycles per job: docs/spec.toml [light] unit_period (the default models), or
+// 12 (the _p12 models; the lit board's [board] lit_light_period).
 constexpr int64_t kLightPeriod = spec::kLightUnitPeriod;
 static_assert(kLightPeriod == 6 || kLightPeriod == 12, "[light] unit_period");
+static_assert(spec::kBoardLitLightPeriod == 12, "the _p12 models are the lit board's period");
 
 // rc_hit_geom runs a hit's components through one slice: one hit per unit_period cycles; a hit
 // waits at most unit_period - 1 cycles for its phase. The FIFO holds latency / unit_period + 2
 // entries.
-TEST(CoreUnits, HitGeomTiming) {
+template <class V>
+void hit_geom_timing(int64_t period) {
   constexpr int64_t lat = kHitGeomLatency;
-  run_timing<Vrc_hit_geom, HitGeomUnit>(
-      "rc_hit_geom", lat, static_cast<uint64_t>(lat / kLightPeriod + 2), hit_geom_case,
-      static_cast<uint64_t>(kLightPeriod), static_cast<uint64_t>(kLightPeriod - 1));
+  run_timing<V, HitGeomUnit>("rc_hit_geom", lat, static_cast<uint64_t>(lat / period + 2),
+                             hit_geom_case, static_cast<uint64_t>(period),
+                             static_cast<uint64_t>(period - 1));
 }
+TEST(CoreUnits, HitGeomTiming) { hit_geom_timing<Vrc_hit_geom>(kLightPeriod); }
+TEST(CoreUnits, HitGeomTimingPeriod12) { hit_geom_timing<Vrc_hit_geom_p12>(12); }
 
-TEST(CoreUnits, LightTermRandom) {
+template <class V>
+void light_term_random() {
   uint64_t present = 0, directional = 0, spec_on = 0, high_ns = 0, saturated = 0;
-  run_random<Vrc_light_term, LightTermUnit>(
-      "rc_light_term", "light_sample<fp24> and ambient_terms", 200'000, 606, light_term_case,
-      [&](const LightTermUnit::In& in) {
-        const LightSample<T> ls = light_sample(in.sp, in.light, in.kd, in.ks, in.ns, in.w);
-        present += ls.present ? 1 : 0;
-        directional += in.light.directional ? 1 : 0;
-        for (int c = 0; c < 3; ++c) saturated += ls.term[c] == kLightOne ? 1 : 0;
-        spec_on += ls.present && lt(T::zero(), ls.spec) ? 1 : 0;
-        high_ns += in.ns >= 512 ? 1 : 0;
-      });
+  run_random<V, LightTermUnit>("rc_light_term", "light_sample<fp24> and ambient_terms", 200'000,
+                               606, light_term_case, [&](const LightTermUnit::In& in) {
+                                 const LightSample<T> ls =
+                                     light_sample(in.sp, in.light, in.kd, in.ks, in.ns, in.w);
+                                 present += ls.present ? 1 : 0;
+                                 directional += in.light.directional ? 1 : 0;
+                                 for (int c = 0; c < 3; ++c)
+                                   saturated += ls.term[c] == kLightOne ? 1 : 0;
+                                 spec_on += ls.present && lt(T::zero(), ls.spec) ? 1 : 0;
+                                 high_ns += in.ns >= 512 ? 1 : 0;
+                               });
   std::printf(
       "[info] rc_light_term coverage: present %llu of 200000, directional lights %llu, a "
       "specular term above 0 %llu, exponents >= 512 %llu, saturated channels %llu\n",
@@ -1081,6 +1103,9 @@ TEST(CoreUnits, LightTermRandom) {
   EXPECT_GT(saturated, 1'000u);
 }
 
+TEST(CoreUnits, LightTermRandom) { light_term_random<Vrc_light_term>(); }
+TEST(CoreUnits, LightTermRandomPeriod12) { light_term_random<Vrc_light_term_p12>(); }
+
 // rc_light_term's latency: input register; L, L.L, its two sums, sqrt, 1 / sqrt, lh, N.lh's
 // product, H, H.H, its two sums, sqrt, 1 / sqrt, nh, the power (a multiply and a cycle per bit),
 // ks * spec, kd cos + ks spec, * colour, * w, fix; y and z behind x; the output FIFO. H.H enters
@@ -1092,12 +1117,15 @@ constexpr int64_t kLightTermLatency = 1 + kAdd + kMul + 1 + 2 * kAdd + spec::kFp
 
 // rc_light_term takes one job per unit_period cycles; a job waits at most unit_period - 1 cycles
 // for its phase.
-TEST(CoreUnits, LightTermTiming) {
+template <class V>
+void light_term_timing(int64_t period) {
   constexpr int64_t lat = kLightTermLatency;
-  run_timing<Vrc_light_term, LightTermUnit>(
-      "rc_light_term", lat, static_cast<uint64_t>(lat / kLightPeriod + 2), light_term_case,
-      static_cast<uint64_t>(kLightPeriod), static_cast<uint64_t>(kLightPeriod - 1));
+  run_timing<V, LightTermUnit>("rc_light_term", lat, static_cast<uint64_t>(lat / period + 2),
+                               light_term_case, static_cast<uint64_t>(period),
+                               static_cast<uint64_t>(period - 1));
 }
+TEST(CoreUnits, LightTermTiming) { light_term_timing<Vrc_light_term>(kLightPeriod); }
+TEST(CoreUnits, LightTermTimingPeriod12) { light_term_timing<Vrc_light_term_p12>(12); }
 
 // Inputs x = 0 .. 2^24 - 1 through a valid-only converter (set(model, x) drives its input,
 // valid_i -> out, valid_o `latency` cycles later), with seeded random idle cycles (1 in 16): each
@@ -1274,6 +1302,8 @@ struct HitLightSample {
 // lt_ready_i each with seeded random low bursts of their own; every output checked against the
 // head of its queue of golden results (hit_geometry per hit; light_sample and ambient_terms per
 // light and hit).
+// M: rc_hit_light at one of the light periods.
+template <class M>
 class HitLightBench {
  public:
   HitLightBench(uint64_t seed, bool stalls) : rng_(seed), stalls_(stalls) {
@@ -1312,7 +1342,7 @@ class HitLightBench {
       tb_->valid_i = 1;
       tb_->tag_i = static_cast<uint16_t>(tag);
       tb_->last_i = k + 1 == packet.size();
-      Vrc_hit_light& d = tb_.m();
+      M& d = tb_.m();
       HitGeomUnit::drive(d, c.hit);  // the same port names as rc_hit_geom's
       for (int a = 0; a < 3; ++a) {
         put_field(d.kd_i, a * kW, kW, c.kd[a].bits());
@@ -1322,6 +1352,9 @@ class HitLightBench {
       ++hits_;
       if (!wait_taken([this] { return tick(); })) fail("ready_o stuck low");
       tb_->valid_i = 0;
+      // The hit's geometry may leave before the packet's later hits are taken (input gaps).
+      const HitGeomUnit::Out h = HitGeomUnit::golden(c.hit);
+      geo_q_.push_back({tag, {h.p, h.r, h.refr, h.w_mirror, h.w_refract, h.mirror, h.refract}});
     }
     expect(packet, tags);
   }
@@ -1367,13 +1400,12 @@ class HitLightBench {
     Out want;
   };
 
-  // The golden results of a packet: each hit's geometry; then per light, each hit's sample.
+  // The golden light samples of a packet, per light each hit's (its geometry is expected as each
+  // hit is taken, in push()).
   void expect(const std::vector<HitLightCase>& packet, const std::vector<uint32_t>& tags) {
     std::vector<HitGeomUnit::Out> hg;
     for (size_t k = 0; k < packet.size(); ++k) {
-      const HitGeomUnit::Out h = HitGeomUnit::golden(packet[k].hit);
-      hg.push_back(h);
-      geo_q_.push_back({tags[k], {h.p, h.r, h.refr, h.w_mirror, h.w_refract, h.mirror, h.refract}});
+      hg.push_back(HitGeomUnit::golden(packet[k].hit));
     }
     for (uint32_t l = 0; l < count_; ++l)
       for (size_t k = 0; k < packet.size(); ++k) {
@@ -1406,7 +1438,7 @@ class HitLightBench {
   }
 
   void check_geo() {
-    const Vrc_hit_light& d = tb_.m();
+    const M& d = tb_.m();
     if (geo_q_.empty())
       return fail("geo_valid_o with nothing pending, tag " + std::to_string(d.geo_tag_o));
     const Expect<HitLightGeo> e = geo_q_.front();
@@ -1428,7 +1460,7 @@ class HitLightBench {
   }
 
   void check_lt() {
-    const Vrc_hit_light& d = tb_.m();
+    const M& d = tb_.m();
     ++samples_;
     if (lt_q_.empty())
       return fail("lt_valid_o with nothing pending, tag " + std::to_string(d.lt_tag_o));
@@ -1456,7 +1488,7 @@ class HitLightBench {
            (s.org == e.want.org ? "" : "; origins differ"));
   }
 
-  VerilatedTb<Vrc_hit_light> tb_;
+  VerilatedTb<M> tb_;
   std::mt19937_64 rng_;
   bool stalls_;
   LightSet lights_{};
@@ -1494,9 +1526,10 @@ std::vector<HitLightCase> hit_light_packet(Gen& g) {
 
 // Every light count 0 .. MaxLights (each with lights of its own) under random stalls on the input
 // and on both outputs: each hit's geometry and its light samples, in order, bit for bit.
-TEST(CoreUnits, HitLightRandom) {
+template <class M>
+void hit_light_random() {
   Gen g(707);
-  HitLightBench b(708, true);
+  HitLightBench<M> b(708, true);
   uint64_t samples = 0;
   for (const uint32_t count : {1u, 2u, 4u, 0u, 3u, 1u}) {
     b.configure(light_set(g), count);
@@ -1515,13 +1548,17 @@ TEST(CoreUnits, HitLightRandom) {
   EXPECT_EQ(b.samples(), samples);
 }
 
+TEST(CoreUnits, HitLightRandom) { hit_light_random<Vrc_hit_light>(); }
+TEST(CoreUnits, HitLightRandomPeriod12) { hit_light_random<Vrc_hit_light_p12>(); }
+
 // Without stalls, packets of four hits: a hit per unit_period cycles with at most one light and
 // one per unit_period x count cycles with more: N hits take at most that many cycles plus the
 // pipeline's fill and drain.
-TEST(CoreUnits, HitLightThroughput) {
+template <class M>
+void hit_light_throughput(int64_t period) {
   Gen g(709);
   for (const uint32_t count : {0u, 1u, 2u, 4u}) {
-    HitLightBench b(710, false);
+    HitLightBench<M> b(710, false);
     b.configure(light_set(g), count);
     constexpr uint64_t kHits = 2000;  // packets of 4
     const uint64_t start = b.cycle();
@@ -1533,11 +1570,12 @@ TEST(CoreUnits, HitLightThroughput) {
     const uint64_t cycles = b.cycle() - start;
     b.drain();
     EXPECT_EQ(b.mismatches(), 0u);
-    const uint64_t per = static_cast<uint64_t>(kLightPeriod) * std::max(count, 1u);
+    const uint64_t per = static_cast<uint64_t>(period) * std::max(count, 1u);
     std::printf(
-        "[timing] rc_hit_light, %u lights: %llu hits taken in %llu cycles (%.3f per hit); "
-        "latency %lld cycles to the geometry, %s to the first light\n",
-        count, static_cast<unsigned long long>(kHits), static_cast<unsigned long long>(cycles),
+        "[timing] rc_hit_light (period %lld), %u lights: %llu hits taken in %llu cycles "
+        "(%.3f per hit); latency %lld cycles to the geometry, %s to the first light\n",
+        static_cast<long long>(period), count, static_cast<unsigned long long>(kHits),
+        static_cast<unsigned long long>(cycles),
         static_cast<double>(cycles) / static_cast<double>(kHits),
         static_cast<long long>(b.geo_latency()),
         count > 0 ? std::to_string(b.lt_latency()).c_str() : "none");
@@ -1547,13 +1585,15 @@ TEST(CoreUnits, HitLightThroughput) {
     // at most unit_period - 1 cycles for its phase, then rc_light_term's latency.
     EXPECT_EQ(b.geo_latency(), kHitGeomLatency + 1);
     if (count > 0) {
-      EXPECT_GE(b.lt_latency(), kHitGeomLatency + 3 * kLightPeriod + 1 + kLightTermLatency);
-      EXPECT_LE(b.lt_latency(),
-                kHitGeomLatency + 3 * kLightPeriod + 1 + kLightPeriod - 1 + kLightTermLatency);
+      EXPECT_GE(b.lt_latency(), kHitGeomLatency + 3 * period + 1 + kLightTermLatency);
+      EXPECT_LE(b.lt_latency(), kHitGeomLatency + 3 * period + 1 + period - 1 + kLightTermLatency);
     }
     EXPECT_LE(cycles, per * kHits + 8) << count << " lights";
   }
 }
+
+TEST(CoreUnits, HitLightThroughput) { hit_light_throughput<Vrc_hit_light>(kLightPeriod); }
+TEST(CoreUnits, HitLightThroughputPeriod12) { hit_light_throughput<Vrc_hit_light_p12>(12); }
 
 }  // namespace
 }  // namespace rc::test
