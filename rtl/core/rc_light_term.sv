@@ -52,7 +52,9 @@
 // - Parameters: ExpW, FracW: the number format (default fp24); TagW: tag bits (>= 1); FixBits:
 //   the fixed point's fraction bits (docs/spec.toml [light] fixed_bits); ExpBits: the exponent's
 //   bits ([light] exponent_bits); Period: the cycles between two jobs, 6 or 12 ([light]
-//   unit_period, as rc_hit_geom's; the shared multipliers need a multiple of 6).
+//   unit_period, or [board] lit_light_period on the lit board, as rc_hit_geom's; checked at
+//   elaboration: the operators shared modulo 3 and 6 need a multiple of 6, and the schedule is
+//   tested at these two).
 // - Illegal input: none; every bit pattern of the data inputs is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (the slot counter, the
 //   stream-start chain, the delay memories' pointers, the FIFO's pointers and credit count).
@@ -129,6 +131,11 @@ module rc_light_term #(
 
   if (TagW < 1 || ExpBits < 1) begin : g_param_check
     $error("rc_light_term: TagW and ExpBits must be at least 1");
+  end
+  // The periods its schedule is tested at (rc_fp_pool would place the products at any period,
+  // but the phases of the operators it shares modulo 3 and 6 are checked for these two only).
+  if (Period != 6 && Period != 12) begin : g_period_check
+    $error("rc_light_term: Period must be 6 or 12");
   end
   // The shared operators' users must come at different phases (see "cos = N.lh"): the root's
   // two, and the three dot products' sums (their x + y times; each sum is La later).
