@@ -1,6 +1,6 @@
-// rc_fp_pool: the fp multipliers (or adders) of a component-serial unit (rc_light_term), as few
-// as its schedule allows at its Period: every user is placed on an operator at elaboration, the
-// first whose phases it does not meet.
+// rc_fp_pool: the fp multipliers (or adders) of a component-serial unit (rc_light_term; one
+// operator in rc_fp_shared), as few as its schedule allows at its Period: every user is placed
+// on an operator at elaboration, the first whose phases it does not meet.
 //
 // Contract
 // - Function: in a cycle with issue_i[k] set, user k's operands a_i[k], b_i[k] enter the operator
@@ -15,7 +15,7 @@
 //   fewer operators at a longer Period (at 6 a vector operation's three cycles fill half an
 //   operator, at 12 a quarter), and the owner's schedule alone decides the sharing.
 // - Select: on each operator, its first user's operands unless another of its users issues (a
-//   chain of two-way selects, as rc_fp_shared), so an idle cycle's operands mean nothing.
+//   chain of two-way selects), so an idle cycle's operands mean nothing.
 // - issue_i must never set two users of one operator in a cycle (assertion): their phases are
 //   disjoint, so only an owner that breaks its own schedule can.
 // - Parameters: ExpW, FracW (the format); Add (0: rc_fp_mul, 1: rc_fp_add); Users (1 to 32); Sub

@@ -1,6 +1,6 @@
 // rc_fp_shared: one rc_fp_mul (or rc_fp_add) that several users of a component-serial unit
-// (rc_hit_geom, rc_light_term) take turns on, each at its own fixed times of the owner's job
-// schedule.
+// (rc_hit_geom, rc_ray_gen) take turns on, each at its own fixed times of the owner's job
+// schedule: an rc_fp_pool whose users are checked at elaboration to need only one operator.
 //
 // Contract
 // - Function: in a cycle with issue_i[k] set, user k's operands a_i[k], b_i[k] enter the operator
@@ -11,7 +11,7 @@
 //   k issues at phase Time[k] mod Period and the next Cycles[k] - 1 phases (3 for a vector's x, y
 //   and z in consecutive cycles). The users' phases must be disjoint: checked at
 //   elaboration (an $error naming the clash), and issue_i must be one-hot or zero in every cycle
-//   (assertion).
+//   (rc_fp_pool's assertion).
 // - Select: user 0's operands unless another user issues (a chain of two-way selects), so an idle
 //   cycle's operands are user 0's and mean nothing.
 // - Parameters: ExpW, FracW (the format); Add (0: rc_fp_mul, 1: rc_fp_add); Users (2 to 8); Sub
@@ -76,43 +76,19 @@ module rc_fp_shared #(
            first_clash(), Period);
   end
 
-  logic [W-1:0] a, b;
-  logic         sub;
-  always_comb begin
-    a   = a_i[0 +: W];
-    b   = b_i[0 +: W];
-    sub = Sub[0];
-    for (int unsigned k = 1; k < Users; k++) begin
-      if (issue_i[k]) begin
-        a   = a_i[k*W +: W];
-        b   = b_i[k*W +: W];
-        sub = Sub[k];
-      end
-    end
-  end
-
-  if (Add) begin : g_add
-    rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(rc_pkg::FpStagesAdd)) u_add (
-      .clk_i, .rst_ni, .valid_i(|issue_i), .sub_i(sub), .a_i(a), .b_i(b), .valid_o, .res_o
-    );
-  end else begin : g_mul
-    logic unused_sub;
-    assign unused_sub = sub;
-    rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(rc_pkg::FpStagesMul)) u_mul (
-      .clk_i, .rst_ni, .valid_i(|issue_i), .a_i(a), .b_i(b), .valid_o, .res_o
-    );
-  end
-
-`ifndef SYNTHESIS
-  logic checks_on;
-  rc_checks_on u_checks_on (
-    .clk_i,
-    .rst_ni,
-    .on_o (checks_on)
+  // The operator: an rc_fp_pool whose users the check above has shown to fit on one, so its
+  // placement takes exactly one (every user's result is that operator's).
+  logic [Users-1:0]   pool_valid;
+  logic [Users*W-1:0] pool_res;
+  logic               unused_pool;  // the other users' copies of the one result
+  rc_fp_pool #(
+    .ExpW(ExpW), .FracW(FracW), .Add(Add), .Users(Users), .Sub(32'(Sub)), .Period(Period),
+    .Time(512'(Time)), .Cycles(64'(Cycles))
+  ) u_pool (
+    .clk_i, .rst_ni, .issue_i, .a_i, .b_i, .valid_o(pool_valid), .res_o(pool_res)
   );
-  // One user at a time: the owner's schedule gives the users disjoint phases.
-  OneUser_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                              $onehot0(issue_i));
-`endif
+  assign valid_o = pool_valid[0];
+  assign res_o   = pool_res[0 +: W];
+  assign unused_pool = ^{pool_valid[Users-1:1], pool_res[Users*W-1:W]};
 
 endmodule
