@@ -25,18 +25,17 @@
 //   scalar as one value at a fixed cycle after the job's first (the Time* constants below). A
 //   scalar that a vector operation needs (inv, cos, spec) is held for its stream's three cycles by
 //   a register loaded in the first. A dot product (dist2, cos, H.H, N.H) takes a stream's
-//   products, then x + y as y's leaves, then + z (rc_serial_dot3 for cos, H.H and N.H). The power
-//   is ExpBits steps, each taking b * b and then r * b in consecutive cycles. Jobs are taken at
+//   products, then x + y as y's leaves, then + z (the order of rc_serial_dot3). The power is
+//   ExpBits steps, each taking b * b and then r * b in consecutive cycles. Jobs are taken at
 //   phase 0 modulo Period, a multiple of 6 (rc_serial_sched, Phased), so operations whose cycles
 //   fall at different phases share an operator and no two jobs meet there. Modulo 3: one square
 //   root and one divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after
-//   its sum), and cos, H.H and N.H share their two adders (N.lh issued 2 cycles late, N.H 1).
-//   Every product outside the dot products (the streams L * L, L * inv, kd * ambient, ka * w, kd * cos, ks * spec,
-//   sum * lcol and its * w, the scalars dist and nh, the power's steps) is a user of one pool of
-//   multipliers (rc_fp_pool), which places each on the first multiplier whose users' phases
-//   modulo Period it does not meet: 9 multipliers at Period 6, 6 at 12. Modulo 6 (rc_fp_shared,
-//   which checks the phases at elaboration), dist2's two sums go through the adders of the
-//   streams L and H.
+//   its sum). Every product (the streams L * L, L * inv, kd * ambient, ka * w, kd * cos,
+//   ks * spec, sum * lcol and its * w, N * lh, H * H and N * H; the scalars dist and nh; the
+//   power's steps) is a user of one pool of multipliers (rc_fp_pool), which places each on the
+//   first multiplier whose users' phases modulo Period it does not meet: 12 multipliers at
+//   Period 6, 8 at 12. Every sum (the streams L = lpos - p, H = lh - v and kd cos + ks spec; the
+//   dot products' x + y and + z) is a user of one pool of adders: 5 at Period 6, 3 at 12.
 //   Values wait for their operations in rc_delay lines (short) and rc_delay_ram memories (long),
 //   so a job may follow another after Period cycles or after any gap (rc_serial_sched keeps the
 //   slots and the job times). The last stage collects each stream's three components into the
@@ -137,13 +136,8 @@ module rc_light_term #(
   if (Period != 6 && Period != 12) begin : g_period_check
     $error("rc_light_term: Period must be 6 or 12");
   end
-  // The shared operators' users must come at different phases (see "cos = N.lh"): the root's
-  // two, and the three dot products' sums (their x + y times; each sum is La later).
-  localparam int unsigned PhCos = (TimeLh + 2 + Lm + 1) % 3;
-  localparam int unsigned PhHh  = (TimeH + Lm + 1) % 3;
-  localparam int unsigned PhNh  = (TimeH + 1 + Lm + 1) % 3;
-  if (TimeD2 % 3 == TimeHs % 3 || PhCos == PhHh || PhCos == PhNh || PhHh == PhNh)
-  begin : g_phase_check
+  // The shared root's and divider's two users must come at different phases (see "cos = N.lh").
+  if (TimeD2 % 3 == TimeHs % 3) begin : g_phase_check
     $error("rc_light_term: the shared operators' users must come at different phases");
   end
 
@@ -241,10 +235,10 @@ module rc_light_term #(
   logic [W-1:0] l_s, dist2, l_at_inv, d2_at_inv, lh_pt, dist_res;
   logic [W-1:0] ll, ll_d1, ll_dz, d01;
 
-  // L = lpos - p: in u_adds (below), as the unit's other sums outside the dot products.
+  // L = lpos - p: in u_adds (below), as the unit's other sums.
   // dist2 = (L.x L.x + L.y L.y) + L.z L.z, as rc_serial_dot3: x + y as y's product leaves (at
   // TimeLl + 1), then + z (at TimeD01), both in u_adds.
-  // L * L: in u_muls (below), as the unit's other products outside the dot products.
+  // L * L: in u_muls (below), as the unit's other products.
   rc_delay #(.Width(W), .Cycles(1)) u_dly_llx (.clk_i, .data_i(ll), .data_o(ll_d1));
   rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_llz (.clk_i, .data_i(ll), .data_o(ll_dz));
   rc_delay_ram #(.Width(W), .Cycles(TimeInv - TimeL)) u_dly_l (
@@ -280,29 +274,31 @@ module rc_light_term #(
     .clk_i, .data_i({n_at_lh, lh_s}), .data_o({n_at_lh2, lh_s2})
   );
 
-  logic [W-1:0] h_s, h_s1, dots, nhd, ih, nhd_d;
+  logic [W-1:0] h_s, h_s1, hsum, nhd, ih, nhd_d;
   logic [W-1:0] nh;
-  logic [2:0]   dp_vld;
-  logic         dxy_vld, dots_vld;
   // H = lh - v: in u_adds.
   rc_delay #(.Width(W), .Cycles(1)) u_dly_h1 (.clk_i, .data_i(h_s), .data_o(h_s1));
-  // cos = N.lh, H.H and N.H, each (x + y) + z, through two adders shared by phase: N.lh's stream
-  // issued 2 cycles late, H.H's on time, N.H's 1 late, so their sums come at times that differ
-  // modulo 3 (phases 1, 2 and 0) and never meet (jobs start at phase 0, rc_serial_sched Phased).
-  // Each reads the shared result at its own time: cos at TimeCos, H.H at TimeHh, N.H a cycle
-  // later.
-  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW), .Users(3)) u_dots (
-    .clk_i, .rst_ni,
-    .strm_i({strm[TimeH + 1], strm[TimeH], strm[TimeLh + 2]}),
-    .xy_i  ({at[TimeH + 1 + Lm + 1], at[TimeH + Lm + 1], at[TimeLh + 2 + Lm + 1]}),
-    .z_i   ({at[TimeH + 1 + Lm + 1 + La], at[TimeH + Lm + 1 + La],
-             at[TimeLh + 2 + Lm + 1 + La]}),
-    .a_i   ({n_at_h1, h_s, n_at_lh2}),
-    .b_i   ({h_s1, h_s, lh_s2}),
-    .prod_valid_o(dp_vld), .xy_valid_o(dxy_vld), .valid_o(dots_vld), .res_o(dots)
-  );
-  assign cos_res = dots;
-  assign nhd     = dots;
+  // cos = N.lh, H.H and N.H, each (x + y) + z in the order of rc_serial_dot3: the stream's
+  // products in u_muls, x + y as y's product leaves (x's a cycle later), then + z (z's product
+  // La - 1 cycles later), both in u_adds. N.lh's stream is issued 2 cycles late (TimeDc), H.H's
+  // on time (TimeDh), N.H's 1 late (TimeDn): cos leaves at TimeCos, H.H at TimeHh, N.H a cycle
+  // later. (The offsets once kept the three sums apart modulo 3 in two adders of their own; the
+  // pools need no such rule, and the schedule is kept as it was.)
+  localparam int unsigned TimeDc = TimeLh + 2;
+  localparam int unsigned TimeDh = TimeH;
+  localparam int unsigned TimeDn = TimeH + 1;
+  logic [3*W-1:0] dp, dp_d1, dp_dz, dxy, dz;  // per dot product (cos, H.H, N.H)
+  for (genvar k = 0; k < 3; k++) begin : g_dot
+    rc_delay #(.Width(W), .Cycles(1)) u_dly_x (
+      .clk_i, .data_i(dp[k*W +: W]), .data_o(dp_d1[k*W +: W])
+    );
+    rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_z (
+      .clk_i, .data_i(dp[k*W +: W]), .data_o(dp_dz[k*W +: W])
+    );
+  end
+  assign cos_res = dz[0 +: W];
+  assign hsum    = dz[W +: W];
+  assign nhd     = dz[2*W +: W];
   // One square root and one divider make both 1 / sqrt(dist2) (into the root at TimeD2) and
   // 1 / sqrt(H.H) (at TimeHs, a cycle after the sum): the two times differ modulo 3 and every
   // job's slot 0 is at phase 0 (rc_serial_sched, Phased), so no two jobs bring them to the
@@ -310,7 +306,7 @@ module rc_light_term #(
   // own time (TimeInv, TimeIh).
   logic [W-1:0] hsum_d1, rt_a, rt, rinv;
   logic         rt_vld, rinv_vld;
-  rc_delay #(.Width(W), .Cycles(1)) u_dly_hs (.clk_i, .data_i(dots), .data_o(hsum_d1));
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_hs (.clk_i, .data_i(hsum), .data_o(hsum_d1));
   assign rt_a = at[TimeD2] ? dist2 : hsum_d1;
   rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
     .clk_i, .rst_ni, .valid_i(at[TimeD2] | at[TimeHs]), .a_i(rt_a), .valid_o(rt_vld), .res_o(rt)
@@ -444,9 +440,9 @@ module rc_light_term #(
 
   // Every product of the unit, each a user of one pool of multipliers at its time in the
   // schedule (three cycles for a stream, one for a scalar, two for a power step): rc_fp_pool
-  // places the users on as few multipliers as their phases modulo Period allow (9 at Period 6,
-  // 6 at 12 with the default fp_stages and ExpBits). Each product is read at its own time.
-  localparam int unsigned MulUsers = 10 + ExpBits;
+  // places the users on as few multipliers as their phases modulo Period allow (12 at Period 6,
+  // 8 at 12 with the default fp_stages and ExpBits). Each product is read at its own time.
+  localparam int unsigned MulUsers = 13 + ExpBits;
 
   // User k's issue time at [16k +: 16] and cycles at [2k +: 2].
   function automatic logic [511:0] mul_times();
@@ -464,6 +460,9 @@ module rc_light_term #(
     for (int unsigned i = 0; i < ExpBits; i++) begin
       mul_times[16*(10+i) +: 16] = 16'(TimeNh + i * PowStep);  // power step i
     end
+    mul_times[16*(10+ExpBits) +: 16] = 16'(TimeDc);  // N * lh
+    mul_times[16*(11+ExpBits) +: 16] = 16'(TimeDh);  // H * H
+    mul_times[16*(12+ExpBits) +: 16] = 16'(TimeDn);  // N * H
   endfunction
   function automatic logic [63:0] mul_cycles();
     mul_cycles = '0;
@@ -471,17 +470,18 @@ module rc_light_term #(
     mul_cycles[2*8 +: 2] = 2'd1;
     mul_cycles[2*9 +: 2] = 2'd1;
     for (int unsigned i = 0; i < ExpBits; i++) mul_cycles[2*(10+i) +: 2] = 2'd2;
+    for (int unsigned k = 10 + ExpBits; k < MulUsers; k++) mul_cycles[2*k +: 2] = 2'd3;
   endfunction
 
   logic [MulUsers-1:0]   mul_issue, mul_vld;
   logic [MulUsers*W-1:0] mul_a, mul_b, mul_res;
-  assign mul_issue = {step_issue, at[TimeIh], at[TimeInv], strm[TimeL], strm[TimeSum],
-                      strm[TimeSum + Lm], strm[TimeInv], strm[TimeCos], strm[Lm],
-                      strm[TimeSpec], strm[0]};
-  assign mul_a     = {step_a, nhd_d, d2_at_inv, l_s, sum, sl, l_at_inv, kd_at_cos, ka,
-                      ks_at_spec, kd_s};
-  assign mul_b     = {step_b, ih, inv_res, l_s, lc_at_sum, w_at_sl, inv_b, cos_b, w_at_ka,
-                      spec_b, ambient_i};
+  assign mul_issue = {strm[TimeDn], strm[TimeDh], strm[TimeDc], step_issue, at[TimeIh],
+                      at[TimeInv], strm[TimeL], strm[TimeSum], strm[TimeSum + Lm], strm[TimeInv],
+                      strm[TimeCos], strm[Lm], strm[TimeSpec], strm[0]};
+  assign mul_a     = {n_at_h1, h_s, n_at_lh2, step_a, nhd_d, d2_at_inv, l_s, sum, sl, l_at_inv,
+                      kd_at_cos, ka, ks_at_spec, kd_s};
+  assign mul_b     = {h_s1, h_s, lh_s2, step_b, ih, inv_res, l_s, lc_at_sum, w_at_sl, inv_b,
+                      cos_b, w_at_ka, spec_b, ambient_i};
   rc_fp_pool #(
     .ExpW(ExpW), .FracW(FracW), .Users(MulUsers), .Period(Period), .Time(mul_times()),
     .Cycles(mul_cycles())
@@ -489,27 +489,37 @@ module rc_light_term #(
     .clk_i, .rst_ni, .issue_i(mul_issue), .a_i(mul_a), .b_i(mul_b), .valid_o(mul_vld),
     .res_o(mul_res)
   );
-  assign {pow_prod, nh_p, dist_p, ll, sl, xw, lhw, kdcos, aw, ksspec, ka} = mul_res;
+  assign {dp[2*W +: W], dp[W +: W], dp[0 +: W], pow_prod, nh_p, dist_p, ll, sl, xw, lhw, kdcos,
+          aw, ksspec, ka} = mul_res;
 
-  // The sums outside the dot products, likewise in one pool of adders (3 at Period 6, 2 at 12):
-  // the streams L = lpos - p (at 0), H = lh - v (at TimeLh) and kd cos + ks spec (at TimeSpec +
-  // Lm), and dist2's scalar sums x + y (at TimeLl + 1) and + z (at TimeD01).
-  localparam logic [511:0] AddTimes  = 512'({16'(TimeD01), 16'(TimeLl + 1), 16'(TimeSpec + Lm),
+  // Every sum, likewise in one pool of adders (5 at Period 6, 3 at 12): the streams L = lpos - p
+  // (at 0), H = lh - v (at TimeLh) and kd cos + ks spec (at TimeSpec + Lm), dist2's scalar sums
+  // x + y (at TimeLl + 1) and + z (at TimeD01), then the other dot products' x + y (cos, H.H and
+  // N.H, Lm + 1 after their streams) and their + z (La later).
+  localparam logic [511:0] AddTimes  = 512'({16'(TimeDn + Lm + 1 + La), 16'(TimeDh + Lm + 1 + La),
+                                              16'(TimeDc + Lm + 1 + La), 16'(TimeDn + Lm + 1),
+                                              16'(TimeDh + Lm + 1), 16'(TimeDc + Lm + 1),
+                                              16'(TimeD01), 16'(TimeLl + 1), 16'(TimeSpec + Lm),
                                               16'(TimeLh), 16'(0)});
-  localparam logic [63:0]  AddCycles = 64'({2'd1, 2'd1, 2'd3, 2'd3, 2'd3});
-  logic [4:0]   add_issue, add_vld;
-  logic [5*W-1:0] add_a, add_b, add_res;
-  assign add_issue = {at[TimeD01], at[TimeLl + 1], strm[TimeSpec + Lm], strm[TimeLh], strm[0]};
-  assign add_a     = {d01, ll_d1, kdcos_d, lh_s, lp_s};
-  assign add_b     = {ll_dz, ll, ksspec, v_at_lh, p_s};
+  localparam logic [63:0]  AddCycles = 64'({{8{2'd1}}, 2'd3, 2'd3, 2'd3});
+  localparam int unsigned  AddUsers  = 11;
+  logic [AddUsers-1:0]   add_issue, add_vld;
+  logic [AddUsers*W-1:0] add_a, add_b, add_res;
+  assign add_issue = {at[TimeDn + Lm + 1 + La], at[TimeDh + Lm + 1 + La], at[TimeDc + Lm + 1 + La],
+                      at[TimeDn + Lm + 1], at[TimeDh + Lm + 1], at[TimeDc + Lm + 1],
+                      at[TimeD01], at[TimeLl + 1], strm[TimeSpec + Lm], strm[TimeLh], strm[0]};
+  assign add_a     = {dxy[2*W +: W], dxy[W +: W], dxy[0 +: W], dp_d1[2*W +: W], dp_d1[W +: W],
+                      dp_d1[0 +: W], d01, ll_d1, kdcos_d, lh_s, lp_s};
+  assign add_b     = {dp_dz[2*W +: W], dp_dz[W +: W], dp_dz[0 +: W], dp[2*W +: W], dp[W +: W],
+                      dp[0 +: W], ll_dz, ll, ksspec, v_at_lh, p_s};
   rc_fp_pool #(
-    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(5), .Sub(32'b00011), .Period(Period),
+    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(AddUsers), .Sub(32'b00011), .Period(Period),
     .Time(AddTimes), .Cycles(AddCycles)
   ) u_adds (
     .clk_i, .rst_ni, .issue_i(add_issue), .a_i(add_a), .b_i(add_b), .valid_o(add_vld),
     .res_o(add_res)
   );
-  assign {dist2, d01, sum, h_s, l_s} = add_res;
+  assign {dz, dxy, dist2, d01, sum, h_s, l_s} = add_res;
 
   //////////////////////////////////////
   // Collect the streams at TimeFix   //
@@ -578,10 +588,6 @@ module rc_light_term #(
   Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
       rt_vld == (at[TimeSq1] | at[TimeHs + Ls]) &&
       rinv_vld == (at[TimeInv] | at[TimeIh]) &&
-      dp_vld == {strm[TimeH + 1 + Lm], strm[TimeH + Lm], strm[TimeLh + 2 + Lm]} &&
-      dxy_vld == (at[TimeLh + 2 + Lm + 1 + La] | at[TimeH + Lm + 1 + La] |
-                  at[TimeH + 1 + Lm + 1 + La]) &&
-      dots_vld == (at[TimeCos] | at[TimeHh] | at[TimeHh + 1]) &&
       term_vld == strm[TimeFix] && amb_vld == strm[2 * Lm + 1]);
   // Every product leaves its multiplier when its user reads it, Lm cycles after its issue (the
   // pool's multipliers' valid chains, which also carry the other users' products).
@@ -589,14 +595,17 @@ module rc_light_term #(
   for (genvar i = 0; i < ExpBits; i++) begin : g_pow_due
     assign mul_due[10 + i] = at[TimeNh + i*PowStep + Lm] | at[TimeNh + i*PowStep + Lm + 1];
   end
+  assign mul_due[MulUsers-1 -: 3] = {strm[TimeDn + Lm], strm[TimeDh + Lm], strm[TimeDc + Lm]};
   assign mul_due[9:0] = {at[TimeNh], at[TimeLh], strm[TimeLl], strm[TimeSum + Lm], strm[TimeX],
                          strm[TimeLh], strm[TimeCos + Lm], strm[2 * Lm], strm[TimeSpec + Lm],
                          strm[Lm]};
   Products_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               (mul_due & ~mul_vld) == '0);
   // Likewise every sum of u_adds, La cycles after its issue.
-  logic [4:0] add_due;
-  assign add_due = {at[TimeD2], at[TimeD01], strm[TimeSum], strm[TimeH], strm[TimeL]};
+  logic [AddUsers-1:0] add_due;
+  assign add_due = {at[TimeHh + 1], at[TimeHh], at[TimeCos],
+                    at[TimeDn + Lm + 1 + La], at[TimeDh + Lm + 1 + La], at[TimeDc + Lm + 1 + La],
+                    at[TimeD2], at[TimeD01], strm[TimeSum], strm[TimeH], strm[TimeL]};
   Sums_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                           (add_due & ~add_vld) == '0);
   // ready_o must be known once out of reset (upstream acts on it).
