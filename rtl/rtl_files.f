@@ -19,7 +19,6 @@ rtl/core/rc_delay_ram.sv
 rtl/core/rc_serial_sched.sv
 rtl/core/rc_fp_pool.sv
 rtl/core/rc_fp_shared.sv
-rtl/core/rc_serial_dot3.sv
 rtl/core/rc_fp_to_fix.sv
 rtl/core/rc_fp_to_exp.sv
 rtl/core/rc_light_byte.sv

@@ -26,12 +26,14 @@
 //   mirror term's c + c, the refraction term's g) is held for the three cycles of the stream by
 //   a register loaded in the stream's first cycle. Hits are taken at phase 0 modulo Period, a
 //   multiple of 6 (rc_serial_sched, Phased), so operations whose cycles fall at different phases
-//   share an operator and no two hits meet there: the three scalar sums 1 - c * c, q = 1 - x and
-//   g (times that differ modulo 3) share one adder; modulo 6 (rc_fp_shared, which checks the
-//   phases at elaboration), one multiplier takes the two weights and then c * c, e * e and e * c
-//   in consecutive cycles, one t * d and g * N, one d * inv_len and e * V, one (c + c) * N and
-//   e^2 (1 - c^2), and one adder o + t d and e V - g N; c + c is rc_fp_twice (exact doubling, a
-//   cycle). Each value reaches its operation through rc_delay lines (rc_delay_ram memories where
+//   share an operator and no two hits meet there: every product (the streams t * d, d * inv_len,
+//   N * V, (c + c) * N, g * N and e * V; the two weights; c * c, e * e and e * c in consecutive
+//   cycles; e^2 (1 - c^2)) is a user of one pool of multipliers (rc_fp_pool), and every sum (the
+//   streams o + t d, V - (c + c) N and e V - g N; N.V's x + y and + z; 1 - c * c, q = 1 - x and
+//   g) of one pool of adders, which place each user on the first operator whose users' phases
+//   modulo Period it does not meet: 5 multipliers and 5 adders at Period 6, 4 and 4 at 12. c + c
+//   is rc_fp_twice (exact doubling, a cycle). Each value reaches its operation through rc_delay
+//   lines (rc_delay_ram memories where
 //   they are long) of the lengths the fp units' latencies give (the times below, in cycles after
 //   slot 0), so a stream's timing never depends on its neighbours: a hit may follow another after
 //   Period cycles or after any gap (rc_serial_sched keeps the slots and says which job time is
@@ -128,12 +130,11 @@ module rc_hit_geom #(
   if (TagW < 1) begin : g_param_check
     $error("rc_hit_geom: TagW must be at least 1");
   end
-  // The shared adder's three users must come at different phases.
-  if (TimeSq % 3 == (TimeC + Lm) % 3 || TimeSq % 3 == TimeX % 3 ||
-      (TimeC + Lm) % 3 == TimeX % 3) begin : g_phase_check
-    $error("rc_hit_geom: the shared adder's users must come at different phases");
+  // The periods its schedule is tested at (rc_fp_pool would place its users at any period; the
+  // unit's timing tests and the lit core run it at these two).
+  if (Period != 6 && Period != 12) begin : g_period_check
+    $error("rc_hit_geom: Period must be 6 or 12");
   end
-
   // lt(+0, x): x is positive, not zero (an exponent field of 0 reads as zero) and not NaN.
   function automatic logic pos(input logic [W-1:0] x);
     pos = ~x[W-1] & (|x[W-2 -: ExpW]) & ~((&x[W-2 -: ExpW]) & (|x[FracW-1:0]));
@@ -221,10 +222,8 @@ module rc_hit_geom #(
   //////////////////////////////////////////////////
 
   logic [W-1:0] td, v_s, p_s, o_d, n_dv;
-  logic         nv_vld, s01_vld, c_vld;
 
-  // t * d and V = d * inv_len: in u_mul_tdgn and u_mul_vev (below, with g * N and e * V); o + t d
-  // in u_add_pt (with e V - g N).
+  // t * d and V = d * inv_len: in u_muls (below); o + t d in u_adds (below).
   rc_delay #(.Width(W), .Cycles(TimeV)) u_dly_o (.clk_i, .data_i(o_s), .data_o(o_d));
 
   // The facing normal's stream, tapped where the operations need it.
@@ -241,31 +240,27 @@ module rc_hit_geom #(
   );
   assign n_dv = n_at_v;
 
-  // c = (N.x V.x + N.y V.y) + N.z V.z: x + y as y's product leaves, then + z.
-  rc_serial_dot3 #(.ExpW(ExpW), .FracW(FracW)) u_dot_c (
-    .clk_i, .rst_ni, .strm_i(strm[TimeV]), .xy_i(at[TimeNv + 1]), .z_i(at[TimeS01]), .a_i(n_dv),
-    .b_i(v_s), .prod_valid_o(nv_vld), .xy_valid_o(s01_vld), .valid_o(c_vld), .res_o(c_res)
-  );
+  // c = (N.x V.x + N.y V.y) + N.z V.z: N * V in u_muls, x + y as y's product leaves (x's a
+  // cycle later), then + z (z's product La - 1 cycles later), both in u_adds.
+  logic [W-1:0] nv, nv_d1, nv_dz, s01;
+  rc_delay #(.Width(W), .Cycles(1)) u_dly_nvx (.clk_i, .data_i(nv), .data_o(nv_d1));
+  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_nvz (.clk_i, .data_i(nv), .data_o(nv_dz));
 
   //////////////////////////////////////
   // R = V - (c + c) N                //
   //////////////////////////////////////
 
   logic [W-1:0] kn, v_at_kn, r_s, v_at_g;
-  logic         k_vld, r_vld;
+  logic         k_vld;
 
   // c + c: exact doubling (rc_fp_twice, x + x bit for bit), a cycle.
   rc_fp_twice #(.ExpW(ExpW), .FracW(FracW)) u_twice_k (
     .clk_i, .rst_ni, .valid_i(at[TimeC]), .x_i(c_res), .valid_o(k_vld), .res_o(k_res)
   );
 
-  // (c + c) * N: in u_mul_knx (below, with e^2 * (1 - c^2)).
+  // (c + c) * N: in u_muls; V - (c + c) N: in u_adds.
   rc_delay_ram #(.Width(W), .Cycles(TimeKn - TimeV)) u_dly_v0 (
     .clk_i, .rst_ni, .data_i(v_s), .data_o(v_at_kn)
-  );
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_r (
-    .clk_i, .rst_ni, .valid_i(strm[TimeKn]), .sub_i(1'b1), .a_i(v_at_kn), .b_i(kn),
-    .valid_o(r_vld), .res_o(r_s)
   );
   rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeKn)) u_dly_v1 (
     .clk_i, .rst_ni, .data_i(v_at_kn), .data_o(v_at_g)
@@ -284,45 +279,17 @@ module rc_hit_geom #(
     .clk_i, .rst_ni, .data_i(e_at_c), .data_o(e_at_g)
   );
 
-  // One multiplier: c * c at TimeC, e * e at TimeC + 1, e * c at TimeC + 2.
+  // One user of u_muls: c * c at TimeC, e * e at TimeC + 1, e * c at TimeC + 2.
   logic [W-1:0] m5_a, m5_b, m5, e2_d, ec_d, s_res, x_res, q_res, sq_res;
-  logic         knx_vld, sq_vld;
+  logic         sq_vld;
   assign m5_a = at[TimeC] ? c_b : e_at_c;
   assign m5_b = at[TimeC + 1] ? e_at_c : c_b;
 
-  // c * c, e * e, e * c: in u_mul_wm5 (below, with the weights).
+  // e^2 (1 - c^2) (at TimeS): in u_muls; 1 - c * c (at TimeC + Lm), 1 - x (at TimeX) and
+  // g = e c + sqrt(q) (at TimeSq): in u_adds.
   rc_delay #(.Width(W), .Cycles(TimeS - (TimeC + 1 + Lm))) u_dly_e2 (
     .clk_i, .data_i(m5), .data_o(e2_d)
   );
-  // One multiplier for the stream (c + c) * N (at TimeK) and the scalar e^2 * (1 - c^2) (at
-  // TimeS): their cycles fall at different phases modulo Period.
-  logic [W-1:0] knx;
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
-    .Time(128'({16'(TimeS), 16'(TimeK)})), .Cycles(16'h0007)
-  ) u_mul_knx (
-    .clk_i, .rst_ni, .issue_i({at[TimeS], strm[TimeK]}), .a_i({e2_d, k_b}), .b_i({s_res, n_at_k}),
-    .valid_o(knx_vld), .res_o(knx)
-  );
-  assign kn    = knx;
-  assign x_res = knx;
-  // One adder for the three scalar sums, issued at different phases (jobs start at phase 0,
-  // rc_serial_sched Phased): 1 - c * c at TimeC + Lm, 1 - x at TimeX, g = e c + sqrt(q) at
-  // TimeSq. Each user reads the result La cycles after its issue (TimeS, TimeQ, TimeG).
-  logic [W-1:0] sa_a, sa_b, sa_res;
-  logic         sa_sub, sa_valid, sa_vld;
-  assign sa_valid = at[TimeC + Lm] | at[TimeX] | at[TimeSq];
-  assign sa_sub   = at[TimeC + Lm] | at[TimeX];
-  assign sa_a     = ({W{sa_sub}} & One) | ({W{at[TimeSq]}} & ec_d);
-  assign sa_b     = ({W{at[TimeC + Lm]}} & m5) | ({W{at[TimeX]}} & x_res) |
-                    ({W{at[TimeSq]}} & sq_res);
-  rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(La)) u_add_shared (
-    .clk_i, .rst_ni, .valid_i(sa_valid), .sub_i(sa_sub), .a_i(sa_a), .b_i(sa_b),
-    .valid_o(sa_vld), .res_o(sa_res)
-  );
-  assign s_res = sa_res;
-  assign q_res = sa_res;
-  assign g_res = sa_res;
   rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
     .clk_i, .rst_ni, .valid_i(at[TimeQ]), .a_i(q_res), .valid_o(sq_vld), .res_o(sq_res)
   );
@@ -340,38 +307,8 @@ module rc_hit_geom #(
     .clk_i, .rst_ni, .data_i(tir_b), .data_o(tir_at_t)
   );
 
-  // Two multipliers and an adder, each for two streams at different phases modulo Period:
-  // t * d (at 0) with g * N (at TimeG), d * inv_len (at 0) with e * V (at TimeG), and o + t d (at
-  // TimeV) with e V - g N (at TimeGn).
-  logic [W-1:0] gn, ev, t_s, tdgn, vev, pt;
-  logic         tdgn_vld, vev_vld, pt_vld;
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
-    .Time(128'({16'(TimeG), 16'(0)})), .Cycles(16'h000f)
-  ) u_mul_tdgn (
-    .clk_i, .rst_ni, .issue_i({strm[TimeG], strm[0]}), .a_i({g_b, t_q}), .b_i({n_at_g, d_s}),
-    .valid_o(tdgn_vld), .res_o(tdgn)
-  );
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
-    .Time(128'({16'(TimeG), 16'(0)})), .Cycles(16'h000f)
-  ) u_mul_vev (
-    .clk_i, .rst_ni, .issue_i({strm[TimeG], strm[0]}), .a_i({e_at_g, d_s}),
-    .b_i({v_at_g, ilen_q}), .valid_o(vev_vld), .res_o(vev)
-  );
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(2), .Sub(8'b10), .Period(Period),
-    .Time(128'({16'(TimeGn), 16'(TimeV)})), .Cycles(16'h000f)
-  ) u_add_pt (
-    .clk_i, .rst_ni, .issue_i({strm[TimeGn], strm[TimeV]}), .a_i({ev, o_d}), .b_i({gn, td}),
-    .valid_o(pt_vld), .res_o(pt)
-  );
-  assign td  = tdgn;
-  assign gn  = tdgn;
-  assign v_s = vev;
-  assign ev  = vev;
-  assign p_s = pt;
-  assign t_s = pt;
+  // g * N and e * V (at TimeG): in u_muls; e V - g N (at TimeGn): in u_adds.
+  logic [W-1:0] gn, ev, t_s;
 
   //////////////////////////////////////
   // Weights                          //
@@ -379,26 +316,66 @@ module rc_hit_geom #(
 
   // w * mirror at slot 0, w * transmit at slot 1; each with lt(0, factor) beside it.
   logic [W-1:0] wf_s, wx, wx_at_t;
-  logic         fpos_s, fpos_d, wok, wok_at_t, wm5_vld;
+  logic         fpos_s, fpos_d, wok, wok_at_t;
   assign wf_s   = slot_q[1] ? transmit_q : mirror_q;
   assign fpos_s = pos(wf_s);
-  // One multiplier for the weights (slots 0 and 1) and the stream c * c, e * e, e * c (at
-  // TimeC): their cycles fall at different phases modulo Period.
-  logic [W-1:0] wm5;
-  rc_fp_shared #(
-    .ExpW(ExpW), .FracW(FracW), .Users(2), .Period(Period),
-    .Time(128'({16'(TimeC), 16'(0)})), .Cycles(16'h000e)
-  ) u_mul_wm5 (
-    .clk_i, .rst_ni, .issue_i({strm[TimeC], slot_q[0] | slot_q[1]}), .a_i({m5_a, w_q}),
-    .b_i({m5_b, wf_s}), .valid_o(wm5_vld), .res_o(wm5)
-  );
-  assign wx = wm5;
-  assign m5 = wm5;
+  // The weights (slots 0 and 1): in u_muls.
   rc_delay #(.Width(1), .Cycles(Lm)) u_dly_fpos (.clk_i, .data_i(fpos_s), .data_o(fpos_d));
   assign wok = fpos_d & pos(wx);
   rc_delay_ram #(.Width(W + 1), .Cycles(TimeT - Lm)) u_dly_w (
     .clk_i, .rst_ni, .data_i({wok, wx}), .data_o({wok_at_t, wx_at_t})
   );
+
+  //////////////////////////////////////
+  // The operators                    //
+  //////////////////////////////////////
+
+  // Every product, a user of one pool of multipliers at its time (three cycles for a stream, two
+  // for the weights, one for a scalar), and every sum, a user of one pool of adders; each result
+  // is read at its own time.
+  localparam int unsigned MulUsers = 9;
+  localparam logic [511:0] MulTimes  = 512'({16'(TimeG), 16'(TimeG), 16'(TimeS), 16'(TimeK),
+                                              16'(TimeC), 16'(TimeV), 16'(0), 16'(0), 16'(0)});
+  localparam logic [63:0]  MulCycles = 64'({2'd3, 2'd3, 2'd1, 2'd3, 2'd3, 2'd3, 2'd2, 2'd3,
+                                            2'd3});
+  logic [MulUsers-1:0]   mul_issue, mul_vld;
+  logic [MulUsers*W-1:0] mul_a, mul_b, mul_res;
+  // e * V, g * N, e^2 (1 - c^2), (c + c) * N, c * c | e * e | e * c, N * V, the weights,
+  // d * inv_len, t * d.
+  assign mul_issue = {strm[TimeG], strm[TimeG], at[TimeS], strm[TimeK], strm[TimeC], strm[TimeV],
+                      slot_q[0] | slot_q[1], strm[0], strm[0]};
+  assign mul_a     = {e_at_g, g_b, e2_d, k_b, m5_a, n_dv, w_q, d_s, t_q};
+  assign mul_b     = {v_at_g, n_at_g, s_res, n_at_k, m5_b, v_s, wf_s, ilen_q, d_s};
+  rc_fp_pool #(
+    .ExpW(ExpW), .FracW(FracW), .Users(MulUsers), .Period(Period), .Time(MulTimes),
+    .Cycles(MulCycles)
+  ) u_muls (
+    .clk_i, .rst_ni, .issue_i(mul_issue), .a_i(mul_a), .b_i(mul_b), .valid_o(mul_vld),
+    .res_o(mul_res)
+  );
+  assign {ev, gn, x_res, kn, m5, nv, wx, v_s, td} = mul_res;
+
+  localparam int unsigned AddUsers = 8;
+  localparam logic [511:0] AddTimes  = 512'({16'(TimeS01), 16'(TimeNv + 1), 16'(TimeSq),
+                                              16'(TimeX), 16'(TimeC + Lm), 16'(TimeKn),
+                                              16'(TimeGn), 16'(TimeV)});
+  localparam logic [63:0]  AddCycles = 64'({2'd1, 2'd1, 2'd1, 2'd1, 2'd1, 2'd3, 2'd3, 2'd3});
+  logic [AddUsers-1:0]   add_issue, add_vld;
+  logic [AddUsers*W-1:0] add_a, add_b, add_res;
+  // N.V's + z and x + y, g = e c + sqrt(q), q = 1 - x, 1 - c * c, R = V - (c + c) N,
+  // e V - g N, P = o + t d.
+  assign add_issue = {at[TimeS01], at[TimeNv + 1], at[TimeSq], at[TimeX], at[TimeC + Lm],
+                      strm[TimeKn], strm[TimeGn], strm[TimeV]};
+  assign add_a     = {s01, nv_d1, ec_d, One, One, v_at_kn, ev, o_d};
+  assign add_b     = {nv_dz, nv, sq_res, x_res, m5, kn, gn, td};
+  rc_fp_pool #(
+    .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(AddUsers), .Sub(32'b00011110),
+    .Period(Period), .Time(AddTimes), .Cycles(AddCycles)
+  ) u_adds (
+    .clk_i, .rst_ni, .issue_i(add_issue), .a_i(add_a), .b_i(add_b), .valid_o(add_vld),
+    .res_o(add_res)
+  );
+  assign {c_res, s01, g_res, q_res, s_res, r_s, t_s, p_s} = add_res;
 
   //////////////////////////////////////
   // Collect the streams at TimeT     //
@@ -478,19 +455,17 @@ module rc_hit_geom #(
   // Each operation's result leaves at the time the schedule above gives it: the valid chains of
   // the fp units agree with the stream starts, so no value is read at the wrong cycle.
   Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               tdgn_vld == (strm[TimeV] | strm[TimeGn]) &&
-                               vev_vld == (strm[TimeV] | strm[TimeGn]) &&
-                               pt_vld == (strm[TimeP] | strm[TimeT]) && nv_vld == strm[TimeNv] &&
-                               s01_vld == at[TimeS01] && c_vld == at[TimeC] &&
-                               k_vld == at[TimeK] &&
-                               sa_vld == (at[TimeS] | at[TimeQ] | at[TimeG]) &&
-                               knx_vld == (strm[TimeKn] | at[TimeX]) &&
-                               r_vld == strm[TimeR] &&
-                               wm5_vld == (at[Lm] | at[Lm + 1] | strm[TimeC + Lm]) &&
-                               sq_vld == at[TimeSq]);
-  // At most one user of the shared adder in a cycle (the phases keep them apart).
-  OneUser_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                              $onehot0({at[TimeC + Lm], at[TimeX], at[TimeSq]}));
+                               k_vld == at[TimeK] && sq_vld == at[TimeSq]);
+  // Every product and sum leaves its operator when its user reads it (the pools' valid chains,
+  // which also carry the other users' results on the same operator).
+  logic [MulUsers-1:0] mul_due;
+  logic [AddUsers-1:0] add_due;
+  assign mul_due = {strm[TimeGn], strm[TimeGn], at[TimeX], strm[TimeKn], strm[TimeC + Lm],
+                    strm[TimeNv], at[Lm] | at[Lm + 1], strm[TimeV], strm[TimeV]};
+  assign add_due = {at[TimeC], at[TimeS01], at[TimeG], at[TimeQ], at[TimeS], strm[TimeR],
+                    strm[TimeT], strm[TimeP]};
+  Results_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              (mul_due & ~mul_vld) == '0 && (add_due & ~add_vld) == '0);
   // ready_o must be known once out of reset (upstream acts on it).
   ReadyKnown_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  !$isunknown(ready_o));

@@ -25,7 +25,7 @@
 //   scalar as one value at a fixed cycle after the job's first (the Time* constants below). A
 //   scalar that a vector operation needs (inv, cos, spec) is held for its stream's three cycles by
 //   a register loaded in the first. A dot product (dist2, cos, H.H, N.H) takes a stream's
-//   products, then x + y as y's leaves, then + z (the order of rc_serial_dot3). The power is
+//   products, then x + y as y's leaves, then + z (z's product La - 1 cycles later). The power is
 //   ExpBits steps, each taking b * b and then r * b in consecutive cycles. Jobs are taken at
 //   phase 0 modulo Period, a multiple of 6 (rc_serial_sched, Phased), so operations whose cycles
 //   fall at different phases share an operator and no two jobs meet there. Modulo 3: one square
@@ -34,7 +34,7 @@
 //   ks * spec, sum * lcol and its * w, N * lh, H * H and N * H; the scalars dist and nh; the
 //   power's steps) is a user of one pool of multipliers (rc_fp_pool), which places each on the
 //   first multiplier whose users' phases modulo Period it does not meet: 12 multipliers at
-//   Period 6, 8 at 12. Every sum (the streams L = lpos - p, H = lh - v and kd cos + ks spec; the
+//   Period 6, 7 at 12. Every sum (the streams L = lpos - p, H = lh - v and kd cos + ks spec; the
 //   dot products' x + y and + z) is a user of one pool of adders: 5 at Period 6, 3 at 12.
 //   Values wait for their operations in rc_delay lines (short) and rc_delay_ram memories (long),
 //   so a job may follow another after Period cycles or after any gap (rc_serial_sched keeps the
@@ -236,7 +236,7 @@ module rc_light_term #(
   logic [W-1:0] ll, ll_d1, ll_dz, d01;
 
   // L = lpos - p: in u_adds (below), as the unit's other sums.
-  // dist2 = (L.x L.x + L.y L.y) + L.z L.z, as rc_serial_dot3: x + y as y's product leaves (at
+  // dist2 = (L.x L.x + L.y L.y) + L.z L.z, as every dot product: x + y as y's product leaves (at
   // TimeLl + 1), then + z (at TimeD01), both in u_adds.
   // L * L: in u_muls (below), as the unit's other products.
   rc_delay #(.Width(W), .Cycles(1)) u_dly_llx (.clk_i, .data_i(ll), .data_o(ll_d1));
@@ -278,7 +278,7 @@ module rc_light_term #(
   logic [W-1:0] nh;
   // H = lh - v: in u_adds.
   rc_delay #(.Width(W), .Cycles(1)) u_dly_h1 (.clk_i, .data_i(h_s), .data_o(h_s1));
-  // cos = N.lh, H.H and N.H, each (x + y) + z in the order of rc_serial_dot3: the stream's
+  // cos = N.lh, H.H and N.H, each (x + y) + z as every dot product: the stream's
   // products in u_muls, x + y as y's product leaves (x's a cycle later), then + z (z's product
   // La - 1 cycles later), both in u_adds. N.lh's stream is issued 2 cycles late (TimeDc), H.H's
   // on time (TimeDh), N.H's 1 late (TimeDn): cos leaves at TimeCos, H.H at TimeHh, N.H a cycle
@@ -441,7 +441,7 @@ module rc_light_term #(
   // Every product of the unit, each a user of one pool of multipliers at its time in the
   // schedule (three cycles for a stream, one for a scalar, two for a power step): rc_fp_pool
   // places the users on as few multipliers as their phases modulo Period allow (12 at Period 6,
-  // 8 at 12 with the default fp_stages and ExpBits). Each product is read at its own time.
+  // 7 at 12 with the default fp_stages and ExpBits). Each product is read at its own time.
   localparam int unsigned MulUsers = 13 + ExpBits;
 
   // User k's issue time at [16k +: 16] and cycles at [2k +: 2].
