@@ -130,9 +130,13 @@ lint: deps $(GEN_PKG)
 	@echo "verilator --lint-only -Wall --top-module rc_board -GLit=1 (the lit board)"
 	@verilator --lint-only -Wall --assert $(WAIVERS) $(RTL_FILES) --top-module rc_board "-GLit=1'b1"
 	@echo "yosys: read, elaborate and check all RTL"
-	@yosys -q -l $(BUILD)/yosys_lint.log \
+	@rc=0; yosys -q -l $(BUILD)/yosys_lint.log \
 	  -p "read_verilog -sv $(RTL_FILES); hierarchy -check; proc; check -assert" \
-	  > /dev/null 2>&1 || { grep -iE 'error|warning' $(BUILD)/yosys_lint.log; exit 1; }
+	  > /dev/null 2>&1 || rc=$$?; \
+	if [ $$rc -ne 0 ]; then \
+	  echo "yosys failed with exit status $$rc ($(BUILD)/yosys_lint.log):"; \
+	  grep -iE 'error|warning' $(BUILD)/yosys_lint.log || tail -n 20 $(BUILD)/yosys_lint.log; \
+	  exit 1; fi
 	@if grep -q 'Latch inferred' $(BUILD)/yosys_lint.log; then \
 	  grep 'Latch inferred' $(BUILD)/yosys_lint.log; exit 1; fi
 	@echo "lint clean"
