@@ -220,7 +220,7 @@ module rc_fp_add #(
   assign small_al = {1'b0, small_aln_s2};
   // One carry chain for both: a - b = a + ~b + 1 (the inversion sits in the chain's LUTs). The
   // select between a sum and a difference took a second chain and a multiplexer (Yosys
-  // synth_ecp5: 9 CCU2C and 22 LUT4 more).
+  // synth_ecp5 of the adder alone: 9 CCU2C and 22 LUT4 more).
   assign sum_s2   = big_al + (small_al ^ {SumW{eff_sub_s2}}) + SumW'(eff_sub_s2);
 
   ////////////////
