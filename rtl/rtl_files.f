@@ -7,8 +7,14 @@ rtl/fp/rc_fp_round_pack.sv
 rtl/fp/rc_fp_add.sv
 rtl/fp/rc_fp_twice.sv
 rtl/fp/rc_fp_mul.sv
+rtl/fp/rc_fp_div_pre.sv
+rtl/fp/rc_fp_div_fin.sv
 rtl/fp/rc_fp_div.sv
+rtl/fp/rc_fp_div_iter.sv
+rtl/fp/rc_fp_sqrt_pre.sv
+rtl/fp/rc_fp_sqrt_fin.sv
 rtl/fp/rc_fp_sqrt.sv
+rtl/fp/rc_fp_sqrt_iter.sv
 rtl/fp/rc_fp_cmp.sv
 rtl/core/rc_credit_fifo.sv
 rtl/core/rc_fp_to_u8.sv

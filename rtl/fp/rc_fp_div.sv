@@ -24,9 +24,10 @@
 // pre-normalises the dividend (doubled when its significand is below the divisor's, so the
 // quotient lies in [1, 2)); slots 1..N (N = FracW + 2) each produce one quotient bit (FracW + 1
 // significand bits and a round bit). Slot 1's bit is always 1, so its subtraction is made in
-// slot 0, for both pre-normalisations side by side. Slot N also decides the rounding increment
-// (round to nearest even, with the sticky bit of a nonzero final remainder); slot N + 1 adds
-// it, adjusts the exponent and packs.
+// slot 0, for both pre-normalisations side by side (slots 0 and 1: rc_fp_div_pre). Slot N also
+// decides the rounding increment (round to nearest even, with the sticky bit of a nonzero final
+// remainder: rc_fp_div_fin); slot N + 1 adds it, adjusts the exponent and packs. rc_fp_div_iter
+// is the same division with one slot pair's hardware iterated, for users with few operations.
 //
 // Slots in one cycle do not chain their subtractions: a slot k >= 3 in the same cycle as slot
 // k - 1 subtracts from slot k - 1's input remainder R for both of slot k - 1's outcomes side by
@@ -77,7 +78,6 @@ module rc_fp_div #(
   localparam int unsigned Slots = N + 2;
   localparam int unsigned Se    = (Stages < Slots) ? Stages : Slots;
   localparam int unsigned ExW   = ExpW + 2;           // unbounded exponent, two's complement
-  localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
   localparam int unsigned Base  = Slots / Se;           // slots per cycle (the short cycles)
   localparam int unsigned Rem   = Slots % Se;           // cycles with Base + 1 slots, first
   // The cycle (0 .. Se - 1) in which slot k runs.
@@ -102,48 +102,23 @@ module rc_fp_div #(
   // Slot 0: unpack, pre-normalise     //
   ///////////////////////////////////////
 
-  logic [ExpW-1:0] a_exp, b_exp;
-  logic            a_zero, b_zero, a_nan, b_nan, a_inf, b_inf;
-  logic            spec_nan, spec_inf, spec_zero;
-  logic [ManW-1:0] a_man, b_man;
-  logic            a_below;
-  logic [ManW:0]   d_lo;
-  logic [ManW-1:0] d_hi;
-  logic [RemW-1:0] rem0;
-  logic [ExW-1:0]  exp0, exp_hi, exp_lo;
-  logic [D3W-1:0]  d3;
-
-  assign a_exp  = a_i[W-2 -: ExpW];
-  assign b_exp  = b_i[W-2 -: ExpW];
-  assign a_zero = ~|a_exp;
-  assign b_zero = ~|b_exp;
-  assign a_nan  = (&a_exp) & (|a_i[FracW-1:0]);
-  assign b_nan  = (&b_exp) & (|b_i[FracW-1:0]);
-  assign a_inf  = (&a_exp) & ~(|a_i[FracW-1:0]);
-  assign b_inf  = (&b_exp) & ~(|b_i[FracW-1:0]);
-
-  assign spec_nan  = a_nan | b_nan | (a_zero & b_zero) | (a_inf & b_inf);
-  assign spec_inf  = a_inf | b_zero;  // (overridden by spec_nan)
-  assign spec_zero = a_zero | b_inf;  // (overridden by spec_nan and spec_inf)
-
-  // The hidden bit is always 1 here: zero, infinity and NaN operands are overridden at the end.
-  assign a_man   = {1'b1, a_i[FracW-1:0]};
-  assign b_man   = {1'b1, b_i[FracW-1:0]};
-  // Dividend in [divisor, 2 * divisor), so the first quotient bit is 1 and q lies in [1, 2).
-  // That bit's subtraction is made here for both pre-normalisations side by side (a - b, whose
-  // borrow is a_below, and 2a - b) and only selected, so slot 1 has no carry chain behind this
-  // slot's: rem0 is the remainder after slot 1's subtraction (below the divisor).
-  assign d_lo    = {1'b0, a_man} - {1'b0, b_man};
-  assign d_hi    = {a_man[ManW-2:0], 1'b0} - b_man;  // in [0, b): modulo 2^ManW is exact
-  assign a_below = d_lo[ManW];
-  assign rem0    = {1'b0, a_below ? d_hi : d_lo[ManW-1:0]};
-  // The exponent for both pre-normalisations side by side, selected by a_below (not a carry
-  // chain behind a_below's: run 34, -1.04 ns in rc_ray_setup's divider).
-  assign exp_hi  = ExW'(a_exp) - ExW'(b_exp) + ExW'(Bias);
-  assign exp_lo  = ExW'(a_exp) - ExW'(b_exp) + ExW'(Bias - 1);
-  assign exp0    = a_below ? exp_lo : exp_hi;
-  // 3D for the slots that subtract for both outcomes of the slot before (see Algorithm).
-  assign d3      = D3W'(b_man) + D3W'({b_man, 1'b0});
+  // Slot 1's bit is always 1, so its subtraction is made here (rc_fp_div_pre): rem0 is the
+  // remainder after it.
+  logic [HdrW-1:0]  hdr0;
+  logic [FracW-1:0] dvs0;
+  logic [D3W-1:0]   d3;
+  logic [RemW-1:0]  rem0;
+  rc_fp_div_pre #(
+    .ExpW (ExpW),
+    .FracW(FracW)
+  ) u_pre (
+    .a_i,
+    .b_i,
+    .hdr_o (hdr0),
+    .dvs_o (dvs0),
+    .dvs3_o(d3),
+    .rem_o (rem0)
+  );
 
   ///////////////////////////////////////////
   // Slots 1..N: one quotient bit each     //
@@ -159,8 +134,7 @@ module rc_fp_div #(
   logic             unused_q_s;
   assign unused_q_s = ^q_s;
 
-  assign st_out[StW-1:0] = {spec_nan, spec_inf, spec_zero, a_i[W-1] ^ b_i[W-1], exp0,
-                            b_i[FracW-1:0], d3, rem0, {N{1'b0}}};
+  assign st_out[StW-1:0] = {hdr0, dvs0, d3, rem0, {N{1'b0}}};
 
   for (genvar k = 1; k <= N; k++) begin : g_iter
     // The register (or wire) in front of slot k.
@@ -223,48 +197,22 @@ module rc_fp_div #(
       // The next slot's partial remainder is the kept one doubled.
       assign st_out[k*StW +: StW] = {hdr, dvs_frac, dvs3, rem_kept, 1'b0, quo_next};
     end else begin : g_last
-      // The rounding increment is decided here, before the register, so the rounding cycle
-      // starts from it. The final remainder is nonzero (the sticky bit) if the divisor did not
-      // fit and the remainder was nonzero, or if it fitted and the remainder was not the divisor
-      // itself: two equality compares beside the subtraction, which only selects (rem_kept is
-      // not needed). The increment rounds to nearest even: the round bit (this slot's) and the
-      // sticky bit or the last significand bit (slot N - 1's).
-      // The rounding cycle's range checks and the result's kinds for both outcomes of the carry
-      // are made here too, beside the increment (the significand is slots 1 to N - 1's bits,
-      // the exponent the header's: neither waits for this slot's bit), so the rounding cycle
-      // only selects a kind by the carry in front of the word's select.
-      logic                                sticky, round_up_d, unused_kept, man_ones_d, sign_d;
-      logic [1:0]                          uflow_d, oflow_d;
-      logic [2*rc_pkg::FpResultKindBits-1:0] kinds_d;
-      logic                                h_nan, h_inf, h_zero, h_sign;
-      logic [ExW-1:0]                      h_exp;
-      assign {h_nan, h_inf, h_zero, h_sign, h_exp} = hdr;
-      assign unused_kept = ^{rem_kept, quo_next};  // (q_bit is in round_up_d)
-      assign sticky      = q_bit ? (rem != {2'b01, dvs_frac}) : (rem != '0);
-      assign round_up_d  = q_bit & (sticky | quo[1]);
-      rc_fp_round_flags #(
+      // The rounding increment, the result's kinds and range checks are decided here, before
+      // the register, so the rounding cycle starts from them (rc_fp_div_fin; rem_kept is not
+      // needed).
+      logic unused_kept;
+      assign unused_kept = ^{rem_kept, quo_next};  // (q_bit is in fin_d)
+      rc_fp_div_fin #(
         .ExpW (ExpW),
-        .FracW(FracW),
-        .ExW  (ExW)
-      ) u_round_flags (
-        .exp_i     (h_exp),
-        .man_i     (quo[N-1:1]),
-        .man_ones_o(man_ones_d),
-        .uflow_o   (uflow_d),
-        .oflow_o   (oflow_d)
+        .FracW(FracW)
+      ) u_fin (
+        .hdr_i(hdr),
+        .dvs_i(dvs_frac),
+        .rem_i(rem),
+        .q_i  (q_bit),
+        .man_i(quo[N-1:1]),
+        .fin_o(fin_d)
       );
-      rc_fp_round_kinds u_round_kinds (
-        .nan_i      (h_nan),
-        .inf_i      (h_inf),
-        .zero_i     (h_zero),
-        .zero_sign_i(h_sign),
-        .sign_i     (h_sign),
-        .uflow_i    (uflow_d),
-        .oflow_i    (oflow_d),
-        .kind_o     (kinds_d),
-        .sign_o     (sign_d)
-      );
-      assign fin_d = {kinds_d, sign_d, man_ones_d, h_exp[ExpW-1:0], quo[N-2:1], round_up_d};
     end
   end
 

@@ -31,9 +31,11 @@
 // two bits, r' = 4 r_{j-1} + pair, subtract the trial 4 q_{j-1} + 1 if it fits (root bit 1) and
 // keep r' otherwise (root bit 0). Each step is only as wide as its operands (j + 3 bits), so the
 // early steps are short. Slot 0 unpacks, classifies, forms the radicand and takes root bit 1
-// (always 1: the top pair is 1, 2 or 3); slots 1 .. N - 1 take root bits 2 .. N, and slot N - 1
-// also reduces the final remainder to the sticky bit (nonzero = inexact) and decides the
-// rounding increment (round to nearest even); slot N rounds and packs (rc_fp_round_pack).
+// (always 1: the top pair is 1, 2 or 3; rc_fp_sqrt_pre); slots 1 .. N - 1 take root bits 2 .. N,
+// and slot N - 1 also reduces the final remainder to the sticky bit (nonzero = inexact) and
+// decides the rounding increment (round to nearest even; rc_fp_sqrt_fin); slot N rounds and
+// packs (rc_fp_round_pack). rc_fp_sqrt_iter is the same square root with one slot pair's
+// hardware iterated, for users with few operations.
 //
 // Slots in one cycle do not chain their subtractions (as in rc_fp_div): a slot k >= 2 in the
 // same cycle as slot k - 1 subtracts from slot k - 1's input state for both of its outcomes,
@@ -81,8 +83,6 @@ module rc_fp_sqrt #(
   localparam int unsigned N     = ManW + 1;           // root bits: significand + round
   localparam int unsigned Slots = N + 1;
   localparam int unsigned Se    = (Stages < Slots) ? Stages : Slots;
-  localparam int unsigned ExW   = ExpW + 2;           // rc_fp_round_pack's exponent width
-  localparam int unsigned Bias  = (1 << (ExpW - 1)) - 1;
   localparam int unsigned Base  = Slots / Se;           // slots per cycle (the short cycles)
   localparam int unsigned Rem   = Slots % Se;           // cycles with Base + 1 slots, first
   // The cycle (0 .. Se - 1) in which slot k runs.
@@ -116,33 +116,20 @@ module rc_fp_sqrt #(
   // Slot 0: unpack, classify, radicand, bit 1    //
   //////////////////////////////////////////////////
 
-  logic             a_sign, a_zero, a_nan, a_inf;
-  logic [ExpW-1:0]  a_exp;
-  logic [FracW-1:0] a_frac;
-  logic             spec_nan, spec_inf, spec_zero;
-  logic [ExpW:0]    exp_sum;
-  logic [N-1:0]     rad0;
-  logic [1:0]       rem1;
-
-  assign a_sign = a_i[W-1];
-  assign a_exp  = a_i[W-2 -: ExpW];
-  assign a_frac = a_i[FracW-1:0];
-  assign a_zero = ~|a_exp;
-  assign a_nan  = (&a_exp) & (|a_frac);
-  assign a_inf  = (&a_exp) & ~(|a_frac);
-
-  assign spec_nan  = a_nan | (a_sign & ~a_zero);  // NaN, or negative and nonzero (-inf too)
-  assign spec_inf  = a_inf;                       // +inf here (-inf is spec_nan, which wins)
-  assign spec_zero = a_zero;                      // +-0 (overridden by nothing: it is not NaN)
-
-  // Result exponent field floor((e + Bias) / 2); its low bit says that e - Bias is odd, and then
-  // the significand is doubled. The hidden bit is always 1 here: zero, infinity and NaN inputs are
-  // overridden at the end.
-  assign exp_sum = (ExpW + 1)'(a_exp) + (ExpW + 1)'(Bias);
-  assign rad0    = exp_sum[0] ? {1'b1, a_frac, 1'b0} : {1'b0, 1'b1, a_frac};
-  // Root bit 1: the top pair of the radicand is 1, 2 or 3, so the bit is 1 and the remainder is
-  // the pair minus 1.
-  assign rem1    = rad0[N-1 -: 2] - 2'd1;
+  // rad0: the radicand bits not yet brought down; rem1: the remainder after root bit 1 (always
+  // 1, so the root is 1 and t = 4).
+  logic [HdrW-1:0] hdr0;
+  logic [N-1:0]    rad0;
+  logic [1:0]      rem1;
+  rc_fp_sqrt_pre #(
+    .ExpW (ExpW),
+    .FracW(FracW)
+  ) u_pre (
+    .a_i,
+    .hdr_o(hdr0),
+    .rad_o(rad0),
+    .rem_o(rem1)
+  );
 
   ///////////////////////////////////////////
   // Slots 1 .. N - 1: one root bit each    //
@@ -159,8 +146,7 @@ module rc_fp_sqrt #(
   logic         unused_r_s;
   assign unused_r_s = ^r_s;
 
-  assign st_out[0 +: st_w(0)] = {spec_nan, spec_inf, spec_zero, a_sign, exp_sum[ExpW:1],
-                                 rad0[N-3:0], 2'b00, rem1, 1'b1, 3'd4};
+  assign st_out[0 +: st_w(0)] = {hdr0, rad0, rem1, 1'b1, 3'd4};
 
   for (genvar k = 1; k < N; k++) begin : g_step
     // Where the state entering slot k (the state after slot k - 1) sits in st_out and st_in.
@@ -241,50 +227,22 @@ module rc_fp_sqrt #(
       assign st_out[OutOff +: OutW] = {hdr, rad[N-3:0], 2'b00, rem_next, root, r_bit,
                                        r_bit ? {t_inc, 1'b0} : {t_dec, 1'b1}};
     end else begin : g_last
-      // The sticky bit (a nonzero final remainder) is formed here, before the register, so the
-      // rounding cycle starts from it. With the trial subtracted the remainder is zero exactly
-      // when the trial equals the brought-down remainder, so the sticky bit is two equality
-      // compares beside the subtraction, which only selects (not an OR over rem_next behind the
-      // subtraction's carry chain: run 47, -0.44 ns in rc_ray_gen).
-      // The rounding cycle's range checks and the result's kinds for both outcomes of the carry
-      // are made here too (the significand is the root so far, the exponent the header's), so
-      // the rounding cycle only selects a kind by the carry in front of the word's select.
-      // The rounding increment is decided here as well (round to nearest even: the round bit,
-      // and the sticky bit or the root's last bit), one cell beside the sticky bit's select, so
-      // the rounding cycle starts from it (run 54: the ray generator's square root, fin_q into
-      // the output register through the increment, -0.35 ns).
-      logic                                  sticky, round_up_d, unused_next, man_ones_d, sign_d;
-      logic [1:0]                            uflow_d, oflow_d;
-      logic [2*rc_pkg::FpResultKindBits-1:0] kinds_d;
-      logic                                  h_nan, h_inf, h_zero, h_sign;
-      logic [ExpW-1:0]                       h_exp;
-      assign {h_nan, h_inf, h_zero, h_sign, h_exp} = hdr;
-      assign sticky      = r_bit ? (rem_sh != {1'b0, root, 2'b01}) : (rem_sh != '0);
-      assign round_up_d  = r_bit & (sticky | root[0]);
+      // The sticky bit, the rounding increment and the result's kinds for both outcomes of the
+      // rounding carry are made here, before the register, so the rounding cycle starts from
+      // them (rc_fp_sqrt_fin: the sticky bit is two equality compares beside the subtraction,
+      // which only selects, not an OR over rem_next behind its carry chain).
+      logic unused_next;
       assign unused_next = ^{rem_next, t_inc, t_dec};
-      rc_fp_round_flags #(
+      rc_fp_sqrt_fin #(
         .ExpW (ExpW),
-        .FracW(FracW),
-        .ExW  (ExW)
-      ) u_round_flags (
-        .exp_i     (ExW'(h_exp)),
-        .man_i     (root),
-        .man_ones_o(man_ones_d),
-        .uflow_o   (uflow_d),
-        .oflow_o   (oflow_d)
+        .FracW(FracW)
+      ) u_fin (
+        .hdr_i   (hdr),
+        .r_bit_i (r_bit),
+        .rem_sh_i(rem_sh),
+        .root_i  (root),
+        .fin_o   (fin_d)
       );
-      rc_fp_round_kinds u_round_kinds (
-        .nan_i      (h_nan),
-        .inf_i      (h_inf),
-        .zero_i     (h_zero),
-        .zero_sign_i(h_sign),  // sqrt(-0) = -0
-        .sign_i     (1'b0),    // every other non-NaN result is positive
-        .uflow_i    (uflow_d),
-        .oflow_i    (oflow_d),
-        .kind_o     (kinds_d),
-        .sign_o     (sign_d)
-      );
-      assign fin_d = {kinds_d, sign_d, man_ones_d, h_exp, root[FracW-1:0], round_up_d};
       // By now every radicand bit has been brought down (the rest are the zeros shifted in).
       logic unused_rad;
       assign unused_rad = ^rad[N-3:0];
