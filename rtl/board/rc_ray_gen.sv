@@ -33,8 +33,9 @@
 //   free-running count modulo 6, and operators whose uses fall at different phases share
 //   (rc_fp_shared): X * cx and Y * cy one multiplier (Y * cy three cycles later), c0 + X cx and
 //   + Y cy one adder (the second three cycles later than at Period 3), the length's two sums one
-//   adder (the second a cycle later): two multipliers and two adders, bit for bit the same
-//   results.
+//   adder (the second a cycle later): two multipliers and two adders; and the square root and
+//   the divider are iterative with two lanes (rc_fp_sqrt_iter, rc_fp_div_iter: two rays' come at
+//   least 12 cycles apart). Bit for bit the same results in the same cycles.
 // - Parameters: ExpW, FracW: the format; CoordW: bits of width_i/height_i (CoordW <= FracW + 1,
 //   so every coordinate converts exactly); RayFifoDepth: rays buffered (>= 4); Period: 3 or 6.
 // - Illegal input: start_i while busy_o; camera or size inputs changing while busy_o or in the
@@ -448,22 +449,42 @@ module rc_ray_gen #(
     assign unused_valid = ^{mxy_valid, dsum_valid, lsum_valid};
   end
 
-  // 1 / sqrt(|dir|^2).
-  rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW)) u_sqrt (
-    .clk_i, .rst_ni,
-    .valid_i(l2_valid),
-    .a_i    (l2),
-    .valid_o(sq_valid),
-    .res_o  (sq)
-  );
-  rc_fp_div #(.ExpW(ExpW), .FracW(FracW)) u_div (
-    .clk_i, .rst_ni,
-    .valid_i(sq_valid),
-    .a_i    (One),
-    .b_i    (sq),
-    .valid_o(inv_valid),
-    .res_o  (inv)
-  );
+  // 1 / sqrt(|dir|^2). At Period 6 two rays' roots (and divisions) come at least 12 cycles
+  // apart, so the iterative units with two lanes serve them (rc_fp_sqrt_iter, rc_fp_div_iter: a
+  // lane is busy 8 and 9 cycles); at Period 3 they are pipelined.
+  if (Shared) begin : g_iter
+    rc_fp_sqrt_iter #(.ExpW(ExpW), .FracW(FracW), .Lanes(2)) u_sqrt (
+      .clk_i, .rst_ni,
+      .valid_i(l2_valid),
+      .a_i    (l2),
+      .valid_o(sq_valid),
+      .res_o  (sq)
+    );
+    rc_fp_div_iter #(.ExpW(ExpW), .FracW(FracW), .Lanes(2)) u_div (
+      .clk_i, .rst_ni,
+      .valid_i(sq_valid),
+      .a_i    (One),
+      .b_i    (sq),
+      .valid_o(inv_valid),
+      .res_o  (inv)
+    );
+  end else begin : g_pipe
+    rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW)) u_sqrt (
+      .clk_i, .rst_ni,
+      .valid_i(l2_valid),
+      .a_i    (l2),
+      .valid_o(sq_valid),
+      .res_o  (sq)
+    );
+    rc_fp_div #(.ExpW(ExpW), .FracW(FracW)) u_div (
+      .clk_i, .rst_ni,
+      .valid_i(sq_valid),
+      .a_i    (One),
+      .b_i    (sq),
+      .valid_o(inv_valid),
+      .res_o  (inv)
+    );
+  end
 
   // The direction, collected from the stream (complete when z arrives, two cycles after x), waits
   // for its inv_len.

@@ -17,8 +17,8 @@
 //     refr_o[a] = lt(0, q) ? e * v_o[a] - (e * c + sqrt(q)) * n_o[a] : r_o[a]
 //     w_mirror_o  = w_i * mirror_i,    mirror_o  = lt(0, mirror_i) && lt(0, w_mirror_o)
 //     w_refract_o = w_i * transmit_i,  refract_o = lt(0, transmit_i) && lt(0, w_refract_o)
-//   Every operation is the format's (rc_fp_mul, rc_fp_add, rc_fp_sqrt), in exactly this order
-//   and with these operands.
+//   Every operation is the format's (rc_fp_mul, rc_fp_add, and the square root of rc_fp_sqrt,
+//   made by rc_fp_sqrt_iter), in exactly this order and with these operands.
 // - Structure: component-serial. A taken hit waits in an input register for three cycles
 //   (slots 0, 1, 2) while its x, y and z enter the vector operations, one component a cycle;
 //   every vector value then travels as a stream of three consecutive components and every scalar
@@ -290,7 +290,11 @@ module rc_hit_geom #(
   rc_delay #(.Width(W), .Cycles(TimeS - (TimeC + 1 + Lm))) u_dly_e2 (
     .clk_i, .data_i(m5), .data_o(e2_d)
   );
-  rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
+  // One root a job: an iterative one (rc_fp_sqrt_iter, a lane busy 8 cycles) with one lane at a
+  // job per 12 cycles, two at 6 (any two roots then come at least 12 cycles apart).
+  rc_fp_sqrt_iter #(
+    .ExpW(ExpW), .FracW(FracW), .Stages(Ls), .Lanes((Period >= 12) ? 1 : 2)
+  ) u_sqrt (
     .clk_i, .rst_ni, .valid_i(at[TimeQ]), .a_i(q_res), .valid_o(sq_vld), .res_o(sq_res)
   );
   rc_delay_ram #(.Width(W), .Cycles(TimeSq - (TimeC + 2 + Lm))) u_dly_ec (

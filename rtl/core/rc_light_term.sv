@@ -30,7 +30,8 @@
 //   phase 0 modulo Period, a multiple of 6 (rc_serial_sched, Phased), so operations whose cycles
 //   fall at different phases share an operator and no two jobs meet there. Modulo 3: one square
 //   root and one divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after
-//   its sum). Every product (the streams L * L, L * inv, kd * ambient, ka * w, kd * cos,
+//   its sum): pipelined at Period 6, iterative with two lanes at 12 (rc_fp_sqrt_iter,
+//   rc_fp_div_iter; the same results and latencies). Every product (the streams L * L, L * inv, kd * ambient, ka * w, kd * cos,
 //   ks * spec, sum * lcol and its * w, N * lh, H * H and N * H; the scalars dist and nh; the
 //   power's steps) is a user of one pool of multipliers (rc_fp_pool), which places each on the
 //   first multiplier whose users' phases modulo Period it does not meet: 12 multipliers at
@@ -308,13 +309,28 @@ module rc_light_term #(
   logic         rt_vld, rinv_vld;
   rc_delay #(.Width(W), .Cycles(1)) u_dly_hs (.clk_i, .data_i(hsum), .data_o(hsum_d1));
   assign rt_a = at[TimeD2] ? dist2 : hsum_d1;
-  rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
-    .clk_i, .rst_ni, .valid_i(at[TimeD2] | at[TimeHs]), .a_i(rt_a), .valid_o(rt_vld), .res_o(rt)
-  );
-  rc_fp_div #(.ExpW(ExpW), .FracW(FracW), .Stages(Ld)) u_div (
-    .clk_i, .rst_ni, .valid_i(at[TimeSq1] | at[TimeHs + Ls]), .a_i(One), .b_i(rt),
-    .valid_o(rinv_vld), .res_o(rinv)
-  );
+  // At a job per 12 cycles the two users bring at most two operations into any 12 cycles (one
+  // at each user's phase), so an iterative root and divider with two lanes serve them
+  // (rc_fp_sqrt_iter, rc_fp_div_iter: a lane is busy 8 and 9 cycles); at 6 they are pipelined.
+  if (Period >= 12) begin : g_iter
+    rc_fp_sqrt_iter #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls), .Lanes(2)) u_sqrt (
+      .clk_i, .rst_ni, .valid_i(at[TimeD2] | at[TimeHs]), .a_i(rt_a), .valid_o(rt_vld),
+      .res_o(rt)
+    );
+    rc_fp_div_iter #(.ExpW(ExpW), .FracW(FracW), .Stages(Ld), .Lanes(2)) u_div (
+      .clk_i, .rst_ni, .valid_i(at[TimeSq1] | at[TimeHs + Ls]), .a_i(One), .b_i(rt),
+      .valid_o(rinv_vld), .res_o(rinv)
+    );
+  end else begin : g_pipe
+    rc_fp_sqrt #(.ExpW(ExpW), .FracW(FracW), .Stages(Ls)) u_sqrt (
+      .clk_i, .rst_ni, .valid_i(at[TimeD2] | at[TimeHs]), .a_i(rt_a), .valid_o(rt_vld),
+      .res_o(rt)
+    );
+    rc_fp_div #(.ExpW(ExpW), .FracW(FracW), .Stages(Ld)) u_div (
+      .clk_i, .rst_ni, .valid_i(at[TimeSq1] | at[TimeHs + Ls]), .a_i(One), .b_i(rt),
+      .valid_o(rinv_vld), .res_o(rinv)
+    );
+  end
   assign inv_res = rinv;
   assign ih      = rinv;
   rc_delay_ram #(.Width(W), .Cycles(TimeIh - TimeHh - 1)) u_dly_nhd (
