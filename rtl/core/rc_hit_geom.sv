@@ -24,15 +24,16 @@
 //   every vector value then travels as a stream of three consecutive components and every scalar
 //   as one value at a fixed cycle. A scalar that a vector operation needs (t, inv_len, the
 //   mirror term's c + c, the refraction term's g) is held for the three cycles of the stream by
-//   a register loaded in the stream's first cycle. Hits are taken at phase 0 modulo Period, a
+//   a register loaded in the stream's first cycle (c + c's before it). Hits are taken at phase 0 modulo Period, a
 //   multiple of 6 (rc_serial_sched, Phased), so operations whose cycles fall at different phases
 //   share an operator and no two hits meet there: every product (the streams t * d, d * inv_len,
 //   N * V, (c + c) * N, g * N and e * V; the two weights; c * c, e * e and e * c in consecutive
 //   cycles; e^2 (1 - c^2)) is a user of one pool of multipliers (rc_fp_pool), and every sum (the
 //   streams o + t d, V - (c + c) N and e V - g N; N.V's x + y and + z; 1 - c * c, q = 1 - x and
 //   g) of one pool of adders, which place each user on the first operator whose users' phases
-//   modulo Period it does not meet: 5 multipliers and 5 adders at Period 6, 4 and 4 at 12. c + c
-//   is rc_fp_twice (exact doubling, a cycle). Each value reaches its operation through rc_delay
+//   modulo Period it does not meet: 5 multipliers and 4 adders at Period 6, 3 and 3 at 12 (e * V
+//   issued as V leaves and (c + c) * N ShiftK cycles after c + c, both off the path to the
+//   output: the times below). c + c is rc_fp_twice (exact doubling, a cycle). Each value reaches its operation through rc_delay
 //   lines (rc_delay_ram memories where
 //   they are long) of the lengths the fp units' latencies give (the times below, in cycles after
 //   slot 0), so a stream's timing never depends on its neighbours: a hit may follow another after
@@ -110,7 +111,14 @@ module rc_hit_geom #(
   localparam int unsigned TimeS01 = TimeNv + 1 + La;   // N.x V.x + N.y V.y (issued with y)
   localparam int unsigned TimeC   = TimeS01 + La;      // c
   localparam int unsigned TimeK   = TimeC + 1;         // c + c (rc_fp_twice)
-  localparam int unsigned TimeKn  = TimeK + Lm;        // (c + c) * N
+  // (c + c) * N is issued ShiftK cycles after c + c leaves, and e * V as V leaves (TimeV): both
+  // off the path to the output, placed where the pools need fewer operators at Period 12 (3
+  // multipliers and 3 adders instead of 4 and 4, and 5 and 4 at 6 instead of 5 and 5, at the
+  // default fp stages; the results then wait, so the latency is the same). ShiftK + 2 <= 6: the
+  // stream reads c + c from the register the next job's c + c overwrites 6 cycles later at 6.
+  localparam int unsigned ShiftK  = 4;
+  localparam int unsigned TimeKi  = TimeK + ShiftK;    // (c + c) * N issued
+  localparam int unsigned TimeKn  = TimeKi + Lm;       // (c + c) * N
   localparam int unsigned TimeR   = TimeKn + La;       // R = V - (c + c) N
   localparam int unsigned TimeS   = TimeC + Lm + La;   // 1 - c * c
   localparam int unsigned TimeX   = TimeS + Lm;        // e^2 * (1 - c^2)
@@ -201,13 +209,13 @@ module rc_hit_geom #(
     if (back_q) nf_s = nf_s ^ SignBit;
   end
 
-  // A scalar held for its stream's three cycles: the value in the first, then a register's.
-  // (Three instances below: c + c, c and g.)
+  // A scalar held for its stream's three cycles: the value in the first, then a register's (c
+  // and g); c + c from its register only, its stream starting ShiftK cycles after it leaves.
   logic [W-1:0] k_res, k_hold_q, k_b;
   logic [W-1:0] c_res, c_hold_q, c_b;
   logic [W-1:0] g_res, g_hold_q, g_b;
 
-  assign k_b = at[TimeK] ? k_res : k_hold_q;
+  assign k_b = k_hold_q;  // read from TimeKi = TimeK + ShiftK on
   assign c_b = at[TimeC] ? c_res : c_hold_q;
   assign g_b = at[TimeG] ? g_res : g_hold_q;
 
@@ -229,10 +237,10 @@ module rc_hit_geom #(
   // The facing normal's stream, tapped where the operations need it.
   logic [W-1:0] n_at_v, n_at_k, n_at_g, n_at_t;
   rc_delay #(.Width(W), .Cycles(TimeV)) u_dly_n0 (.clk_i, .data_i(nf_s), .data_o(n_at_v));
-  rc_delay_ram #(.Width(W), .Cycles(TimeK - TimeV)) u_dly_n1 (
+  rc_delay_ram #(.Width(W), .Cycles(TimeKi - TimeV)) u_dly_n1 (
     .clk_i, .rst_ni, .data_i(n_at_v), .data_o(n_at_k)
   );
-  rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeK)) u_dly_n2 (
+  rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeKi)) u_dly_n2 (
     .clk_i, .rst_ni, .data_i(n_at_k), .data_o(n_at_g)
   );
   rc_delay #(.Width(W), .Cycles(TimeT - TimeG)) u_dly_n3 (
@@ -272,11 +280,10 @@ module rc_hit_geom #(
 
   // e (the input register's, one of the two ratios) as a stream: at slot k the register holds it,
   // so a delay line of T gives it at T, T + 1, T + 2.
-  logic [W-1:0] e_at_c, e_at_g;
-  rc_delay_ram #(.Width(W), .Cycles(TimeC)) u_dly_e0 (
-    .clk_i, .rst_ni, .data_i(eta_q), .data_o(e_at_c));
-  rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeC)) u_dly_e1 (
-    .clk_i, .rst_ni, .data_i(e_at_c), .data_o(e_at_g)
+  logic [W-1:0] e_at_v, e_at_c;
+  rc_delay #(.Width(W), .Cycles(TimeV)) u_dly_e0 (.clk_i, .data_i(eta_q), .data_o(e_at_v));
+  rc_delay_ram #(.Width(W), .Cycles(TimeC - TimeV)) u_dly_e1 (
+    .clk_i, .rst_ni, .data_i(e_at_v), .data_o(e_at_c)
   );
 
   // One user of u_muls: c * c at TimeC, e * e at TimeC + 1, e * c at TimeC + 2.
@@ -311,8 +318,12 @@ module rc_hit_geom #(
     .clk_i, .rst_ni, .data_i(tir_b), .data_o(tir_at_t)
   );
 
-  // g * N and e * V (at TimeG): in u_muls; e V - g N (at TimeGn): in u_adds.
-  logic [W-1:0] gn, ev, t_s;
+  // g * N (at TimeG) and e * V (at TimeV, waiting for g * N): in u_muls; e V - g N (at TimeGn):
+  // in u_adds.
+  logic [W-1:0] gn, ev, ev_d, t_s;
+  rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeV)) u_dly_ev (
+    .clk_i, .rst_ni, .data_i(ev), .data_o(ev_d)
+  );
 
   //////////////////////////////////////
   // Weights                          //
@@ -338,7 +349,7 @@ module rc_hit_geom #(
   // for the weights, one for a scalar), and every sum, a user of one pool of adders; each result
   // is read at its own time.
   localparam int unsigned MulUsers = 9;
-  localparam logic [511:0] MulTimes  = 512'({16'(TimeG), 16'(TimeG), 16'(TimeS), 16'(TimeK),
+  localparam logic [511:0] MulTimes  = 512'({16'(TimeV), 16'(TimeG), 16'(TimeS), 16'(TimeKi),
                                               16'(TimeC), 16'(TimeV), 16'(0), 16'(0), 16'(0)});
   localparam logic [63:0]  MulCycles = 64'({2'd3, 2'd3, 2'd1, 2'd3, 2'd3, 2'd3, 2'd2, 2'd3,
                                             2'd3});
@@ -346,10 +357,10 @@ module rc_hit_geom #(
   logic [MulUsers*W-1:0] mul_a, mul_b, mul_res;
   // e * V, g * N, e^2 (1 - c^2), (c + c) * N, c * c | e * e | e * c, N * V, the weights,
   // d * inv_len, t * d.
-  assign mul_issue = {strm[TimeG], strm[TimeG], at[TimeS], strm[TimeK], strm[TimeC], strm[TimeV],
+  assign mul_issue = {strm[TimeV], strm[TimeG], at[TimeS], strm[TimeKi], strm[TimeC], strm[TimeV],
                       slot_q[0] | slot_q[1], strm[0], strm[0]};
-  assign mul_a     = {e_at_g, g_b, e2_d, k_b, m5_a, n_dv, w_q, d_s, t_q};
-  assign mul_b     = {v_at_g, n_at_g, s_res, n_at_k, m5_b, v_s, wf_s, ilen_q, d_s};
+  assign mul_a     = {e_at_v, g_b, e2_d, k_b, m5_a, n_dv, w_q, d_s, t_q};
+  assign mul_b     = {v_s, n_at_g, s_res, n_at_k, m5_b, v_s, wf_s, ilen_q, d_s};
   rc_fp_pool #(
     .ExpW(ExpW), .FracW(FracW), .Users(MulUsers), .Period(Period), .Time(MulTimes),
     .Cycles(MulCycles)
@@ -370,7 +381,7 @@ module rc_hit_geom #(
   // e V - g N, P = o + t d.
   assign add_issue = {at[TimeS01], at[TimeNv + 1], at[TimeSq], at[TimeX], at[TimeC + Lm],
                       strm[TimeKn], strm[TimeGn], strm[TimeV]};
-  assign add_a     = {s01, nv_d1, ec_d, One, One, v_at_kn, ev, o_d};
+  assign add_a     = {s01, nv_d1, ec_d, One, One, v_at_kn, ev_d, o_d};
   assign add_b     = {nv_dz, nv, sq_res, x_res, m5, kn, gn, td};
   rc_fp_pool #(
     .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(AddUsers), .Sub(32'b00011110),
@@ -464,7 +475,7 @@ module rc_hit_geom #(
   // which also carry the other users' results on the same operator).
   logic [MulUsers-1:0] mul_due;
   logic [AddUsers-1:0] add_due;
-  assign mul_due = {strm[TimeGn], strm[TimeGn], at[TimeX], strm[TimeKn], strm[TimeC + Lm],
+  assign mul_due = {strm[TimeV + Lm], strm[TimeGn], at[TimeX], strm[TimeKn], strm[TimeC + Lm],
                     strm[TimeNv], at[Lm] | at[Lm + 1], strm[TimeV], strm[TimeV]};
   assign add_due = {at[TimeC], at[TimeS01], at[TimeG], at[TimeQ], at[TimeS], strm[TimeR],
                     strm[TimeT], strm[TimeP]};

@@ -34,9 +34,11 @@
 //   rc_fp_div_iter; the same results and latencies). Every product (the streams L * L, L * inv, kd * ambient, ka * w, kd * cos,
 //   ks * spec, sum * lcol and its * w, N * lh, H * H and N * H; the scalars dist and nh; the
 //   power's steps) is a user of one pool of multipliers (rc_fp_pool), which places each on the
-//   first multiplier whose users' phases modulo Period it does not meet: 12 multipliers at
-//   Period 6, 7 at 12. Every sum (the streams L = lpos - p, H = lh - v and kd cos + ks spec; the
-//   dot products' x + y and + z) is a user of one pool of adders: 5 at Period 6, 3 at 12.
+//   first multiplier whose users' phases modulo Period it does not meet: 11 multipliers at
+//   Period 6, 5 at 12. Every sum (the streams L = lpos - p, H = lh - v and kd cos + ks spec; the
+//   dot products' x + y and + z) is a user of one pool of adders: 4 at Period 6, 2 at 12. (The
+//   ambient term and the cos and N.H dot products start later than their operands allow, off the
+//   path to the output, for those counts: ShiftA, ShiftC, ShiftN below.)
 //   Values wait for their operations in rc_delay lines (short) and rc_delay_ram memories (long),
 //   so a job may follow another after Period cycles or after any gap (rc_serial_sched keeps the
 //   slots and the job times). The last stage collects each stream's three components into the
@@ -101,6 +103,14 @@ module rc_light_term #(
   localparam int unsigned Ls = rc_pkg::FpStagesSqrt;
   localparam int unsigned Ld = rc_pkg::FpStagesDiv;
 
+  // Off the path to the output, three things start later than their operands allow, where the
+  // pools need fewer operators (at the default fp stages: 5 multipliers and 2 adders at Period
+  // 12 instead of 7 and 3, 11 and 4 at 6 instead of 12 and 5; their results then wait, so the
+  // latency is the same): the ambient term's two products ShiftA cycles, the cos dot product
+  // ShiftC and the N.H dot product ShiftN.
+  localparam int unsigned ShiftA   = 9;
+  localparam int unsigned ShiftC   = 8;
+  localparam int unsigned ShiftN   = 4;
   // The cycle (after slot 0) at which each value, or a stream's x, leaves its operation.
   localparam int unsigned TimeL    = La;                      // L = lpos - p
   localparam int unsigned TimeLl   = TimeL + Lm;              // L * L
@@ -109,9 +119,10 @@ module rc_light_term #(
   localparam int unsigned TimeSq1  = TimeD2 + Ls;             // sqrt(dist2)
   localparam int unsigned TimeInv  = TimeSq1 + Ld;            // 1 / sqrt(dist2)
   localparam int unsigned TimeLh   = TimeInv + Lm;            // lh, dist
-  localparam int unsigned TimeCos  = TimeLh + 2 + Lm + 1 + 2 * La; // (N.lh issued 2 late)
+  localparam int unsigned TimeCos  = TimeLh + 2 + ShiftC + Lm + 1 + 2 * La; // (N.lh: TimeDc)
   localparam int unsigned TimeH    = TimeLh + La;             // H = lh - v
-  localparam int unsigned TimeHh   = TimeH + Lm + 1 + 2 * La; // H.H and N.H
+  localparam int unsigned TimeHh   = TimeH + Lm + 1 + 2 * La; // H.H
+  localparam int unsigned TimeNhd  = TimeHh + 1 + ShiftN;     // N.H
   localparam int unsigned TimeHs   = TimeHh + 1;              // H.H into the shared root
   localparam int unsigned TimeIh   = TimeHs + Ls + Ld;        // 1 / sqrt(H.H)
   localparam int unsigned TimeNh   = TimeIh + Lm;             // nh
@@ -120,6 +131,8 @@ module rc_light_term #(
   localparam int unsigned TimeSum  = TimeSpec + Lm + La;      // kd cos + ks spec
   localparam int unsigned TimeX    = TimeSum + 2 * Lm;        // (...) * lcol * w
   localparam int unsigned TimeFix  = TimeX + 1;
+  localparam int unsigned TimeKa   = ShiftA;                  // kd * ambient issued
+  localparam int unsigned TimeAw   = TimeKa + Lm;             // (kd * ambient) * w issued
   localparam int unsigned TimeOut  = TimeFix + 2;
   localparam int unsigned Latency  = TimeOut + 2;
   localparam int unsigned FifoDepth = Latency / Period + 2;
@@ -264,30 +277,32 @@ module rc_light_term #(
   // cos = N.lh, H = lh - V, N.H, H.H, nh                 //
   //////////////////////////////////////////////////////////
 
-  logic [W-1:0] n_at_lh, v_at_lh, n_at_h1, n_at_lh2, lh_s2;
+  logic [W-1:0] n_at_lh, v_at_lh, n_at_dn, n_at_lh2, lh_s2;
   rc_delay_ram #(.Width(2 * W), .Cycles(TimeLh)) u_dly_nv (
     .clk_i, .rst_ni, .data_i({n_s, v_s}), .data_o({n_at_lh, v_at_lh})
   );
-  rc_delay #(.Width(W), .Cycles(TimeH + 1 - TimeLh)) u_dly_nh (
-    .clk_i, .data_i(n_at_lh), .data_o(n_at_h1)
+  rc_delay #(.Width(W), .Cycles(TimeDn - TimeLh)) u_dly_nh (
+    .clk_i, .data_i(n_at_lh), .data_o(n_at_dn)
   );
-  rc_delay #(.Width(2 * W), .Cycles(2)) u_dly_nl (
+  rc_delay #(.Width(2 * W), .Cycles(TimeDc - TimeLh)) u_dly_nl (
     .clk_i, .data_i({n_at_lh, lh_s}), .data_o({n_at_lh2, lh_s2})
   );
 
-  logic [W-1:0] h_s, h_s1, hsum, nhd, ih, nhd_d;
+  logic [W-1:0] h_s, h_at_dn, hsum, nhd, ih, nhd_d;
   logic [W-1:0] nh;
   // H = lh - v: in u_adds.
-  rc_delay #(.Width(W), .Cycles(1)) u_dly_h1 (.clk_i, .data_i(h_s), .data_o(h_s1));
+  rc_delay #(.Width(W), .Cycles(TimeDn - TimeH)) u_dly_h1 (
+    .clk_i, .data_i(h_s), .data_o(h_at_dn)
+  );
   // cos = N.lh, H.H and N.H, each (x + y) + z as every dot product: the stream's
   // products in u_muls, x + y as y's product leaves (x's a cycle later), then + z (z's product
-  // La - 1 cycles later), both in u_adds. N.lh's stream is issued 2 cycles late (TimeDc), H.H's
-  // on time (TimeDh), N.H's 1 late (TimeDn): cos leaves at TimeCos, H.H at TimeHh, N.H a cycle
-  // later. (The offsets once kept the three sums apart modulo 3 in two adders of their own; the
-  // pools need no such rule, and the schedule is kept as it was.)
-  localparam int unsigned TimeDc = TimeLh + 2;
+  // La - 1 cycles later), both in u_adds. N.lh's stream is issued 2 + ShiftC cycles late
+  // (TimeDc), H.H's on time (TimeDh), N.H's 1 + ShiftN late (TimeDn): cos leaves at TimeCos, H.H
+  // at TimeHh, N.H at TimeNhd. (The first offsets, 2 and 1, once kept the three sums apart modulo
+  // 3 in two adders of their own; the shifts are the pools', above.)
+  localparam int unsigned TimeDc = TimeLh + 2 + ShiftC;
   localparam int unsigned TimeDh = TimeH;
-  localparam int unsigned TimeDn = TimeH + 1;
+  localparam int unsigned TimeDn = TimeH + 1 + ShiftN;
   logic [3*W-1:0] dp, dp_d1, dp_dz, dxy, dz;  // per dot product (cos, H.H, N.H)
   for (genvar k = 0; k < 3; k++) begin : g_dot
     rc_delay #(.Width(W), .Cycles(1)) u_dly_x (
@@ -333,7 +348,7 @@ module rc_light_term #(
   end
   assign inv_res = rinv;
   assign ih      = rinv;
-  rc_delay_ram #(.Width(W), .Cycles(TimeIh - TimeHh - 1)) u_dly_nhd (
+  rc_delay_ram #(.Width(W), .Cycles(TimeIh - TimeNhd)) u_dly_nhd (
     .clk_i, .rst_ni, .data_i(nhd), .data_o(nhd_d)
   );
   // dist = dist2 * inv (at TimeInv) and nh = N.H * (1 / sqrt(H.H)) (at TimeIh): in u_muls.
@@ -438,15 +453,16 @@ module rc_light_term #(
   // Ambient: fix((kd * ambient) * w)                      //
   //////////////////////////////////////////////////////////
 
-  logic [W-1:0]  ka, w_at_ka, aw;
+  logic [W-1:0]  kd_at_ka, ka, w_at_ka, aw;
   logic [FW-1:0] amb_s, amb_at_fix;
   logic          amb_vld;
-  // kd * ambient (at 0) and ka * w (at Lm): in u_muls.
-  rc_delay #(.Width(W), .Cycles(Lm)) u_dly_wa (.clk_i, .data_i(w_q), .data_o(w_at_ka));
+  // kd * ambient (at TimeKa) and ka * w (at TimeAw): in u_muls.
+  rc_delay #(.Width(W), .Cycles(TimeKa)) u_dly_kda (.clk_i, .data_i(kd_s), .data_o(kd_at_ka));
+  rc_delay #(.Width(W), .Cycles(TimeAw)) u_dly_wa (.clk_i, .data_i(w_q), .data_o(w_at_ka));
   rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_a (
-    .clk_i, .rst_ni, .valid_i(strm[2 * Lm]), .x_i(aw), .valid_o(amb_vld), .out_o(amb_s)
+    .clk_i, .rst_ni, .valid_i(strm[TimeAw + Lm]), .x_i(aw), .valid_o(amb_vld), .out_o(amb_s)
   );
-  rc_delay_ram #(.Width(FW), .Cycles(TimeFix - (2 * Lm + 1))) u_dly_amb (
+  rc_delay_ram #(.Width(FW), .Cycles(TimeFix - (TimeAw + Lm + 1))) u_dly_amb (
     .clk_i, .rst_ni, .data_i(amb_s), .data_o(amb_at_fix)
   );
 
@@ -456,16 +472,16 @@ module rc_light_term #(
 
   // Every product of the unit, each a user of one pool of multipliers at its time in the
   // schedule (three cycles for a stream, one for a scalar, two for a power step): rc_fp_pool
-  // places the users on as few multipliers as their phases modulo Period allow (12 at Period 6,
-  // 7 at 12 with the default fp_stages and ExpBits). Each product is read at its own time.
+  // places the users on as few multipliers as their phases modulo Period allow (11 at Period 6,
+  // 5 at 12 with the default fp_stages and ExpBits). Each product is read at its own time.
   localparam int unsigned MulUsers = 13 + ExpBits;
 
   // User k's issue time at [16k +: 16] and cycles at [2k +: 2].
   function automatic logic [511:0] mul_times();
     mul_times = '0;
-    mul_times[16*0 +: 16] = 16'(0);           // kd * ambient
+    mul_times[16*0 +: 16] = 16'(TimeKa);      // kd * ambient
     mul_times[16*1 +: 16] = 16'(TimeSpec);    // ks * spec
-    mul_times[16*2 +: 16] = 16'(Lm);          // ka * w
+    mul_times[16*2 +: 16] = 16'(TimeAw);      // ka * w
     mul_times[16*3 +: 16] = 16'(TimeCos);     // kd * cos
     mul_times[16*4 +: 16] = 16'(TimeInv);     // lh = L * inv
     mul_times[16*5 +: 16] = 16'(TimeSum + Lm); // (sum * lcol) * w
@@ -493,10 +509,10 @@ module rc_light_term #(
   logic [MulUsers*W-1:0] mul_a, mul_b, mul_res;
   assign mul_issue = {strm[TimeDn], strm[TimeDh], strm[TimeDc], step_issue, at[TimeIh],
                       at[TimeInv], strm[TimeL], strm[TimeSum], strm[TimeSum + Lm], strm[TimeInv],
-                      strm[TimeCos], strm[Lm], strm[TimeSpec], strm[0]};
-  assign mul_a     = {n_at_h1, h_s, n_at_lh2, step_a, nhd_d, d2_at_inv, l_s, sum, sl, l_at_inv,
-                      kd_at_cos, ka, ks_at_spec, kd_s};
-  assign mul_b     = {h_s1, h_s, lh_s2, step_b, ih, inv_res, l_s, lc_at_sum, w_at_sl, inv_b,
+                      strm[TimeCos], strm[TimeAw], strm[TimeSpec], strm[TimeKa]};
+  assign mul_a     = {n_at_dn, h_s, n_at_lh2, step_a, nhd_d, d2_at_inv, l_s, sum, sl, l_at_inv,
+                      kd_at_cos, ka, ks_at_spec, kd_at_ka};
+  assign mul_b     = {h_at_dn, h_s, lh_s2, step_b, ih, inv_res, l_s, lc_at_sum, w_at_sl, inv_b,
                       cos_b, w_at_ka, spec_b, ambient_i};
   rc_fp_pool #(
     .ExpW(ExpW), .FracW(FracW), .Users(MulUsers), .Period(Period), .Time(mul_times()),
@@ -508,7 +524,7 @@ module rc_light_term #(
   assign {dp[2*W +: W], dp[W +: W], dp[0 +: W], pow_prod, nh_p, dist_p, ll, sl, xw, lhw, kdcos,
           aw, ksspec, ka} = mul_res;
 
-  // Every sum, likewise in one pool of adders (5 at Period 6, 3 at 12): the streams L = lpos - p
+  // Every sum, likewise in one pool of adders (4 at Period 6, 2 at 12): the streams L = lpos - p
   // (at 0), H = lh - v (at TimeLh) and kd cos + ks spec (at TimeSpec + Lm), dist2's scalar sums
   // x + y (at TimeLl + 1) and + z (at TimeD01), then the other dot products' x + y (cos, H.H and
   // N.H, Lm + 1 after their streams) and their + z (La later).
@@ -604,7 +620,7 @@ module rc_light_term #(
   Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
       rt_vld == (at[TimeSq1] | at[TimeHs + Ls]) &&
       rinv_vld == (at[TimeInv] | at[TimeIh]) &&
-      term_vld == strm[TimeFix] && amb_vld == strm[2 * Lm + 1]);
+      term_vld == strm[TimeFix] && amb_vld == strm[TimeAw + Lm + 1]);
   // Every product leaves its multiplier when its user reads it, Lm cycles after its issue (the
   // pool's multipliers' valid chains, which also carry the other users' products).
   logic [MulUsers-1:0] mul_due;
@@ -613,13 +629,13 @@ module rc_light_term #(
   end
   assign mul_due[MulUsers-1 -: 3] = {strm[TimeDn + Lm], strm[TimeDh + Lm], strm[TimeDc + Lm]};
   assign mul_due[9:0] = {at[TimeNh], at[TimeLh], strm[TimeLl], strm[TimeSum + Lm], strm[TimeX],
-                         strm[TimeLh], strm[TimeCos + Lm], strm[2 * Lm], strm[TimeSpec + Lm],
-                         strm[Lm]};
+                         strm[TimeLh], strm[TimeCos + Lm], strm[TimeAw + Lm], strm[TimeSpec + Lm],
+                         strm[TimeKa + Lm]};
   Products_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               (mul_due & ~mul_vld) == '0);
   // Likewise every sum of u_adds, La cycles after its issue.
   logic [AddUsers-1:0] add_due;
-  assign add_due = {at[TimeHh + 1], at[TimeHh], at[TimeCos],
+  assign add_due = {at[TimeNhd], at[TimeHh], at[TimeCos],
                     at[TimeDn + Lm + 1 + La], at[TimeDh + Lm + 1 + La], at[TimeDc + Lm + 1 + La],
                     at[TimeD2], at[TimeD01], strm[TimeSum], strm[TimeH], strm[TimeL]};
   Sums_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
