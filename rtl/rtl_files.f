@@ -4,6 +4,8 @@ rtl/fp/rc_pipe_out.sv
 rtl/fp/rc_fp_round_flags.sv
 rtl/fp/rc_fp_round_kinds.sv
 rtl/fp/rc_fp_round_pack.sv
+rtl/fp/rc_fp_round_out.sv
+rtl/fp/rc_fp_lanes.sv
 rtl/fp/rc_fp_add.sv
 rtl/fp/rc_fp_twice.sv
 rtl/fp/rc_fp_mul.sv

@@ -26,8 +26,9 @@
 // significand bits and a round bit). Slot 1's bit is always 1, so its subtraction is made in
 // slot 0, for both pre-normalisations side by side (slots 0 and 1: rc_fp_div_pre). Slot N also
 // decides the rounding increment (round to nearest even, with the sticky bit of a nonzero final
-// remainder: rc_fp_div_fin); slot N + 1 adds it, adjusts the exponent and packs. rc_fp_div_iter
-// is the same division with one slot pair's hardware iterated, for users with few operations.
+// remainder: rc_fp_div_fin); slot N + 1 adds it, adjusts the exponent and packs
+// (rc_fp_round_out). rc_fp_div_iter is the same division with one slot pair's hardware iterated,
+// for users with few operations.
 //
 // Slots in one cycle do not chain their subtractions: a slot k >= 3 in the same cycle as slot
 // k - 1 subtracts from slot k - 1's input remainder R for both of slot k - 1's outcomes side by
@@ -71,7 +72,6 @@ module rc_fp_div #(
     $error("rc_fp_div: need ExpW >= 2 and FracW >= 1");
   end
 
-  localparam int unsigned W     = 1 + ExpW + FracW;
   localparam int unsigned ManW  = FracW + 1;          // significand with the hidden bit
   localparam int unsigned RemW  = ManW + 1;           // partial remainder, < 2 * divisor
   localparam int unsigned N     = ManW + 1;           // quotient bits: significand + round
@@ -128,7 +128,7 @@ module rc_fp_div #(
   // (k = 1..N). split_var lets Verilator schedule the chain element by element.
   logic [N*StW-1:0] st_out /* verilator split_var */;
   logic [N*StW-1:0] st_in /* verilator split_var */;
-  logic [FinW-1:0]  fin_d, fin_q;
+  logic [FinW-1:0]  fin_d;
   // Each slot's quotient bit, for the slot after it (read only where the two share a cycle).
   logic [N:1]       q_s /* verilator split_var */;
   logic             unused_q_s;
@@ -216,56 +216,21 @@ module rc_fp_div #(
     end
   end
 
-  // The register (or wire) in front of slot N + 1.
-  if (cycle_of(N + 1) != cycle_of(N)) begin : g_cut_fin
-    always_ff @(posedge clk_i) begin
-      fin_q <= fin_d;
-    end
-  end else begin : g_no_cut_fin
-    assign fin_q = fin_d;
-  end
-
-  ///////////////////////////////////////////////
-  // Slot N + 1: round, flush/overflow, pack   //
-  ///////////////////////////////////////////////
-
-  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_f;
-  logic                                  sign_f, man_ones_f, round_up_f;
-  logic [ExpW-1:0]                       exp_f;
-  logic [FracW-1:0]                      frac_f;
-  logic [W-1:0]                          res_d;
-
-  assign {kinds_f, sign_f, man_ones_f, exp_f, frac_f, round_up_f} = fin_q;
-
-  rc_fp_round_pack #(
-    .ExpW (ExpW),
-    .FracW(FracW)
-  ) u_round_pack (
-    .kind_i    (kinds_f),
-    .sign_i    (sign_f),
-    .man_ones_i(man_ones_f),
-    .exp_i     (exp_f),
-    .exp_inc_i (exp_f + ExpW'(1)),
-    .frac_i    (frac_f),
-    .round_up_i(round_up_f),
-    .res_o     (res_d)
-  );
-
-  ///////////////////////////////
-  // Output and valid pipeline //
-  ///////////////////////////////
-
-  rc_pipe_out #(
-    .Width   (W),
+  // Slot N + 1: the register (or wire) in front of it, the rounding and packing, the output
+  // registers.
+  rc_fp_round_out #(
+    .ExpW    (ExpW),
+    .FracW   (FracW),
+    .Cut     (cycle_of(N + 1) != cycle_of(N)),
     .DataRegs(OutRegs),
     .Stages  (Stages)
-  ) u_out (
+  ) u_round (
     .clk_i,
     .rst_ni,
     .valid_i,
-    .data_i (res_d),
+    .fin_i  (fin_d),
     .valid_o,
-    .data_o (res_o)
+    .res_o
   );
 
 endmodule

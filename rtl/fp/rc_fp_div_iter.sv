@@ -51,7 +51,6 @@ module rc_fp_div_iter #(
   // Parameters //
   ////////////////
 
-  localparam int unsigned W     = 1 + ExpW + FracW;
   localparam int unsigned ManW  = FracW + 1;           // significand with the hidden bit
   localparam int unsigned RemW  = ManW + 1;            // partial remainder, < 2 * divisor
   localparam int unsigned ExW   = ExpW + 2;            // unbounded exponent, two's complement
@@ -59,7 +58,6 @@ module rc_fp_div_iter #(
   localparam int unsigned D3W   = ManW + 2;            // three times the divisor's significand
   localparam int unsigned Iters = FracW / 2;           // slot pairs 2 .. N - 1
   localparam int unsigned FinW  = 2 * rc_pkg::FpResultKindBits + 2 + ExpW + FracW + 1;
-  localparam int unsigned LaneW = (Lanes > 1) ? $clog2(Lanes) : 1;
   // A lane's state: {header, divisor fraction, 3 x divisor, partial remainder, quotient bits so
   // far (MSB first, bit 1 at the top once all are in)}.
   localparam int unsigned StW   = HdrW + FracW + D3W + RemW + ManW;
@@ -99,28 +97,27 @@ module rc_fp_div_iter #(
   assign unused_rem0 = rem0[RemW-1];  // 0: rem0 is below the divisor
   assign st0 = {hdr0, dvs0, d30, rem0[ManW-1:0], 1'b0, ManW'(1)};
 
-  // The lane the next operation goes to (round robin).
-  logic [LaneW-1:0] lane_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      lane_q <= '0;
-    end else if (valid_i) begin
-      lane_q <= (32'(lane_q) == Lanes - 1) ? '0 : lane_q + 1'b1;
-    end
-  end
-
   ///////////////////////////////////////////
   // Cycles 1 .. Iters: a slot pair a lane //
   ///////////////////////////////////////////
 
-  // at_fin[l]: lane l's operation is at cycle Iters + 1 (its state holds slots 1 .. N - 1);
-  // busy[l]: it is at cycles 1 .. Iters, so the lane cannot take another.
-  logic [Lanes-1:0]     at_fin, busy;
+  // take[l]: lane l takes this cycle's operation; at_fin[l]: its operation is at cycle Iters + 1
+  // (its state holds slots 1 .. N - 1). Operations i and i + Lanes at least Iters + 1 cycles
+  // apart (rc_fp_lanes' assertion).
+  logic [Lanes-1:0]     take, at_fin;
   logic [Lanes*StW-1:0] st_all;
+  rc_fp_lanes #(
+    .Lanes(Lanes),
+    .Iters(Iters)
+  ) u_lanes (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .take_o(take),
+    .at_o  (at_fin)
+  );
 
   for (genvar l = 0; l < Lanes; l++) begin : g_lane
-    logic             take;
-    logic [Iters:0]   age_q;  // age_q[j]: the lane's operation is at cycle j + 1
     logic [StW-1:0]   st_q;
     logic [HdrW-1:0]  hdr;
     logic [FracW-1:0] dvs;
@@ -138,7 +135,6 @@ module rc_fp_div_iter #(
     logic [ManW-1:0]  kept_b;
     logic             unused_top;
 
-    assign take = valid_i & (32'(lane_q) == l);
     assign {hdr, dvs, dvs3, rem, quo} = st_q;
     assign unused_top = ^quo[ManW-1 -: 2];  // the bits shifted out (the last turn's is unread)
 
@@ -158,24 +154,14 @@ module rc_fp_div_iter #(
     // The state: taken in cycle 0, then a pair per cycle (an idle lane's state turns over
     // unread).
     always_ff @(posedge clk_i) begin
-      if (take) begin
+      if (take[l]) begin
         st_q <= st0;
       end else begin
         st_q <= {hdr, dvs, dvs3, kept_b, 1'b0, quo[ManW-3:0], q_a, q_b};
       end
     end
 
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        age_q <= '0;
-      end else begin
-        age_q <= {age_q[Iters-1:0], take};
-      end
-    end
-
-    assign at_fin[l]                = age_q[Iters];
-    assign busy[l]                  = |age_q[Iters-1:0];
-    assign st_all[l*StW +: StW]     = st_q;
+    assign st_all[l*StW +: StW] = st_q;
   end
 
   //////////////////////////////////////////
@@ -189,7 +175,7 @@ module rc_fp_div_iter #(
   logic [RemW-1:0]  rem_f;
   logic [ManW-1:0]  quo_f;
   logic [RemW:0]    diff_f;
-  logic [FinW-1:0]  fin_d, fin_q;
+  logic [FinW-1:0]  fin_d;
   logic             unused_f;
 
   // The lane at its last slot (one at a time: the lanes' operations came in different cycles).
@@ -215,60 +201,20 @@ module rc_fp_div_iter #(
     .fin_o(fin_d)
   );
 
-  always_ff @(posedge clk_i) begin
-    fin_q <= fin_d;
-  end
-
-  ///////////////////////////////////////////////
-  // Cycle Iters + 2: round, flush/overflow, pack //
-  ///////////////////////////////////////////////
-
-  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_r;
-  logic                                  sign_r, man_ones_r, round_up_r;
-  logic [ExpW-1:0]                       exp_r;
-  logic [FracW-1:0]                      frac_r;
-  logic [W-1:0]                          res_d;
-
-  assign {kinds_r, sign_r, man_ones_r, exp_r, frac_r, round_up_r} = fin_q;
-
-  rc_fp_round_pack #(
-    .ExpW (ExpW),
-    .FracW(FracW)
-  ) u_round_pack (
-    .kind_i    (kinds_r),
-    .sign_i    (sign_r),
-    .man_ones_i(man_ones_r),
-    .exp_i     (exp_r),
-    .exp_inc_i (exp_r + ExpW'(1)),
-    .frac_i    (frac_r),
-    .round_up_i(round_up_r),
-    .res_o     (res_d)
-  );
-
-  rc_pipe_out #(
-    .Width   (W),
+  // Cycle Iters + 2: the rounding, then the output registers.
+  rc_fp_round_out #(
+    .ExpW    (ExpW),
+    .FracW   (FracW),
+    .Cut     (1'b1),
     .DataRegs(Stages - Iters - 2),
     .Stages  (Stages)
-  ) u_out (
+  ) u_round (
     .clk_i,
     .rst_ni,
     .valid_i,
-    .data_i (res_d),
+    .fin_i  (fin_d),
     .valid_o,
-    .data_o (res_o)
+    .res_o
   );
-
-`ifndef SYNTHESIS
-  logic checks_on;
-  rc_checks_on u_checks_on (
-    .clk_i,
-    .rst_ni,
-    .on_o (checks_on)
-  );
-  // Operations i and i + Lanes at least Interval cycles apart: the lane is free when its turn
-  // comes.
-  LaneFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               valid_i |-> !busy[lane_q]);
-`endif
 
 endmodule

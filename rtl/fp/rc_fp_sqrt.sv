@@ -34,7 +34,7 @@
 // (always 1: the top pair is 1, 2 or 3; rc_fp_sqrt_pre); slots 1 .. N - 1 take root bits 2 .. N,
 // and slot N - 1 also reduces the final remainder to the sticky bit (nonzero = inexact) and
 // decides the rounding increment (round to nearest even; rc_fp_sqrt_fin); slot N rounds and
-// packs (rc_fp_round_pack). rc_fp_sqrt_iter is the same square root with one slot pair's
+// packs (rc_fp_round_out). rc_fp_sqrt_iter is the same square root with one slot pair's
 // hardware iterated, for users with few operations.
 //
 // Slots in one cycle do not chain their subtractions (as in rc_fp_div): a slot k >= 2 in the
@@ -78,7 +78,6 @@ module rc_fp_sqrt #(
     $error("rc_fp_sqrt: need ExpW >= 2 and FracW >= 1");
   end
 
-  localparam int unsigned W     = 1 + ExpW + FracW;
   localparam int unsigned ManW  = FracW + 1;          // significand with the hidden bit
   localparam int unsigned N     = ManW + 1;           // root bits: significand + round
   localparam int unsigned Slots = N + 1;
@@ -139,7 +138,7 @@ module rc_fp_sqrt #(
   // (or wire) in front of slot k + 1. split_var lets Verilator schedule the chain piece by piece.
   logic [ChainW-1:0] st_out /* verilator split_var */;
   logic [ChainW-1:0] st_in /* verilator split_var */;
-  logic [FinW-1:0]   fin_d, fin_q;
+  logic [FinW-1:0]   fin_d;
 
   // Each slot's root bit, for the slot after it (read only where the two share a cycle).
   logic [N-2:1] r_s /* verilator split_var */;
@@ -249,56 +248,21 @@ module rc_fp_sqrt #(
     end
   end
 
-  // The register (or wire) in front of slot N.
-  if (cycle_of(N) != cycle_of(N - 1)) begin : g_cut_fin
-    always_ff @(posedge clk_i) begin
-      fin_q <= fin_d;
-    end
-  end else begin : g_no_cut_fin
-    assign fin_q = fin_d;
-  end
-
-  //////////////////////////////////////
-  // Slot N: round, pack               //
-  //////////////////////////////////////
-
-  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_f;
-  logic                                  sign_f, man_ones_f, round_up_f;
-  logic [ExpW-1:0]                       exp_f;
-  logic [FracW-1:0]                      frac_f;
-  logic [W-1:0]                          res_d;
-
-  assign {kinds_f, sign_f, man_ones_f, exp_f, frac_f, round_up_f} = fin_q;
-
-  rc_fp_round_pack #(
-    .ExpW (ExpW),
-    .FracW(FracW)
-  ) u_round_pack (
-    .kind_i    (kinds_f),
-    .sign_i    (sign_f),
-    .man_ones_i(man_ones_f),
-    .exp_i     (exp_f),
-    .exp_inc_i (exp_f + ExpW'(1)),
-    .frac_i    (frac_f),
-    .round_up_i(round_up_f),
-    .res_o     (res_d)
-  );
-
-  ///////////////////////////////
-  // Output and valid pipeline //
-  ///////////////////////////////
-
-  rc_pipe_out #(
-    .Width   (W),
+  // Slot N: the register (or wire) in front of it, the rounding and packing, the output
+  // registers.
+  rc_fp_round_out #(
+    .ExpW    (ExpW),
+    .FracW   (FracW),
+    .Cut     (cycle_of(N) != cycle_of(N - 1)),
     .DataRegs(OutRegs),
     .Stages  (Stages)
-  ) u_out (
+  ) u_round (
     .clk_i,
     .rst_ni,
     .valid_i,
-    .data_i (res_d),
+    .fin_i  (fin_d),
     .valid_o,
-    .data_o (res_o)
+    .res_o
   );
 
 endmodule

@@ -51,12 +51,10 @@ module rc_fp_sqrt_iter #(
   // Parameters //
   ////////////////
 
-  localparam int unsigned W     = 1 + ExpW + FracW;
   localparam int unsigned N     = FracW + 2;           // root bits: significand + round
   localparam int unsigned HdrW  = 4 + ExpW;            // rc_fp_sqrt_pre's header
   localparam int unsigned Iters = (FracW - 2) / 2;     // slot pairs 2 .. N - 3
   localparam int unsigned FinW  = 2 * rc_pkg::FpResultKindBits + 2 + ExpW + FracW + 1;
-  localparam int unsigned LaneW = (Lanes > 1) ? $clog2(Lanes) : 1;
   // A lane's state, with the widths of rc_fp_sqrt's state after slot N - 3 (the last one it
   // holds): {header, radicand bits not yet brought down (left aligned, N bits), remainder (N - 1
   // bits), partial root q (N - 2 bits), 3 q + 1 (N bits)}. Earlier states are zero-extended.
@@ -104,16 +102,6 @@ module rc_fp_sqrt_iter #(
   assign t2      = r1 ? 4'd10 : 4'd7;
   assign st0     = {hdr0, rad0[N-3:0], 2'b00, (N - 1)'(rem2), (N - 2)'({1'b1, r1}), N'(t2)};
 
-  // The lane the next operation goes to (round robin).
-  logic [LaneW-1:0] lane_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      lane_q <= '0;
-    end else if (valid_i) begin
-      lane_q <= (32'(lane_q) == Lanes - 1) ? '0 : lane_q + 1'b1;
-    end
-  end
-
   ///////////////////////////////////////////
   // Cycles 1 .. Iters: a slot pair a lane //
   ///////////////////////////////////////////
@@ -130,14 +118,23 @@ module rc_fp_sqrt_iter #(
   // bit, the same kept remainder and the same t (3 q + 1 +- 1 neither wraps nor overflows).
   // The last pair (slots N - 2 and N - 1, below) reads the state after slot N - 3 at full width.
 
-  // at_fin[l]: lane l's operation is at cycle Iters + 1 (its state holds slots 0 .. N - 3);
-  // busy[l]: it is at cycles 1 .. Iters, so the lane cannot take another.
-  logic [Lanes-1:0]     at_fin, busy;
+  // take[l]: lane l takes this cycle's operation; at_fin[l]: its operation is at cycle Iters + 1
+  // (its state holds slots 0 .. N - 3). Operations i and i + Lanes at least Iters + 1 cycles
+  // apart (rc_fp_lanes' assertion).
+  logic [Lanes-1:0]     take, at_fin;
   logic [Lanes*StW-1:0] st_all;
+  rc_fp_lanes #(
+    .Lanes(Lanes),
+    .Iters(Iters)
+  ) u_lanes (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .take_o(take),
+    .at_o  (at_fin)
+  );
 
   for (genvar l = 0; l < Lanes; l++) begin : g_lane
-    logic             take;
-    logic [Iters:0]   age_q;  // age_q[j]: the lane's operation is at cycle j + 1
     logic [StW-1:0]   st_q;
     logic [HdrW-1:0]  hdr;
     logic [N-1:0]     rad;
@@ -160,7 +157,6 @@ module rc_fp_sqrt_iter #(
     logic [N-1:0]     rem_sh_b;
     logic [N-2:0]     rem_next_b, t_inc_b, t_dec_b;
 
-    assign take = valid_i & (32'(lane_q) == l);
     assign {hdr, rad, rem_w, root_w, t_w} = st_q;
     assign rem        = rem_w[N-4:0];
     assign root       = root_w[N-5:0];
@@ -189,7 +185,7 @@ module rc_fp_sqrt_iter #(
     // The state: taken in cycle 0, then a pair per cycle (an idle lane's state turns over
     // unread).
     always_ff @(posedge clk_i) begin
-      if (take) begin
+      if (take[l]) begin
         st_q <= st0;
       end else begin
         st_q <= {hdr, rad[N-5:0], 4'b0000, rem_next_b, root, r_a, r_b,
@@ -197,16 +193,6 @@ module rc_fp_sqrt_iter #(
       end
     end
 
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        age_q <= '0;
-      end else begin
-        age_q <= {age_q[Iters-1:0], take};
-      end
-    end
-
-    assign at_fin[l]            = age_q[Iters];
-    assign busy[l]              = |age_q[Iters-1:0];
     assign st_all[l*StW +: StW] = st_q;
   end
 
@@ -224,7 +210,7 @@ module rc_fp_sqrt_iter #(
   logic [N+1:0]    diff_a_f;
   logic            r_a_f;
   logic [N+2:0]    diff_kept_f, diff_sub_f, diff_b_f;
-  logic [FinW-1:0] fin_d, fin_q;
+  logic [FinW-1:0] fin_d;
   logic            unused_f;
 
   // The lane at its last pair (one at a time: the lanes' operations came in different cycles).
@@ -260,60 +246,20 @@ module rc_fp_sqrt_iter #(
     .fin_o   (fin_d)
   );
 
-  always_ff @(posedge clk_i) begin
-    fin_q <= fin_d;
-  end
-
-  //////////////////////////////////////////////////
-  // Cycle Iters + 2: round, flush/overflow, pack //
-  //////////////////////////////////////////////////
-
-  logic [2*rc_pkg::FpResultKindBits-1:0] kinds_r;
-  logic                                  sign_r, man_ones_r, round_up_r;
-  logic [ExpW-1:0]                       exp_r;
-  logic [FracW-1:0]                      frac_r;
-  logic [W-1:0]                          res_d;
-
-  assign {kinds_r, sign_r, man_ones_r, exp_r, frac_r, round_up_r} = fin_q;
-
-  rc_fp_round_pack #(
-    .ExpW (ExpW),
-    .FracW(FracW)
-  ) u_round_pack (
-    .kind_i    (kinds_r),
-    .sign_i    (sign_r),
-    .man_ones_i(man_ones_r),
-    .exp_i     (exp_r),
-    .exp_inc_i (exp_r + ExpW'(1)),
-    .frac_i    (frac_r),
-    .round_up_i(round_up_r),
-    .res_o     (res_d)
-  );
-
-  rc_pipe_out #(
-    .Width   (W),
+  // Cycle Iters + 2: the rounding, then the output registers.
+  rc_fp_round_out #(
+    .ExpW    (ExpW),
+    .FracW   (FracW),
+    .Cut     (1'b1),
     .DataRegs(Stages - Iters - 2),
     .Stages  (Stages)
-  ) u_out (
+  ) u_round (
     .clk_i,
     .rst_ni,
     .valid_i,
-    .data_i (res_d),
+    .fin_i  (fin_d),
     .valid_o,
-    .data_o (res_o)
+    .res_o
   );
-
-`ifndef SYNTHESIS
-  logic checks_on;
-  rc_checks_on u_checks_on (
-    .clk_i,
-    .rst_ni,
-    .on_o (checks_on)
-  );
-  // Operations i and i + Lanes at least Interval cycles apart: the lane is free when its turn
-  // comes.
-  LaneFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               valid_i |-> !busy[lane_q]);
-`endif
 
 endmodule
