@@ -101,20 +101,23 @@ module rc_fp_div_iter #(
   // Cycles 1 .. Iters: a slot pair a lane //
   ///////////////////////////////////////////
 
-  // take[l]: lane l takes this cycle's operation; at_fin[l]: its operation is at cycle Iters + 1
-  // (its state holds slots 1 .. N - 1). Operations i and i + Lanes at least Iters + 1 cycles
-  // apart (rc_fp_lanes' assertion).
-  logic [Lanes-1:0]     take, at_fin;
+  // take[l]: lane l takes this cycle's operation; st_f: the state of the lane whose operation
+  // is at cycle Iters + 1 (slots 1 .. N - 1 done). Operations i and i + Lanes at least Iters + 1
+  // cycles apart (rc_fp_lanes' assertion).
+  logic [Lanes-1:0]     take;
   logic [Lanes*StW-1:0] st_all;
+  logic [StW-1:0]       st_f;
   rc_fp_lanes #(
     .Lanes(Lanes),
-    .Iters(Iters)
+    .Iters(Iters),
+    .Width(StW)
   ) u_lanes (
     .clk_i,
     .rst_ni,
     .valid_i,
-    .take_o(take),
-    .at_o  (at_fin)
+    .take_o (take),
+    .state_i(st_all),
+    .fin_o  (st_f)
   );
 
   for (genvar l = 0; l < Lanes; l++) begin : g_lane
@@ -168,7 +171,6 @@ module rc_fp_div_iter #(
   // Cycle Iters + 1: slot N, the decision //
   //////////////////////////////////////////
 
-  logic [StW-1:0]   st_f;
   logic [HdrW-1:0]  hdr_f;
   logic [FracW-1:0] dvs_f;
   logic [D3W-1:0]   dvs3_f;
@@ -178,13 +180,6 @@ module rc_fp_div_iter #(
   logic [FinW-1:0]  fin_d;
   logic             unused_f;
 
-  // The lane at its last slot (one at a time: the lanes' operations came in different cycles).
-  always_comb begin
-    st_f = '0;
-    for (int unsigned l = 0; l < Lanes; l++) begin
-      st_f |= st_all[l*StW +: StW] & {StW{at_fin[l]}};
-    end
-  end
   assign {hdr_f, dvs_f, dvs3_f, rem_f, quo_f} = st_f;
   assign diff_f   = {1'b0, rem_f} - {3'b001, dvs_f};
   assign unused_f = ^{dvs3_f, diff_f[RemW-1:0]};

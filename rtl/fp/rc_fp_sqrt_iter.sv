@@ -118,20 +118,23 @@ module rc_fp_sqrt_iter #(
   // bit, the same kept remainder and the same t (3 q + 1 +- 1 neither wraps nor overflows).
   // The last pair (slots N - 2 and N - 1, below) reads the state after slot N - 3 at full width.
 
-  // take[l]: lane l takes this cycle's operation; at_fin[l]: its operation is at cycle Iters + 1
-  // (its state holds slots 0 .. N - 3). Operations i and i + Lanes at least Iters + 1 cycles
-  // apart (rc_fp_lanes' assertion).
-  logic [Lanes-1:0]     take, at_fin;
+  // take[l]: lane l takes this cycle's operation; st_f: the state of the lane whose operation
+  // is at cycle Iters + 1 (slots 0 .. N - 3 done). Operations i and i + Lanes at least Iters + 1
+  // cycles apart (rc_fp_lanes' assertion).
+  logic [Lanes-1:0]     take;
   logic [Lanes*StW-1:0] st_all;
+  logic [StW-1:0]       st_f;
   rc_fp_lanes #(
     .Lanes(Lanes),
-    .Iters(Iters)
+    .Iters(Iters),
+    .Width(StW)
   ) u_lanes (
     .clk_i,
     .rst_ni,
     .valid_i,
-    .take_o(take),
-    .at_o  (at_fin)
+    .take_o (take),
+    .state_i(st_all),
+    .fin_o  (st_f)
   );
 
   for (genvar l = 0; l < Lanes; l++) begin : g_lane
@@ -200,7 +203,6 @@ module rc_fp_sqrt_iter #(
   // Cycle Iters + 1: slots N - 2 and N - 1, the decision //
   //////////////////////////////////////////////////////////
 
-  logic [StW-1:0]  st_f;
   logic [HdrW-1:0] hdr_f;
   logic [N-1:0]    rad_f, rem_next_a_f;
   logic [N-2:0]    rem_f;
@@ -213,13 +215,6 @@ module rc_fp_sqrt_iter #(
   logic [FinW-1:0] fin_d;
   logic            unused_f;
 
-  // The lane at its last pair (one at a time: the lanes' operations came in different cycles).
-  always_comb begin
-    st_f = '0;
-    for (int unsigned l = 0; l < Lanes; l++) begin
-      st_f |= st_all[l*StW +: StW] & {StW{at_fin[l]}};
-    end
-  end
 
   // The pair as above, with rc_fp_sqrt's formulas for slots N - 2 and N - 1 at full width;
   // slot N - 1 is the last (rc_fp_sqrt's g_last): its root bit, its brought-down remainder and
