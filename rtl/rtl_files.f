@@ -24,6 +24,7 @@ rtl/core/rc_trav_step.sv
 rtl/core/rc_ray_setup.sv
 rtl/core/rc_delay.sv
 rtl/core/rc_delay_ram.sv
+rtl/core/rc_delay_line.sv
 rtl/core/rc_serial_sched.sv
 rtl/core/rc_fp_pool.sv
 rtl/core/rc_fp_shared.sv

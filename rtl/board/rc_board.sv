@@ -59,8 +59,10 @@
 //   and LitShadowPackets (rc_tracer's Slots and ShadowPackets; defaults [board] lit_threads,
 //   lit_slots, lit_shadow_packets: fewer than the chip's, for area, docs/fpga.md "Status") and
 //   LitRaygenPeriod (rc_ray_gen's Period with Lit, [board] lit_raygen_period; without Lit it is
-//   [board] raygen_period); LitLightPeriod (rc_tracer's LightPeriod, [board] lit_light_period); the ROM depths and hex files; FbPixels. CoreThreads is derived: the
-//   threads of the core built (LitThreads with Lit, else Threads).
+//   [board] raygen_period); LitLightPeriod (rc_tracer's LightPeriod, [board] lit_light_period);
+//   LitBlockDelays (rc_tracer's BlockDelays and rc_ray_gen's with Lit: wide delay lines in block
+//   RAM, [board] lit_block_delays); the ROM depths and hex files; FbPixels. CoreThreads is
+//   derived: the threads of the core built (LitThreads with Lit, else Threads).
 // - Illegal input: none on the register port (writes while busy are ignored); reading registers
 //   that do not exist returns 0.
 // - Reset: rst_ni (active low, asynchronous) clears control state; the register file, ROMs and
@@ -75,6 +77,7 @@ module rc_board #(
   parameter int unsigned LitShadowPackets = rc_pkg::BoardLitShadowPackets,
   parameter int unsigned LitRaygenPeriod = rc_pkg::BoardLitRaygenPeriod,
   parameter int unsigned LitLightPeriod = rc_pkg::BoardLitLightPeriod,
+  parameter bit          LitBlockDelays = rc_pkg::BoardLitBlockDelays != 0,
   parameter int unsigned NodeDepth = 1,
   parameter int unsigned ListDepth = 1,
   parameter int unsigned TriDepth  = 1,
@@ -290,7 +293,8 @@ module rc_board #(
   rc_ray_gen #(
     .ExpW  (ExpW),
     .FracW (FracW),
-    .Period(Lit ? LitRaygenPeriod : rc_pkg::BoardRaygenPeriod)
+    .Period(Lit ? LitRaygenPeriod : rc_pkg::BoardRaygenPeriod),
+    .BlockDelays(Lit && LitBlockDelays)
   ) u_ray_gen (
     .clk_i,
     .rst_ni,
@@ -449,7 +453,8 @@ module rc_board #(
       .SetupUnits(LitSetupUnits),
       .Slots     (LitSlots),
       .ShadowPackets(LitShadowPackets),
-      .LightPeriod(LitLightPeriod)
+      .LightPeriod(LitLightPeriod),
+      .BlockDelays(LitBlockDelays)
     ) u_tracer (
     .clk_i,
     .rst_ni,

@@ -37,7 +37,9 @@
 //   the divider are iterative with two lanes (rc_fp_sqrt_iter, rc_fp_div_iter: two rays' come at
 //   least 12 cycles apart). Bit for bit the same results in the same cycles.
 // - Parameters: ExpW, FracW: the format; CoordW: bits of width_i/height_i (CoordW <= FracW + 1,
-//   so every coordinate converts exactly); RayFifoDepth: rays buffered (>= 4); Period: 3 or 6.
+//   so every coordinate converts exactly); RayFifoDepth: rays buffered (>= 4); Period: 3 or 6;
+//   BlockDelays: 1 = the direction's delay line in block RAM (rc_delay_line), 0 = a shift
+//   register; the same rays in the same cycles.
 // - Illegal input: start_i while busy_o; camera or size inputs changing while busy_o or in the
 //   cycle before start_i (the last packet column and row are registered from the size).
 //   Assertions catch the first and a width/height change.
@@ -49,6 +51,7 @@ module rc_ray_gen #(
   parameter int unsigned CoordW       = rc_pkg::BoardCoordBits,
   parameter int unsigned RayFifoDepth = rc_pkg::BoardRayFifo,
   parameter int unsigned Period       = rc_pkg::BoardRaygenPeriod,
+  parameter bit          BlockDelays  = 1'b0,
   // Derived (do not override).
   parameter int unsigned W            = 1 + ExpW + FracW
 ) (
@@ -492,8 +495,9 @@ module rc_ray_gen #(
   always_ff @(posedge clk_i) begin
     dir_sr_q <= {d, dir_sr_q[3*W-1:W]};
   end
-  rc_delay #(.Width(3*W), .Cycles(DirWait)) u_delay_dir (
+  rc_delay_line #(.Width(3*W), .Cycles(DirWait), .Block(BlockDelays)) u_delay_dir (
     .clk_i,
+    .rst_ni,
     .data_i(dir_sr_q),
     .data_o(dir_d)
   );

@@ -66,7 +66,8 @@
 //   pkt_start_tri_i and t_eps_i are not read, and no logic is made for them); Shade: 1 = primary
 //   hits shaded as above, 0 = no ray shaded (for a tree controller that lights every hit itself:
 //   a primary packet's rays write the background colour with their hit records, the shd_ and
-//   mat_ ports make no requests, and no shading unit is built).
+//   mat_ ports make no requests, and no shading unit is built); BlockDelays: the intersection
+//   unit's delay lines in block RAM instead of flip-flops (rc_isect_unit; the same cycles).
 // - Reset: rst_ni, active low, asynchronous; clears all control state.
 module rc_core #(
   parameter int unsigned ExpW           = rc_pkg::Fp24ExpW,
@@ -79,6 +80,7 @@ module rc_core #(
   parameter int unsigned SetupUnits     = rc_pkg::CoreSetupUnits,
   parameter bit          Secondary      = 1'b1,
   parameter bit          Shade          = 1'b1,
+  parameter bit          BlockDelays    = 1'b0,
   // Derived (do not override).
   parameter int unsigned W              = 1 + ExpW + FracW,
   parameter int unsigned TagW           = rc_pkg::CoreTagBits,
@@ -604,7 +606,8 @@ module rc_core #(
     .Threads      (Threads),
     .ListTags     (ListTags),
     .IsectInterval(IsectInterval),
-    .Secondary    (Secondary)
+    .Secondary    (Secondary),
+    .BlockDelays  (BlockDelays)
   ) u_isect (
     .clk_i,
     .rst_ni,

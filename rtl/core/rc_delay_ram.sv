@@ -15,16 +15,21 @@
 //   A distributed RAM costs six LUT sites per 64 bits and its read multiplexer grows with Depth
 //   (Yosys: 923 LUT4 sites for 256 x 24); one DP16KD holds 512 x 36 bits. So every line of 17
 //   cycles or more and 8 bits or more is block RAM, and so is every line of more than 64 cycles;
-//   a short or narrow one stays in LUTs.
+//   a short or narrow one stays in LUTs, unless ForceBlock = 1 puts it in block RAM too (a
+//   wide line of a few cycles: its Width x Cycles flip-flops each take a place of their own in
+//   the logic tiles, the block RAMs take none; rc_xform_unit's and rc_isect_unit's delay lines on
+//   the lit board, docs/fpga.md).
 //   The read address is never the one being written (Cycles - 1 < Depth; Cycles - 2 >= 1).
-// - Latency: Cycles (>= 2).
-// - Parameters: Width data bits (>= 1), Cycles (>= 2).
+// - Latency: Cycles (>= 2; >= 3 in block RAM).
+// - Parameters: Width data bits (>= 1), Cycles (>= 2), ForceBlock (0 or 1: block RAM whatever
+//   Width and Cycles; then Cycles >= 3).
 // - Illegal input: none. Reset: rst_ni (active low, asynchronous) clears the write pointer only
 //   (the memory and the output registers have no reset: before Cycles edges data_o is
 //   undefined).
 module rc_delay_ram #(
   parameter int unsigned Width  = 1,
-  parameter int unsigned Cycles = 2
+  parameter int unsigned Cycles = 2,
+  parameter bit          ForceBlock = 1'b0
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,
@@ -39,8 +44,12 @@ module rc_delay_ram #(
   localparam int unsigned AddrW = $clog2(Cycles);
   localparam int unsigned Depth = 1 << AddrW;
   // The mapping rule above: block RAM for deep lines, and for lines past one DPR16X4's 16 words
-  // that are 8 bits wide or more.
-  localparam bit          Block = Depth > 64 || (Depth > 16 && Width >= 8);
+  // that are 8 bits wide or more; or when asked.
+  localparam bit          Block = ForceBlock || Depth > 64 || (Depth > 16 && Width >= 8);
+
+  if (Block && Cycles < 3) begin : g_block_check
+    $error("rc_delay_ram: a line in block RAM needs Cycles >= 3");
+  end
 
   logic [AddrW-1:0] wp_q;
   logic [Width-1:0] rd_q;

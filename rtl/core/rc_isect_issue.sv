@@ -35,13 +35,14 @@
 // - Counters: perf_test_o, a test issued.
 // - Parameters: Threads, IsectInterval (1: two transform units, 2: one used twice); Secondary:
 //   1 = secondary rays as above, 0 = primary rays only (ray_lim_i and t_eps_i not read, no logic
-//   for them).
+//   for them); BlockDelays: the intersection unit's delay lines in block RAM (rc_isect_unit).
 // - Reset: rst_ni (active low, asynchronous) clears the valid bits.
 module rc_isect_issue #(
   parameter int unsigned Threads       = rc_pkg::CoreThreads,
   parameter int unsigned ListTags      = rc_pkg::CoreListTags,
   parameter int unsigned IsectInterval = rc_pkg::CoreIsectInterval,
   parameter bit          Secondary     = 1'b1,
+  parameter bit          BlockDelays   = 1'b0,
   // Derived (do not override).
   parameter int unsigned W             = rc_pkg::CoreFpW,
   parameter int unsigned ThrW          = (Threads > 1) ? $clog2(Threads) : 1,
@@ -349,7 +350,8 @@ module rc_isect_issue #(
     .TagW        (IuTagW),
     .SharedXform (IsectInterval == 2),
     .Backpressure(1'b0),  // the write-back takes every result at once
-    .Secondary   (Secondary)
+    .Secondary   (Secondary),
+    .BlockDelays (BlockDelays)
   ) u_isect (
     .clk_i,
     .rst_ni,

@@ -47,7 +47,9 @@
 //   Backpressure: 1 (default) = the output FIFO and credits above, 0 = ready_i is always 1 (a
 //   consumer that takes every result at once): one output register, the same latency;
 //   Secondary: 1 (default) = secondary_i, excl_i and t_eps_i as above, 0 = primary rays only
-//   (those inputs ignored, as if 0: no logic for them).
+//   (those inputs ignored, as if 0: no logic for them); BlockDelays: 1 = the delay lines that
+//   carry the operands and side band past the divider, multipliers, adders and compare (and the
+//   transform unit's) in block RAM, 0 (default) = shift registers, the same results either way.
 // - Illegal input: none; every bit pattern of every input is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (valid pipelines, FIFO
 //   pointers and counters); data registers have no reset.
@@ -82,7 +84,10 @@ module rc_isect_unit #(
   // 1: a secondary ray's rules (secondary_i, excl_i, t_eps_i); 0: primary rays only, those
   // inputs are ignored and no logic is made for them (the compare with 0 keeps its constant
   // operand).
-  parameter bit          Secondary    = 1'b1
+  parameter bit          Secondary    = 1'b1,
+  // 1: the delay lines beside the divider, multipliers, adders and compare (and the transform
+  // unit's) in block RAM (rc_delay_line), 0: shift registers; the same results and cycles.
+  parameter bit          BlockDelays  = 1'b0
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -241,7 +246,8 @@ module rc_isect_unit #(
 
     rc_xform_unit #(
       .ExpW(ExpW), .FracW(FracW), .TagW(SbW + 1), .MulStages(MulStages), .AddStages(AddStages),
-      .Backpressure(1'b0)
+      .Backpressure(1'b0),
+      .BlockDelays (BlockDelays)
     ) u_xform (
       .clk_i, .rst_ni,
       .valid_i(pass1_q | pass2_q), .ready_o(xf_ready), .m_i(m_q), .v_i(v_q),
@@ -289,7 +295,8 @@ module rc_isect_unit #(
 
     rc_xform_unit #(
       .ExpW(ExpW), .FracW(FracW), .TagW(SbW), .MulStages(MulStages), .AddStages(AddStages),
-      .Backpressure(1'b0)
+      .Backpressure(1'b0),
+      .BlockDelays (BlockDelays)
     ) u_xform_org (
       .clk_i, .rst_ni,
       .valid_i(in_fire), .ready_o(xo_ready), .m_i, .v_i({3{org_i}}), .translate_i(1'b1),
@@ -300,7 +307,8 @@ module rc_isect_unit #(
 
     rc_xform_unit #(
       .ExpW(ExpW), .FracW(FracW), .TagW(1), .MulStages(MulStages), .AddStages(AddStages),
-      .Backpressure(1'b0)
+      .Backpressure(1'b0),
+      .BlockDelays (BlockDelays)
     ) u_xform_dir (
       .clk_i, .rst_ni,
       .valid_i(in_fire), .ready_o(xd_ready), .m_i, .v_i({3{dir_i}}), .translate_i(1'b0),
@@ -335,10 +343,10 @@ module rc_isect_unit #(
 
   // Waiting for t: {side band, d'z, d'y, d'x, o'y, o'x}.
   localparam int unsigned D1W = SbW + 5 * W;
-  logic [DivStages*D1W-1:0] d1_q;
-  always_ff @(posedge clk_i) begin
-    d1_q <= (d1_q << D1W) | (DivStages * D1W)'({sb_x, xd, xo[2*W-1:0]});
-  end
+  logic [D1W-1:0] d1;
+  rc_delay_line #(.Width(D1W), .Cycles(DivStages), .Block(BlockDelays)) u_dly_1 (
+    .clk_i, .rst_ni, .data_i({sb_x, xd, xo[2*W-1:0]}), .data_o(d1)
+  );
 
   logic [W-1:0]    ox1, oy1, dx1, dy1, dz1, best_t1, best_t1_in;
   logic [TagW-1:0] tag1;
@@ -346,7 +354,7 @@ module rc_isect_unit #(
   logic [31:0]     best_tri1, best_tri1_in;
   logic            best_v1, tri_lt1;
   logic [SbW-1:0]  sb1;
-  assign {sb1, dz1, dy1, dx1, oy1, ox1} = d1_q[DivStages*D1W-1 -: D1W];
+  assign {sb1, dz1, dy1, dx1, oy1, ox1} = d1;
   assign {tag1, tri_s1, best_t1_in, best_tri1_in, best_v1} = sb1[SbW-1 -: SbBaseW];
   // The best: the given one, or +inf and -1 (no hit yet).
   assign best_t1   = best_v1 ? best_t1_in : Inf;
@@ -432,15 +440,15 @@ module rc_isect_unit #(
 
   // Waiting for the products: {tag, tri, d'z, t, o'y, o'x}.
   localparam int unsigned D2W = TagW + 32 + 4 * W;
-  logic [MulStages*D2W-1:0] d2_q;
-  always_ff @(posedge clk_i) begin
-    d2_q <= (d2_q << D2W) | (MulStages * D2W)'({tag1, tri_s1, dz1, t, oy1, ox1});
-  end
+  logic [D2W-1:0] d2;
+  rc_delay_line #(.Width(D2W), .Cycles(MulStages), .Block(BlockDelays)) u_dly_2 (
+    .clk_i, .rst_ni, .data_i({tag1, tri_s1, dz1, t, oy1, ox1}), .data_o(d2)
+  );
 
   logic [W-1:0]    ox2, oy2, t2, dz2;
   logic [TagW-1:0] tag2;
   logic [31:0]     tri_s2;
-  assign {tag2, tri_s2, dz2, t2, oy2, ox2} = d2_q[MulStages*D2W-1 -: D2W];
+  assign {tag2, tri_s2, dz2, t2, oy2, ox2} = d2;
 
   ///////////////////////////////
   // u = o'x + t*d'x, v         //
@@ -460,15 +468,15 @@ module rc_isect_unit #(
 
   // Waiting for u and v: {tag, tri, d'z, t}.
   localparam int unsigned D3W = TagW + 32 + 2 * W;
-  logic [AddStages*D3W-1:0] d3_q;
-  always_ff @(posedge clk_i) begin
-    d3_q <= (d3_q << D3W) | (AddStages * D3W)'({tag2, tri_s2, dz2, t2});
-  end
+  logic [D3W-1:0] d3;
+  rc_delay_line #(.Width(D3W), .Cycles(AddStages), .Block(BlockDelays)) u_dly_3 (
+    .clk_i, .rst_ni, .data_i({tag2, tri_s2, dz2, t2}), .data_o(d3)
+  );
 
   logic [W-1:0]    t3, dz3;
   logic [TagW-1:0] tag3;
   logic [31:0]     tri_s3;
-  assign {tag3, tri_s3, dz3, t3} = d3_q[AddStages*D3W-1 -: D3W];
+  assign {tag3, tri_s3, dz3, t3} = d3;
 
   // Flag a (ready 1 + CmpStages after t) waits until u and v's comparisons are done.
   localparam int unsigned FaDly = MulStages + AddStages - 1;
@@ -514,10 +522,10 @@ module rc_isect_unit #(
   // Waiting for the last comparison: {tag, tri, d'z, t, v, u}.
   localparam int unsigned D4Dly = AddStages + CmpStages;
   localparam int unsigned D4W   = TagW + 32 + 4 * W;
-  logic [D4Dly*D4W-1:0] d4_q;
-  always_ff @(posedge clk_i) begin
-    d4_q <= (d4_q << D4W) | (D4Dly * D4W)'({tag3, tri_s3, dz3, t3, v, u});
-  end
+  logic [D4W-1:0] d4;
+  rc_delay_line #(.Width(D4W), .Cycles(D4Dly), .Block(BlockDelays)) u_dly_4 (
+    .clk_i, .rst_ni, .data_i({tag3, tri_s3, dz3, t3, v, u}), .data_o(d4)
+  );
 
   ///////////////////////////////
   // le(u + v, 1.0) and the hit //
@@ -538,7 +546,7 @@ module rc_isect_unit #(
 
   assign pipe_valid = c1_valid;
   assign pipe_hit   = flag_b_q[AddStages-1] & c1_le;
-  assign {pipe_tag, pipe_tri, pipe_dz, pipe_t, pipe_v, pipe_u} = d4_q[D4Dly*D4W-1 -: D4W];
+  assign {pipe_tag, pipe_tri, pipe_dz, pipe_t, pipe_v, pipe_u} = d4;
 
   // Unused outputs of the shared building blocks (min/max, redundant valids and predicates).
   logic unused_outputs;

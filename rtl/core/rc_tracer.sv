@@ -54,7 +54,8 @@
 // - Parameters: the core's (passed on); Slots >= 1 ([tracer] slots); FetchEntries a power of
 //   two >= 2 ([tracer] fetch_entries); ShadowPackets >= 1 ([tracer] shadow_packets); MaxLights
 //   ([light] max_lights); MaxBounces ([light] bounce_limit); LightPeriod (rc_hit_light's Period,
-//   6 or 12: [light] unit_period).
+//   6 or 12: [light] unit_period); BlockDelays (the core's: its intersection unit's delay lines
+//   in block RAM; the lit board's [board] lit_block_delays).
 // - Illegal input: light_count_i of 0 or above MaxLights; max_bounces_i above MaxBounces; a
 //   packet kind other than primary (assertions catch all three).
 // - Reset: rst_ni (active low, asynchronous) clears control state.
@@ -73,6 +74,7 @@ module rc_tracer #(
   parameter int unsigned MaxBounces     = rc_pkg::LightBounceLimit,
   parameter int unsigned ShadowPackets  = rc_pkg::TracerShadowPackets,
   parameter int unsigned LightPeriod    = rc_pkg::LightUnitPeriod,
+  parameter bit          BlockDelays    = 1'b0,
   // Derived (do not override).
   parameter int unsigned W              = 1 + ExpW + FracW,
   parameter int unsigned TagW           = rc_pkg::CoreTagBits,
@@ -426,7 +428,8 @@ module rc_tracer #(
     .IsectInterval (IsectInterval),
     .SetupUnits    (SetupUnits),
     .Secondary     (1'b1),
-    .Shade         (1'b0)
+    .Shade         (1'b0),
+    .BlockDelays   (BlockDelays)
   ) u_core (
     .clk_i,
     .rst_ni,

@@ -36,7 +36,9 @@
 // - Throughput: one vector per cycle (with ready_i held high, ready_o stays 1).
 // - Parameters: ExpW (>= 2), FracW (>= 1): the format; TagW (>= 1): width of the tag carried
 //   alongside; MulStages, AddStages (>= 1): the latencies of the rc_fp_mul / rc_fp_add
-//   instances; Backpressure: 1 = valid/ready with the output FIFO, 0 = valid-only pipeline.
+//   instances; Backpressure: 1 = valid/ready with the output FIFO, 0 = valid-only pipeline;
+//   BlockDelays: 1 = the delay lines (the tag's, m3's, p2's and b's, the three rows' words side
+//   by side) in block RAM (rc_delay_line), 0 = shift registers; the same results either way.
 // - Illegal input: none; every bit pattern of every input is legal.
 // - Reset: rst_ni (active low, asynchronous) clears control state only (valid pipelines, FIFO
 //   pointers and counters); data registers have no reset.
@@ -53,7 +55,8 @@ module rc_xform_unit #(
   parameter int unsigned TagW         = 8,
   parameter int unsigned MulStages    = rc_pkg::FpStagesMul,
   parameter int unsigned AddStages    = rc_pkg::FpStagesAdd,
-  parameter bit          Backpressure = 1'b1
+  parameter bit          Backpressure = 1'b1,
+  parameter bit          BlockDelays  = 1'b0
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -103,10 +106,10 @@ module rc_xform_unit #(
   logic [3*W-1:0] res, res_t;
 
   // Tag and translate flag ride along for the whole pipeline.
-  logic [PipeLat*TagW-1:0] tag_dly_q;
-  always_ff @(posedge clk_i) begin
-    tag_dly_q <= (tag_dly_q << TagW) | (PipeLat * TagW)'(tag_i);
-  end
+  logic [TagW-1:0] pipe_tag;
+  rc_delay_line #(.Width(TagW), .Cycles(PipeLat), .Block(BlockDelays)) u_dly_tag (
+    .clk_i, .rst_ni, .data_i(tag_i), .data_o(pipe_tag)
+  );
 
   logic [M3Dly-1:0] tr_dly_q;
   always_ff @(posedge clk_i) begin
@@ -135,6 +138,22 @@ module rc_xform_unit #(
   end
   assign row_sel = {sel_o_q[AddStages-1], sel_v_q[AddStages-1], ~sel_n_q[AddStages-1]};
 
+  // The rows' delay lines, their three words side by side (the rows run in lockstep): m3 waits
+  // from the input until the last add, p2 for the first add, and b alongside the last add.
+  logic [3*W-1:0] m3_all, m3_dly, p2_all, p2_dly, b_all, b_dly;
+  for (genvar r = 0; r < 3; r++) begin : g_m3
+    assign m3_all[r*W +: W] = m_i[(4*r+3)*W +: W];
+  end
+  rc_delay_line #(.Width(3 * W), .Cycles(M3Dly), .Block(BlockDelays)) u_dly_m3 (
+    .clk_i, .rst_ni, .data_i(m3_all), .data_o(m3_dly)
+  );
+  rc_delay_line #(.Width(3 * W), .Cycles(AddStages), .Block(BlockDelays)) u_dly_p2 (
+    .clk_i, .rst_ni, .data_i(p2_all), .data_o(p2_dly)
+  );
+  rc_delay_line #(.Width(3 * W), .Cycles(AddStages), .Block(BlockDelays)) u_dly_b (
+    .clk_i, .rst_ni, .data_i(b_all), .data_o(b_dly)
+  );
+
   for (genvar r = 0; r < 3; r++) begin : g_row
     logic [W-1:0] p0, p1, p2, sum_a, sum_b, sum_c;
     logic         mul1_valid, mul2_valid;
@@ -155,17 +174,7 @@ module rc_xform_unit #(
       .valid_o(mul2_valid), .res_o(p2)
     );
 
-    // m_i3 waits until the last add.
-    logic [M3Dly*W-1:0] m3_dly_q;
-    always_ff @(posedge clk_i) begin
-      m3_dly_q <= (m3_dly_q << W) | (M3Dly * W)'(m_i[(4*r+3)*W +: W]);
-    end
-
-    // p2 waits for the first add.
-    logic [AddStages*W-1:0] p2_dly_q;
-    always_ff @(posedge clk_i) begin
-      p2_dly_q <= (p2_dly_q << W) | (AddStages * W)'(p2);
-    end
+    assign p2_all[r*W +: W] = p2;
 
     rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(AddStages)) u_add_a (
       .clk_i, .rst_ni, .valid_i(mul_valid[r]), .sub_i(1'b0), .a_i(p0), .b_i(p1),
@@ -173,27 +182,21 @@ module rc_xform_unit #(
     );
     rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(AddStages)) u_add_b (
       .clk_i, .rst_ni, .valid_i(add_a_valid[r]), .sub_i(1'b0), .a_i(sum_a),
-      .b_i(p2_dly_q[AddStages*W-1 -: W]), .valid_o(add_b_valid[r]), .res_o(sum_b)
+      .b_i(p2_dly[r*W +: W]), .valid_o(add_b_valid[r]), .res_o(sum_b)
     );
     rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(AddStages)) u_add_c (
       .clk_i, .rst_ni, .valid_i(add_b_valid[r]), .sub_i(1'b0), .a_i(sum_b),
-      .b_i(m3_dly_q[M3Dly*W-1 -: W]), .valid_o(add_c_valid[r]), .res_o(sum_c)
+      .b_i(m3_dly[r*W +: W]), .valid_o(add_c_valid[r]), .res_o(sum_c)
     );
 
     // Without translation the row result is sum_b itself, delayed to line up with sum_c.
-    logic [AddStages*W-1:0] b_dly_q;
-    always_ff @(posedge clk_i) begin
-      b_dly_q <= (b_dly_q << W) | (AddStages * W)'(sum_b);
-    end
-
-    assign res[r*W +: W]   = row_sel[r] ? sum_c : b_dly_q[AddStages*W-1 -: W];
+    assign b_all[r*W +: W] = sum_b;
+    assign res[r*W +: W]   = row_sel[r] ? sum_c : b_dly[r*W +: W];
     assign res_t[r*W +: W] = sum_c;
   end
 
   logic            pipe_valid;
-  logic [TagW-1:0] pipe_tag;
   assign pipe_valid = add_c_valid[0];
-  assign pipe_tag   = tag_dly_q[PipeLat*TagW-1 -: TagW];
 
   // Only row 0's valid chain is used; the others are identical (checked below).
   logic unused_valid;

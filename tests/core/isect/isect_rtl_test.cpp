@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "Visect_e7f16.h"
+#include "Visect_e7f16_b.h"
 #include "Visect_e7f16_s1.h"
 #include "Vxform_e7f16.h"
 #include "compiler.hpp"
@@ -590,6 +591,16 @@ TEST(IsectRtl, Fp24VsGoldenIntersect) {
                           static_cast<uint64_t>(lat));
 }
 
+// The same unit with its delay lines in block RAM (BlockDelays = 1, the lit board's): the same
+// results at the same latency.
+TEST(IsectRtl, Fp24BlockDelaysVsGoldenIntersect) {
+  constexpr int64_t add = spec::kFpStagesAdd, mul = spec::kFpStagesMul;
+  constexpr int64_t lat =
+      2 + (mul + 3 * add) + spec::kFpStagesDiv + mul + 2 * add + spec::kFpStagesCmp + 1;
+  run_isect<Visect_e7f16_b>("rtl isect unit (delay lines in block RAM) vs golden intersect",
+                            300'000, 17, static_cast<uint64_t>(lat));
+}
+
 TEST(IsectRtl, Fp24OneStagePipelines) {
   run_isect<Visect_e7f16_s1>(
       "rtl isect unit (all Stages=1, two transform units) vs golden intersect", 100'000, 8, 10);
@@ -619,6 +630,11 @@ void run_throughput(const char* label, uint64_t every) {
 
 TEST(IsectRtl, Fp24ThroughputOneTransformUnit) {
   run_throughput<Visect_e7f16>("rtl fp24 isect unit (one transform unit), back-to-back inputs", 2);
+}
+
+TEST(IsectRtl, Fp24ThroughputBlockDelays) {
+  run_throughput<Visect_e7f16_b>(
+      "rtl fp24 isect unit (delay lines in block RAM), back-to-back inputs", 2);
 }
 
 TEST(IsectRtl, Fp24ThroughputTwoTransformUnits) {

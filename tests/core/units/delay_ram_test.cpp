@@ -1,5 +1,6 @@
 // rc_delay_ram (rtl/core/rc_delay_ram.sv): a fixed delay line in a memory, distributed RAM or block
-// RAM by its size. Verilated at both mappings and at their edges (CMakeLists.txt lists them).
+// RAM by its size (or block RAM when forced). Verilated at both mappings and at their edges, and
+// rc_delay_line (rtl/core/rc_delay_line.sv) either way (CMakeLists.txt lists them).
 //
 // The contract says data_o = data_i as it was Cycles rising edges earlier: after edge j, data_o
 // holds the word sampled at edge j - Cycles + 1, from the Cycles-th edge after reset on. Each
@@ -12,12 +13,17 @@
 #include <random>
 #include <vector>
 
+#include "Vdelay_line_c1w8.h"
+#include "Vdelay_line_c22w40.h"
+#include "Vdelay_line_c22w40b.h"
 #include "Vdelay_ram_c100w48.h"
+#include "Vdelay_ram_c11w48b.h"
 #include "Vdelay_ram_c16w24.h"
 #include "Vdelay_ram_c17w24.h"
 #include "Vdelay_ram_c17w4.h"
 #include "Vdelay_ram_c2w1.h"
 #include "Vdelay_ram_c32w8.h"
+#include "Vdelay_ram_c3w5b.h"
 #include "Vdelay_ram_c63w25.h"
 #include "Vdelay_ram_c65w1.h"
 #include "fp_cases.hpp"
@@ -74,6 +80,17 @@ TEST(DelayRam, ThirtyTwoCyclesFull) { run<Vdelay_ram_c32w8>(8, 32, "rc_delay_ram
 TEST(DelayRam, SixtyThreeCycles) { run<Vdelay_ram_c63w25>(25, 63, "rc_delay_ram 63 x 25"); }
 TEST(DelayRam, SixtyFiveCyclesOneBit) { run<Vdelay_ram_c65w1>(1, 65, "rc_delay_ram 65 x 1"); }
 TEST(DelayRam, HundredCyclesWide) { run<Vdelay_ram_c100w48>(48, 100, "rc_delay_ram 100 x 48"); }
+TEST(DelayRam, ThreeCyclesForcedBlock) {
+  run<Vdelay_ram_c3w5b>(5, 3, "rc_delay_ram 3 x 5, ForceBlock");
+}
+TEST(DelayRam, ElevenCyclesForcedBlock) {
+  run<Vdelay_ram_c11w48b>(48, 11, "rc_delay_ram 11 x 48, ForceBlock");
+}
+TEST(DelayLine, OneCycleShift) { run<Vdelay_line_c1w8>(8, 1, "rc_delay_line 1 x 8"); }
+TEST(DelayLine, TwentyTwoCyclesShift) { run<Vdelay_line_c22w40>(40, 22, "rc_delay_line 22 x 40"); }
+TEST(DelayLine, TwentyTwoCyclesBlock) {
+  run<Vdelay_line_c22w40b>(40, 22, "rc_delay_line 22 x 40, Block");
+}
 
 }  // namespace
 }  // namespace rc::test
