@@ -17,13 +17,15 @@
 //              sums and lights 0; at depth 1 (cw_d1_i) the first mirror (cw_mirror_i) or
 //              refraction triangle: the hit's triangle, or -1 for a miss. A lane's primary write
 //              comes before every other write and add of its tree.
-//     add_i:   an add to lane add_ln_i's sums in this cycle (never with a depth-0 cw_i); its term
-//              (add_term_i, three channels of FW bits, zero-extended) and the lights to set
-//              (add_lights_i, ORed into the lane's) come in the next cycle, in which the sum is
-//              read, added and written (add_pend_o, with the lane's slot on add_pend_slot_o).
+//     add_i:   an add to lane add_ln_i's sums in this cycle (never with a depth-0 cw_i): the
+//              sum is read in this cycle, registered in the next (add_pend1_o, the lane's slot
+//              on add_pend1_slot_o) and added and written in the one after (add_pend_o,
+//              add_pend_slot_o), in which its term (add_term_i, three channels of FW bits,
+//              zero-extended) and the lights to set (add_lights_i, ORed into the lane's) come.
 //   The sums' memory has one write port: the depth-0 write's zero takes the adds' pipeline (a
 //   read that is not used, then the write), which adds never enter in its cycle. One add or
-//   zero per cycle; back-to-back ones to a lane are forwarded, so any sequence of them is exact.
+//   zero per cycle; the sums of the two before it are forwarded to it when they are to its
+//   lane, so any sequence of them is exact.
 // - Reads (registered: the lane given in a cycle is on the outputs in the next one):
 //     seq_ln_i -> seq_*: the current packet's ray, weight, triangle, t and d'z (the sequencer);
 //     fin_ln_i -> fin_*: the primary record, pixel id, sums, lights and the two triangles (the
@@ -93,8 +95,10 @@ module rc_lane_store #(
   // The adds.
   input  logic                     add_i,
   input  logic [LaneW-1:0]         add_ln_i,
-  input  logic [3*FW-1:0]          add_term_i,    // the cycle after add_i
-  input  logic [MaxLights-1:0]     add_lights_i,  // the cycle after add_i
+  input  logic [3*FW-1:0]          add_term_i,    // two cycles after add_i
+  input  logic [MaxLights-1:0]     add_lights_i,  // two cycles after add_i
+  output logic                     add_pend1_o,
+  output logic [SlotW-1:0]         add_pend1_slot_o,
   output logic                     add_pend_o,
   output logic [SlotW-1:0]         add_pend_slot_o,
 
@@ -255,12 +259,13 @@ module rc_lane_store #(
   // The sums //
   //////////////
 
-  // The add's read (cycle N: add_i, or the zero of a depth-0 write) and its add and write
-  // (N + 1: add_pend_o). The word read in N misses the write made at N's edge when it is the
-  // same lane: forwarded (fwd_q).
-  logic             r_valid, r_zero, a_q, a_zero_q, fwd_q;
-  logic [LaneW-1:0] r_ln, a_ln_q;
-  logic [SmW-1:0]   sm_rdata, sm_fin, a_old, a_new, fwd_data_q;
+  // The add's read (cycle N: add_i, or the zero of a depth-0 write), the old sum registered
+  // (N + 1: l_q), its add and write (N + 2: a_q). The word read in N misses the writes of the
+  // adds in their N + 1 (a_new, forwarded into the register) and N (fwd_data_q) when they are
+  // to the same lane.
+  logic             r_valid, r_zero, l_q, l_zero_q, a_q, a_zero_q, fwd_q;
+  logic [LaneW-1:0] r_ln, l_ln_q, a_ln_q;
+  logic [SmW-1:0]   sm_rdata, sm_fin, l_old, l_old_q, a_new, fwd_data_q;
   assign r_zero  = cw_i && cw_d0_i;
   assign r_valid = add_i || r_zero;
   assign r_ln    = r_zero ? cw_ln_i : add_ln_i;
@@ -291,29 +296,42 @@ module rc_lane_store #(
     .rdata_o(sm_fin)
   );
   always_comb begin
-    a_old = fwd_q ? fwd_data_q : sm_rdata;
-    a_new[3*SumW +: MaxLights] = a_old[3*SumW +: MaxLights] | add_lights_i;
+    if (a_q && a_ln_q == l_ln_q) l_old = a_new;
+    else if (fwd_q) l_old = fwd_data_q;
+    else l_old = sm_rdata;
+  end
+  always_comb begin
+    a_new[3*SumW +: MaxLights] = l_old_q[3*SumW +: MaxLights] | add_lights_i;
     for (int c = 0; c < 3; c++)
-      a_new[c*SumW +: SumW] = a_old[c*SumW +: SumW] + SumW'(add_term_i[c*FW +: FW]);
+      a_new[c*SumW +: SumW] = l_old_q[c*SumW +: SumW] + SumW'(add_term_i[c*FW +: FW]);
     if (a_zero_q) a_new = '0;
   end
-  assign add_pend_o      = a_q;
-  assign add_pend_slot_o = a_ln_q[LaneW-1:2];
+  assign add_pend1_o      = l_q;
+  assign add_pend1_slot_o = l_ln_q[LaneW-1:2];
+  assign add_pend_o       = a_q;
+  assign add_pend_slot_o  = a_ln_q[LaneW-1:2];
   assign {fin_lights_o, fin_sum_o} = sm_fin;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      l_q   <= 1'b0;
       a_q   <= 1'b0;
       fwd_q <= 1'b0;
     end else begin
-      a_q   <= r_valid;
+      l_q   <= r_valid;
+      a_q   <= l_q;
       fwd_q <= r_valid && a_q && a_ln_q == r_ln;
     end
   end
   always_ff @(posedge clk_i) begin
     if (r_valid) begin
-      a_ln_q   <= r_ln;
-      a_zero_q <= r_zero;
+      l_ln_q   <= r_ln;
+      l_zero_q <= r_zero;
+    end
+    if (l_q) begin
+      l_old_q  <= l_old;
+      a_ln_q   <= l_ln_q;
+      a_zero_q <= l_zero_q;
     end
     if (a_q) fwd_data_q <= a_new;
     seq_lane_q <= seq_ln_i[1:0];
@@ -334,6 +352,8 @@ module rc_lane_store #(
   // A primary packet takes a slot no add reaches.
   PrimFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                prim_i && a_q |-> a_ln_q[LaneW-1:2] != prim_slot_i);
+  PrimFree1_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                prim_i && l_q |-> l_ln_q[LaneW-1:2] != prim_slot_i);
   // The adds leave the pipeline to a depth-0 write's zero.
   ZeroAlone_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 !(add_i && cw_i && cw_d0_i));

@@ -33,16 +33,17 @@
 // - Inside (docs/architecture.md, "The tracer"): a slot holds a primary packet's pixel ids, its
 //   hit records, its lanes' sums and one packet of its tree at a time, the current one: its rays,
 //   weights, depth and the core's writes. Every non-shadow packet the core gets carries
-//   {0, slot, lane} as its pixel ids, a shadow packet {1, shadow packet, lane}; the core's writes
-//   come back here and are always taken. When a packet's writes are all back, its lanes go to the
+//   {0, depth 0, depth 1, slot, lane} as its pixel ids, a shadow packet {1, from a primary hit,
+//   light, slot, shadow packet, lane} (PixD0 below), so that a write brings what it needs; the
+//   core's writes come back here and are always taken. When a packet's writes are all back, its lanes go to the
 //   fetch in lane order: a hit to a shading request, then a material request (Ns through
 //   rc_fp_to_exp; eta_enter = 1 / ior is the record's eta), put back in order in FetchEntries
 //   entries, then to rc_hit_light with the packet's ray and weight; a miss below a mirror or
 //   refraction ray (depth > 0) to fix(bg x weight). A sample at light 0 adds the hit's ambient
 //   term; a present sample's ray goes into the light's shadow packet, which takes one of
 //   ShadowPackets entries (its slot, light and four terms) and goes to the core; a shadow ray's
-//   write without a hit and without its packet's error (colour 1) adds its term (a cycle later;
-//   the packets' terms are a block RAM). The hits'
+//   write without a hit and without its packet's error (colour 1) adds its term (two cycles
+//   later; the packets' terms are a block RAM). The hits'
 //   geometry makes the packet's mirror and refraction packets (depth < max_bounces_i): the
 //   mirror packet becomes the slot's current packet, the refraction packet goes onto the slot's
 //   stack (MaxBounces entries of a block RAM), popped when a packet has no mirror packet (the
@@ -218,6 +219,14 @@ module rc_tracer #(
   localparam int unsigned LaneW  = SlotW + 2;                  // {slot, lane}
   localparam int unsigned LightW = (MaxLights > 1) ? $clog2(MaxLights) : 1;
   localparam int unsigned SpW    = (ShadowPackets > 1) ? $clog2(ShadowPackets) : 1;
+  // The pixel ids the core carries for the controller's packets (bit 31: a shadow packet):
+  //   a slot's packet: {0, depth 0, depth 1, 0.., slot, lane};
+  //   a shadow packet: {1, from a primary hit, 0.., light, slot, shadow packet, lane};
+  // so that the core's write brings what the controller needs with it, without a look-up.
+  localparam int unsigned PixD0    = 30;  // a slot's packet: its depth is 0 / a shadow packet's
+  localparam int unsigned PixD1    = 29;  // hit is a primary one; a slot's packet: depth 1
+  localparam int unsigned PixSlot  = 2 + SpW;           // a shadow packet's slot
+  localparam int unsigned PixLight = 2 + SpW + SlotW;   // and light
   localparam int unsigned FW     = rc_pkg::LightFixedBits + 1;
   localparam int unsigned ExpB   = rc_pkg::LightExponentBits;
   localparam int unsigned SumW   = 32;
@@ -226,7 +235,8 @@ module rc_tracer #(
   // pending (ambient and miss terms, at most two add queues' worth) and its packets in
   // rc_hit_light (at most MaxBounces + 1): one counter, as the slot waits for all three.
   localparam int unsigned WkW    = $clog2(4 * ShadowPackets + 2 * AddQ + MaxBounces + 2);
-  localparam int unsigned MissL  = rc_pkg::FpStagesMul + 1;      // the miss term's latency
+  // The miss term's latency: the weight's register, the product, the fixed point.
+  localparam int unsigned MissL  = 1 + rc_pkg::FpStagesMul + 1;
   localparam int unsigned KsLsb  = 8 * (rc_pkg::ImageMaterialKs - rc_pkg::ImageMaterialKd);
   localparam int unsigned NsLsb  = 8 * (rc_pkg::ImageMaterialNs - rc_pkg::ImageMaterialKd);
   localparam int unsigned IorLsb = 8 * (rc_pkg::ImageMaterialIor - rc_pkg::ImageMaterialKd);
@@ -240,8 +250,8 @@ module rc_tracer #(
   localparam logic [W-1:0] FpInf = {1'b0, {ExpW{1'b1}}, {FracW{1'b0}}};
 
   if (Slots < 1 || FetchEntries < 2 || (FetchEntries & (FetchEntries - 1)) != 0 ||
-      ShadowPackets < 1 || MaxBounces < 1 || 1 + SlotW + 2 > 32 ||
-      1 + SpW + 2 > 32) begin : g_param_check
+      ShadowPackets < 1 || MaxBounces < 1 || 2 + SlotW > PixD1 ||
+      PixLight + LightW > PixD1) begin : g_param_check
     $error("rc_tracer: need Slots, ShadowPackets, MaxBounces >= 1, FetchEntries a power of two >= 2, pixel ids within 32 bits");
   end
 
@@ -280,10 +290,10 @@ module rc_tracer #(
   logic [Slots*4-1:0]     hit_q;               // its hits, at {slot, lane}
   // The per-lane records are block RAMs (u_lanes, below), the stacks too (u_stack).
   // The adds to the lanes' sums (u_lanes): an add is read in one cycle, written in the next.
-  logic                   ln_add, ln_add_pend;
+  logic                   ln_add, ln_add_pend, ln_add_pend1;
   logic [LaneW-1:0]       ln_add_ln;
-  logic [SlotW-1:0]       ln_add_slot;
-  logic [3*FW-1:0]        aq_term_q, ln_add_term;
+  logic [SlotW-1:0]       ln_add_slot, ln_add_slot1;
+  logic [3*FW-1:0]        aq_term_q, aq_term2_q, ln_add_term;
   logic [MaxLights-1:0]   ln_add_lights;
 
   ///////////////////////////
@@ -298,8 +308,8 @@ module rc_tracer #(
   logic [rc_pkg::RayKindBits-1:0] core_pkt_kind;
 
   // The shadow packet queue and the tree packet queue (one entry each, below).
-  localparam int unsigned ShqW = 4 + 24 * W + 4 * W + 128 + SpW;
-  localparam int unsigned BqW  = 1 + 4 + 28 * W + 128 + SlotW;
+  localparam int unsigned ShqW = 4 + 24 * W + 4 * W + 128 + 1 + LightW + SlotW + SpW;
+  localparam int unsigned BqW  = 1 + 1 + 4 + 28 * W + 128 + SlotW;
   logic            shq_push, shq_valid, shq_pop;
   logic [ShqW-1:0] shq_wdata, shq_rdata;
   logic            shq_count;
@@ -308,10 +318,13 @@ module rc_tracer #(
   logic [4*W-1:0]  shq_t_hi;
   logic [127:0]    shq_tri;
   logic [SpW-1:0]  shq_sp;
+  logic            shq_d0;
+  logic [LightW-1:0] shq_light;
+  logic [SlotW-1:0] shq_slot;
   logic            bq_push, bq_valid, bq_pop;
   logic [BqW-1:0]  bq_wdata, bq_rdata;
   logic            bq_count;
-  logic            bq_mirror;
+  logic            bq_mirror, bq_d1;
   logic [3:0]      bq_mask;
   logic [12*W-1:0] bq_org, bq_dir;
   logic [4*W-1:0]  bq_w;
@@ -333,7 +346,8 @@ module rc_tracer #(
     .data_o (shq_rdata),
     .count_o(shq_count)
   );
-  assign {shq_mask, shq_org, shq_dir, shq_t_hi, shq_tri, shq_sp} = shq_rdata;
+  assign {shq_mask, shq_org, shq_dir, shq_t_hi, shq_tri, shq_d0, shq_light, shq_slot,
+          shq_sp} = shq_rdata;
 
   // The tree packet queue holds one packet: a decision (which sends at most one) needs it empty
   // and no pop in its second cycle (dec_room).
@@ -351,26 +365,71 @@ module rc_tracer #(
     .data_o (bq_rdata),
     .count_o(bq_count)
   );
-  assign {bq_mirror, bq_mask, bq_org, bq_dir, bq_w, bq_tri, bq_slot} = bq_rdata;
+  assign {bq_d1, bq_mirror, bq_mask, bq_org, bq_dir, bq_w, bq_tri, bq_slot} = bq_rdata;
 
-  // A free slot: the lowest.
-  logic             free_any;
-  logic [SlotW-1:0] free_idx;
-  logic [Slots-1:0] free_hot;
+  // A free slot: the lowest and the highest free slots of the cycle before, registered (lo_*,
+  // hi_*); the lowest, unless it was taken in the cycle before (one slot is taken per cycle),
+  // then the highest when it is another. A slot freed in a cycle is offered from the one after
+  // the next.
+  logic             free_any, slot_take, lo_any_c, hi_any_c, lo_any_q, hi_any_q, take_q;
+  logic [SlotW-1:0] free_idx, lo_idx_c, hi_idx_c, lo_idx_q, hi_idx_q, take_idx_q;
+  logic [Slots-1:0] free_hot, lo_hot_c, hi_hot_c, lo_hot_q, hi_hot_q, busy_rev;
+  logic             use_hi;
   rc_lowest #(
     .N   (Slots),
     .IdxW(SlotW)
   ) u_free (
     .req_i  (~busy_q),
-    .valid_o(free_any),
-    .idx_o  (free_idx),
-    .hot_o  (free_hot)
+    .valid_o(lo_any_c),
+    .idx_o  (lo_idx_c),
+    .hot_o  (lo_hot_c)
   );
+  always_comb begin
+    for (int s = 0; s < Slots; s++) busy_rev[s] = busy_q[Slots - 1 - s];
+  end
+  logic [SlotW-1:0] hi_ridx;
+  logic [Slots-1:0] hi_rhot;
+  rc_lowest #(
+    .N   (Slots),
+    .IdxW(SlotW)
+  ) u_free_hi (
+    .req_i  (~busy_rev),
+    .valid_o(hi_any_c),
+    .idx_o  (hi_ridx),
+    .hot_o  (hi_rhot)
+  );
+  always_comb begin
+    hi_idx_c = SlotW'(Slots - 1) - hi_ridx;
+    for (int s = 0; s < Slots; s++) hi_hot_c[s] = hi_rhot[Slots - 1 - s];
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      lo_any_q <= 1'b0;
+      hi_any_q <= 1'b0;
+      take_q   <= 1'b0;
+    end else begin
+      lo_any_q <= lo_any_c;
+      hi_any_q <= hi_any_c && hi_idx_c != lo_idx_c;
+      take_q   <= slot_take;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    lo_idx_q   <= lo_idx_c;
+    lo_hot_q   <= lo_hot_c;
+    hi_idx_q   <= hi_idx_c;
+    hi_hot_q   <= hi_hot_c;
+    take_idx_q <= free_idx;
+  end
+  assign use_hi   = take_q && lo_idx_q == take_idx_q;
+  assign free_any = use_hi ? hi_any_q : lo_any_q;
+  assign free_idx = use_hi ? hi_idx_q : lo_idx_q;
+  assign free_hot = use_hi ? hi_hot_q : lo_hot_q;
 
   // The controller's own packets first: shadow packets, then the trees' packets.
   logic ext_take;
   assign pkt_ready_o    = core_pkt_ready && !shq_valid && !bq_valid && free_any;
   assign ext_take       = pkt_valid_i && pkt_ready_o;
+  assign slot_take      = ext_take && pkt_mask_i != 4'd0;
   assign shq_pop        = shq_valid && core_pkt_ready;
   assign bq_pop         = bq_valid && !shq_valid && core_pkt_ready;
   assign core_pkt_valid = shq_valid || bq_valid || (pkt_valid_i && free_any);
@@ -384,7 +443,10 @@ module rc_tracer #(
     core_pkt_t_hi      = '0;
     core_pkt_start_tri = '0;
     core_pkt_pixel     = '0;
-    for (int r = 0; r < 4; r++) core_pkt_pixel[r*32 +: 32] = 32'({free_idx, 2'(r)});
+    for (int r = 0; r < 4; r++) begin
+      core_pkt_pixel[r*32 +: 32]         = 32'({free_idx, 2'(r)});
+      core_pkt_pixel[r*32 + PixD0]       = 1'b1;
+    end
     if (shq_valid) begin
       core_pkt_mask      = shq_mask;
       core_pkt_org       = shq_org;
@@ -393,7 +455,11 @@ module rc_tracer #(
       core_pkt_kind      = rc_pkg::RayKindBits'(rc_pkg::RayKindShadow);
       core_pkt_t_hi      = shq_t_hi;
       core_pkt_start_tri = shq_tri;
-      for (int r = 0; r < 4; r++) core_pkt_pixel[r*32 +: 32] = {1'b1, 31'({shq_sp, 2'(r)})};
+      for (int r = 0; r < 4; r++) begin
+        core_pkt_pixel[r*32 +: 32]         = 32'({shq_light, shq_slot, shq_sp, 2'(r)});
+        core_pkt_pixel[r*32 + 31]          = 1'b1;
+        core_pkt_pixel[r*32 + PixD0]       = shq_d0;
+      end
     end else if (bq_valid) begin
       core_pkt_mask      = bq_mask;
       core_pkt_org       = bq_org;
@@ -403,7 +469,10 @@ module rc_tracer #(
                                                              rc_pkg::RayKindRefract);
       core_pkt_t_hi      = {4{FpInf}};
       core_pkt_start_tri = bq_tri;
-      for (int r = 0; r < 4; r++) core_pkt_pixel[r*32 +: 32] = 32'({bq_slot, 2'(r)});
+      for (int r = 0; r < 4; r++) begin
+        core_pkt_pixel[r*32 +: 32]         = 32'({bq_slot, 2'(r)});
+        core_pkt_pixel[r*32 + PixD1]       = bq_d1;
+      end
     end
   end
 
@@ -527,41 +596,51 @@ module rc_tracer #(
   assign cw_ln      = {cw_slot, cw_lane};
   assign cw_cur     = core_fb_valid && !cw_shadow;
   assign cw_sh      = core_fb_valid && cw_shadow;
-  assign cw_d0      = depth_q[cw_slot*DepthW +: DepthW] == '0;
-  assign cw_d1      = depth_q[cw_slot*DepthW +: DepthW] == DepthW'(1);
+  assign cw_d0      = core_fb_pixel[PixD0];
+  assign cw_d1      = core_fb_pixel[PixD1];
   // A shadow ray reached its light: no hit, and its packet met no error (colour 1).
   assign cw_reached = cw_sh && !core_fb_hit && !core_fb_rgb[0];
 
   // The shadow packets in flight: slot, light, whether from a primary hit, rays out (the four
   // terms are a block RAM, u_terms, below).
   logic [ShadowPackets-1:0] spb_q;
-  logic [SlotW-1:0]         sp_slot_q  [ShadowPackets];
-  logic [LightW-1:0]        sp_light_q [ShadowPackets];
-  logic [ShadowPackets-1:0] sp_d0_q;
   logic [2:0]               sp_cnt_q   [ShadowPackets];
   logic [SlotW-1:0]         cws_slot;
-  assign cws_slot = sp_slot_q[cw_sp];
+  assign cws_slot = core_fb_pixel[PixSlot +: SlotW];
 
-  logic                     sp_free_any;
-  logic [SpW-1:0]           sp_free;
-  logic [ShadowPackets-1:0] sp_free_hot;
+  // A free shadow packet: the lowest, registered. It was free in the cycle before; a packet
+  // taken then is not offered again, as a shadow packet is never taken in two consecutive
+  // cycles (the one-entry shadow packet queue is full after a take, lt_ready).
+  logic                     sp_free_any, sp_free_any_c;
+  logic [SpW-1:0]           sp_free, sp_free_c;
+  logic [ShadowPackets-1:0] sp_free_hot, sp_free_hot_c;
   rc_lowest #(
     .N   (ShadowPackets),
     .IdxW(SpW)
   ) u_sp_free (
     .req_i  (~spb_q),
-    .valid_o(sp_free_any),
-    .idx_o  (sp_free),
-    .hot_o  (sp_free_hot)
+    .valid_o(sp_free_any_c),
+    .idx_o  (sp_free_c),
+    .hot_o  (sp_free_hot_c)
   );
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) sp_free_any <= 1'b0;
+    else sp_free_any <= sp_free_any_c;
+  end
+  always_ff @(posedge clk_i) begin
+    sp_free     <= sp_free_c;
+    sp_free_hot <= sp_free_hot_c;
+  end
 
   ///////////////////////////////////////////
   // Fetch: shading record, then material  //
   ///////////////////////////////////////////
 
-  // Slots whose current packet's writes are all back, in order.
-  logic             fq_push, fq_valid, fq_pop;
-  logic [SlotW-1:0] fq_slot;
+  // Slots whose current packet's writes are all back, in order: a FIFO (fr_*), then the head
+  // register (fq_*), which holds the head's lanes to fetch, read from the slot's records when it
+  // enters (they do not change while the slot waits for its fetch).
+  logic             fq_push, fq_valid, fq_pop, fr_valid, fr_pop;
+  logic [SlotW-1:0] fq_slot, fr_slot;
   logic [$clog2(Slots + 1)-1:0] fq_count;
   assign fq_push = cw_cur && pend_q[cw_slot*3 +: 3] == 3'd1;
 
@@ -574,20 +653,31 @@ module rc_tracer #(
     .rst_ni,
     .push_i (fq_push),
     .data_i (cw_slot),
-    .valid_o(fq_valid),
-    .ready_i(fq_pop),
-    .data_o (fq_slot),
+    .valid_o(fr_valid),
+    .ready_i(fr_pop),
+    .data_o (fr_slot),
     .count_o(fq_count)
   );
 
   // The popped packet's lanes: its hits (to the lighting) and, below the primary, its misses (to
   // the miss term); none when it failed.
-  logic [3:0] fq_hits, fq_miss, fq_work;
-  logic       fq_deep;
-  assign fq_deep = depth_q[fq_slot*DepthW +: DepthW] != '0;
-  assign fq_hits = cf_q[fq_slot] ? 4'd0 : hit_q[fq_slot*4 +: 4] & cmask_q[fq_slot];
-  assign fq_miss = (cf_q[fq_slot] || !fq_deep) ? 4'd0 : ~hit_q[fq_slot*4 +: 4] & cmask_q[fq_slot];
-  assign fq_work = fq_hits | fq_miss;
+  logic [3:0] fq_hits, fq_work, fr_hits, fr_miss;
+  logic       fr_deep;
+  assign fr_deep = depth_q[fr_slot*DepthW +: DepthW] != '0;
+  assign fr_hits = cf_q[fr_slot] ? 4'd0 : hit_q[fr_slot*4 +: 4] & cmask_q[fr_slot];
+  assign fr_miss = (cf_q[fr_slot] || !fr_deep) ? 4'd0 : ~hit_q[fr_slot*4 +: 4] & cmask_q[fr_slot];
+  assign fr_pop  = fr_valid && (!fq_valid || fq_pop);
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) fq_valid <= 1'b0;
+    else if (fr_pop || fq_pop) fq_valid <= fr_pop;
+  end
+  always_ff @(posedge clk_i) begin
+    if (fr_pop) begin
+      fq_slot <= fr_slot;
+      fq_hits <= fr_hits;
+      fq_work <= fr_hits | fr_miss;
+    end
+  end
 
   // The decision on a packet's children: at its geometry's last record (dec_geo); for a packet
   // without hits at its last miss's issue (dec_seq), or at its pop when it has no lane to fetch
@@ -596,8 +686,13 @@ module rc_tracer #(
   logic dec_geo, dec_room;
   logic fs_busy_q;
   logic pop_q;  // a stack pop's read: its packet is sent in this cycle, no decision is made
-  assign dec_room = !bq_count && !pop_q;
-  assign fq_pop   = fq_valid && !fs_busy_q && (fq_work != 4'd0 || (dec_room && !dec_geo));
+  logic dq_q;   // a decision's second cycle: it is carried out, no decision is made
+  assign dec_room = !bq_count && !pop_q && !dq_q;
+  // A decision of the fetch or the sequencer yields to a geometry's last record that waits
+  // (geo_end), taken or not: a record of another slot's packet, which the sequencer does not
+  // hold up, so it is taken once there is room.
+  logic geo_end;
+  assign fq_pop   = fq_valid && !fs_busy_q && (fq_work != 4'd0 || (dec_room && !geo_end));
 
   // The sequencer: the popped packet's lanes, one per cycle.
   logic [SlotW-1:0] fs_slot_q;
@@ -647,7 +742,7 @@ module rc_tracer #(
   logic fs_final, dec_seq;
   assign fs_final     = fs_hits_q == 4'd0 && (fs_lanes_q & ~(4'd1 << fs_lane)) == 4'd0;
   assign fs_step      = fs_busy_q && (fs_hit ? fs_room_hit : fs_room_miss) &&
-                        (!fs_final || (dec_room && !dec_geo));
+                        (!fs_final || (dec_room && !geo_end));
   assign dec_seq      = fs_step && fs_final;
   logic fs_alloc, mi_issue;
   assign fs_alloc = fs_step && fs_hit;
@@ -769,8 +864,9 @@ module rc_tracer #(
   // Lighting (rc_hit_light)    //
   ////////////////////////////////
 
-  // The tag through rc_hit_light: {start triangle, primary, last, slot, lane}.
-  localparam int unsigned HlTagW = 32 + 1 + 1 + LaneW;
+  // The tag through rc_hit_light: {start triangle, depth, primary, last, slot, lane} (the
+  // slot's depth does not change while its packet is lit).
+  localparam int unsigned HlTagW = 32 + DepthW + 1 + 1 + LaneW;
   logic              hl_valid, hl_ready, hl_take;
   logic [LaneW-1:0]  hl_ln;
   logic [7*W-1:0]    hl_ray;
@@ -779,8 +875,9 @@ module rc_tracer #(
   assign hl_take  = hl_valid && hl_ready;
   assign hl_ln    = fe_ln_q[fe_head_q];
   assign hl_ray   = fe_ray_q[fe_head_q];
-  assign hl_tag   = {fe_tri_q[fe_head_q], depth_q[hl_ln[LaneW-1:2]*DepthW +: DepthW] == '0,
-                     fe_last_q[fe_head_q], hl_ln};
+  logic [DepthW-1:0] hl_depth;
+  assign hl_depth = depth_q[hl_ln[LaneW-1:2]*DepthW +: DepthW];
+  assign hl_tag   = {fe_tri_q[fe_head_q], hl_depth, hl_depth == '0, fe_last_q[fe_head_q], hl_ln};
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -884,13 +981,14 @@ module rc_tracer #(
                                         geo_tag[LaneW-1:0]};
   assign geo_slot   = geo_ln[LaneW-1:2];
   assign geo_lane   = geo_ln[1:0];
-  assign geo_depth  = depth_q[geo_slot*DepthW +: DepthW];
+  assign geo_depth  = geo_tag[LaneW + 2 +: DepthW];
   assign geo_deeper = geo_depth < max_bounces_i;
   // The decision waits while the sequencer still issues the packet's misses (it reads the
   // packet's weights, which the decision replaces).
-  assign geo_ready  = !geo_last || (dec_room && !(fs_busy_q && fs_slot_q == geo_slot));
+  assign geo_ready  = !dq_q && (!geo_last || (dec_room && !(fs_busy_q && fs_slot_q == geo_slot)));
   assign geo_take   = geo_valid && geo_ready;
   assign dec_geo    = geo_take && geo_last;
+  assign geo_end    = geo_valid && geo_last;
 
   always_comb begin
     gm = gm_q;
@@ -926,47 +1024,67 @@ module rc_tracer #(
     end else if (geo_take) begin
       gm_q <= gm;
       gr_q <= gr;
-      if (geo_last) begin
-        gm_q.mask <= 4'd0;
-        gr_q.mask <= 4'd0;
-      end
+    end else if (dq_q && dq_geo_q) begin  // the decision took the last record's packets
+      gm_q.mask <= 4'd0;
+      gr_q.mask <= 4'd0;
     end
   end
 
   // The decision: the mirror packet becomes the slot's current packet and the refraction packet
   // goes onto its stack; without a mirror packet the refraction packet is sent, or the stack's
-  // top; with neither the tree is done. A pop reads the stack's block RAM in the decision's cycle
-  // and sends the packet in the next (pop_q), in which no decision is made (dec_room), so the
-  // tree packet queue, empty at the decision, has room for it.
-  logic              dec, dec_now, dec_push, dec_pop, dec_done;
+  // top; with neither the tree is done. It takes two cycles: in the first (dec) the slot and
+  // whether it has packets are registered (dq_*); in the second (dq_q) the slot's stack pointer
+  // is read and the decision carried out: a packet is sent or the stack's top read, the stack
+  // pointer and the tree's end written (the geometry, held in that cycle, leaves the last record's packets in
+  // gm_q and gr_q). A pop sends its packet in the cycle after (pop_q). No decision is made in
+  // the second cycle nor in a pop's (dec_room), so the tree packet queue, empty at the decision,
+  // has room for the packet.
+  localparam int unsigned StkDepth = Slots * MaxBounces;
+  localparam int unsigned ChildW   = 4 + 1 + DepthW + 24 * W + 4 * W + 128;  // child_t's bits
+  localparam int unsigned StkIdxW  = (StkDepth > 1) ? $clog2(StkDepth) : 1;
+  logic              dec, dec_now, dec_push, dec_pop, dec_done, dec_m_any, dec_r_any;
   logic [SlotW-1:0]  dec_slot, pop_slot_q;
   child_t            dec_m, dec_r, stk_top;
-  logic [DepthW-1:0] dec_sp;
-  assign dec      = dec_geo || dec_seq || (fq_pop && fq_work == 4'd0);
-  assign dec_slot = dec_geo ? geo_slot : dec_seq ? fs_slot_q : fq_slot;
-  // Outside dec_geo only the masks are cleared: a packet without rays is neither sent nor pushed.
+  logic [DepthW-1:0] dq_sp;
+  assign dec       = dec_geo || dec_seq || (fq_pop && fq_work == 4'd0);
+  assign dec_slot  = dec_geo ? geo_slot : dec_seq ? fs_slot_q : fq_slot;
+  // Outside dec_geo there are no packets: a packet without rays is neither sent nor pushed.
+  assign dec_m_any = dec_geo && gm.mask != 4'd0;
+  assign dec_r_any = dec_geo && gr.mask != 4'd0;
+
+  logic              dq_geo_q, dq_now_q, dq_push_q;
+  logic [SlotW-1:0]  dq_slot_q;
+  logic [StkIdxW-1:0] stk_waddr, stk_raddr;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) dq_q <= 1'b0;
+    else dq_q <= dec;
+  end
+  always_ff @(posedge clk_i) begin
+    if (dec) begin
+      dq_geo_q   <= dec_geo;
+      dq_slot_q  <= dec_slot;
+      dq_now_q   <= dec_m_any || dec_r_any;
+      dq_push_q  <= dec_m_any && dec_r_any;
+    end
+  end
   always_comb begin
-    dec_m = gm;
-    dec_r = gr;
-    if (!dec_geo) begin
+    dec_m = gm_q;
+    dec_r = gr_q;
+    if (!dq_geo_q) begin
       dec_m.mask = '0;
       dec_r.mask = '0;
     end
   end
-  assign dec_sp   = sp_q[dec_slot*DepthW +: DepthW];
-  assign dec_now  = dec && (dec_m.mask != 4'd0 || dec_r.mask != 4'd0);
-  assign dec_push = dec && dec_m.mask != 4'd0 && dec_r.mask != 4'd0;
-  assign dec_pop  = dec && !dec_now && dec_sp != '0;
-  assign dec_done = dec && !dec_now && dec_sp == '0;
+  assign dq_sp     = sp_q[dq_slot_q*DepthW +: DepthW];
+  assign stk_waddr = StkIdxW'(dq_slot_q * MaxBounces + 32'(dq_sp));
+  assign stk_raddr = StkIdxW'(dq_slot_q * MaxBounces + 32'(dq_sp) - 1);
+  assign dec_now   = dq_q && dq_now_q;
+  assign dec_push  = dq_q && dq_push_q;
+  assign dec_pop   = dq_q && !dq_now_q && dq_sp != '0;
+  assign dec_done  = dq_q && !dq_now_q && dq_sp == '0;
 
-  // One decision per cycle, and none in a pop's second cycle: a word is never read in the cycle
-  // it is written.
-  localparam int unsigned StkDepth = Slots * MaxBounces;
-  localparam int unsigned ChildW   = 4 + 1 + DepthW + 24 * W + 4 * W + 128;  // child_t's bits
-  localparam int unsigned StkIdxW  = (StkDepth > 1) ? $clog2(StkDepth) : 1;
-  logic [StkIdxW-1:0] stk_waddr, stk_raddr;
-  assign stk_waddr = StkIdxW'(dec_slot * MaxBounces + 32'(dec_sp));
-  assign stk_raddr = StkIdxW'(dec_slot * MaxBounces + 32'(dec_sp) - 1);
+  // The stacks: a slot's MaxBounces entries from slot * MaxBounces; a word is never read in the
+  // cycle it is written (one decision at a time).
   rc_ram #(
     .Width (ChildW),
     .Depth (StkDepth),
@@ -987,7 +1105,7 @@ module rc_tracer #(
       pop_slot_q <= '0;
     end else begin
       pop_q <= dec_pop;
-      if (dec_pop) pop_slot_q <= dec_slot;
+      if (dec_pop) pop_slot_q <= dq_slot_q;
     end
   end
 
@@ -996,11 +1114,11 @@ module rc_tracer #(
   logic [SlotW-1:0] snd_slot;
   child_t           snd_pkt;
   assign snd      = dec_now || pop_q;
-  assign snd_slot = pop_q ? pop_slot_q : dec_slot;
+  assign snd_slot = pop_q ? pop_slot_q : dq_slot_q;
   assign snd_pkt  = pop_q ? stk_top : dec_m.mask != 4'd0 ? dec_m : dec_r;
   assign bq_push  = snd;
-  assign bq_wdata = {snd_pkt.mirror, snd_pkt.mask, snd_pkt.org, snd_pkt.dir, snd_pkt.w,
-                     snd_pkt.stri, snd_slot};
+  assign bq_wdata = {snd_pkt.depth == DepthW'(1), snd_pkt.mirror, snd_pkt.mask, snd_pkt.org,
+                     snd_pkt.dir, snd_pkt.w, snd_pkt.stri, snd_slot};
 
   /////////////////////////////
   // Light samples and terms //
@@ -1034,13 +1152,26 @@ module rc_tracer #(
     .count_o(aq_count)
   );
   assign {aq_ln, aq_term} = aq_rdata;
-  logic rs_q;  // a reached shadow ray's term is added in this cycle
+  logic rs_q;  // a reached shadow ray's term is read in this cycle (added two cycles later)
   assign aq_pop = aq_valid && !cw_reached && !(cw_cur && cw_d0);  // u_lanes's add port
 
   // The miss term: fix(bg_c * w) per channel, MissL cycles; issued only while the add queue has
   // room for it beside the ones in flight and an ambient term.
-  assign mi_ok = 32'(aq_count) + 32'(mi_count_q) + 2 <= AddQ;
+  // pm_q = aq_count + mi_count_q, counted beside them so that the room is a compare of a
+  // register with a constant.
+  localparam int unsigned PmW = $clog2(AddQ + MissL + 1);
+  logic [PmW-1:0] pm_q;
+  assign mi_ok = 32'(pm_q) + 2 <= AddQ;
   logic [2:0] mo_valid_c;
+  logic       mi_v_q;
+  logic [W-1:0] mi_w_q;  // the weight, registered off the lane records' block RAM
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) mi_v_q <= 1'b0;
+    else mi_v_q <= mi_issue;
+  end
+  always_ff @(posedge clk_i) begin
+    if (mi_issue) mi_w_q <= seq_w;
+  end
   for (genvar c = 0; c < 3; c++) begin : g_miss
     logic          mm_valid;
     logic [W-1:0]  mm_res;
@@ -1050,9 +1181,9 @@ module rc_tracer #(
     ) u_mul (
       .clk_i,
       .rst_ni,
-      .valid_i(mi_issue),
+      .valid_i(mi_v_q),
       .a_i    (bg_i[c*W +: W]),
-      .b_i    (seq_w),
+      .b_i    (mi_w_q),
       .valid_o(mm_valid),
       .res_o  (mm_res)
     );
@@ -1083,6 +1214,10 @@ module rc_tracer #(
     if (!rst_ni) mi_count_q <= '0;
     else mi_count_q <= mi_count_q + $bits(mi_count_q)'(mi_issue) - $bits(mi_count_q)'(mo_valid);
   end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) pm_q <= '0;
+    else pm_q <= pm_q + PmW'(mi_issue) - PmW'(mo_valid) + PmW'(aq_push) - PmW'(aq_pop);
+  end
 
   // A light's samples: the ambient term at light 0 (to the add queue, after a miss term in the
   // same cycle), the light's shadow packet assembled from the present ones.
@@ -1095,7 +1230,7 @@ module rc_tracer #(
   assign lt_slot     = lt_ln[LaneW-1:2];
   assign lt_lane     = lt_ln[1:0];
   assign lt_ready    = !shq_count && sp_free_any && !mo_valid &&
-                       32'(aq_count) + 32'(mi_count_q) + 1 <= AddQ;
+                       32'(pm_q) + 1 <= AddQ;
   assign lt_take     = lt_valid && lt_ready;
   assign lt_close    = lt_take && lt_lane_last;
   assign lt_amb_push = lt_take && lt_light == '0;
@@ -1126,7 +1261,8 @@ module rc_tracer #(
     end
   end
   assign shq_push  = lt_close && as_mask != 4'd0;
-  assign shq_wdata = {as_mask, as_org, as_dir, as_t_hi, as_tri, sp_free};
+  assign shq_wdata = {as_mask, as_org, as_dir, as_t_hi, as_tri, lt_d0, lt_light, lt_slot,
+                       sp_free};
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -1154,28 +1290,23 @@ module rc_tracer #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       spb_q   <= '0;
-      sp_d0_q <= '0;
     end else begin
       for (int k = 0; k < ShadowPackets; k++) begin  // decoded writes
         if (cwsf_hot[k]) spb_q[k] <= 1'b0;
-        if (shq_push && sp_free_hot[k]) begin
-          spb_q[k]   <= 1'b1;
-          sp_d0_q[k] <= lt_d0;
-        end
+        if (shq_push && sp_free_hot[k]) spb_q[k] <= 1'b1;
       end
     end
   end
   always_ff @(posedge clk_i) begin
     if (cw_sh) sp_cnt_q[cw_sp] <= sp_cnt_q[cw_sp] - 1'b1;
     if (shq_push) begin
-      sp_slot_q[sp_free]  <= lt_slot;
-      sp_light_q[sp_free] <= lt_light;
       sp_cnt_q[sp_free]   <= rc_pkg::ray_count(as_mask);
     end
   end
 
   // The shadow packets' terms, a word of four per packet: written with the packet, read at a
-  // reached ray's write and added a cycle later (rs_q). The word read belongs to a packet in
+  // reached ray's write, its lane's term registered a cycle later (rs_q) and added in the
+  // cycle after (rs2_q). The word read belongs to a packet in
   // flight and the word written to a free one, so a word is never read in the cycle it is
   // written.
   logic [12*FW-1:0] term_word;
@@ -1195,19 +1326,36 @@ module rc_tracer #(
 
   // The reached ray's lane, light and whether from a primary hit, for its add.
   logic [1:0]        rs_lane_q;
-  logic              rs_d0_q;
-  logic [LightW-1:0] rs_light_q;
-  logic [3*FW-1:0]   rs_term;
-  assign rs_term = term_word[rs_lane_q*3*FW +: 3*FW];
+  logic              rs_d0_q, rs2_q, rs2_d0_q;
+  logic [LightW-1:0] rs_light_q, rs2_light_q;
+  logic [3*FW-1:0]   rs_term, rs_term_q;
+  always_comb begin  // a multiplexer (an indexed part-select would multiply the index)
+    unique case (rs_lane_q)
+      2'd0:    rs_term = term_word[0*3*FW +: 3*FW];
+      2'd1:    rs_term = term_word[1*3*FW +: 3*FW];
+      2'd2:    rs_term = term_word[2*3*FW +: 3*FW];
+      default: rs_term = term_word[3*3*FW +: 3*FW];
+    endcase
+  end
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) rs_q <= 1'b0;
-    else rs_q <= cw_reached;
+    if (!rst_ni) begin
+      rs_q  <= 1'b0;
+      rs2_q <= 1'b0;
+    end else begin
+      rs_q  <= cw_reached;
+      rs2_q <= rs_q;
+    end
   end
   always_ff @(posedge clk_i) begin
     if (cw_reached) begin
       rs_lane_q  <= cw_lane;
-      rs_d0_q    <= sp_d0_q[cw_sp];
-      rs_light_q <= sp_light_q[cw_sp];
+      rs_d0_q    <= core_fb_pixel[PixD0];
+      rs_light_q <= core_fb_pixel[PixLight +: LightW];
+    end
+    if (rs_q) begin
+      rs_term_q   <= rs_term;
+      rs2_d0_q    <= rs_d0_q;
+      rs2_light_q <= rs_light_q;
     end
   end
 
@@ -1216,26 +1364,35 @@ module rc_tracer #(
   ////////////////////////
 
   // Done slots: the lowest first, one slot's lanes at a time, one lane per cycle.
-  logic [Slots-1:0] done_vec, dn_hot, fs_hot, lnp_hot;
+  logic [Slots-1:0] done_vec, dn_hot, fs_hot, lnp_hot, lnp1_hot, ev_hot;
   logic             dn_any;
   logic [SlotW-1:0] dn_idx;
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_fs_hot  (.valid_i(fs_busy_q),   .idx_i(fs_slot_q),
                                                   .hot_o(fs_hot));
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_lnp_hot (.valid_i(ln_add_pend), .idx_i(ln_add_slot),
                                                   .hot_o(lnp_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_lnp1_hot (.valid_i(ln_add_pend1),
+                                                   .idx_i(ln_add_slot1), .hot_o(lnp1_hot));
   always_comb begin
     for (int s = 0; s < Slots; s++) begin
       // Not while the sequencer still issues the last packet's misses (their adds are counted
-      // from the issue), nor while an add's sum is still to be written (ln_add_pend).
+      // from the issue), nor while an add's sum is still to be written (ln_add_pend1,
+      // ln_add_pend), nor with a work event not yet counted (ev_hot).
       done_vec[s] = busy_q[s] && td_q[s] && !fin_q[s] && wk_q[s*WkW +: WkW] == '0 &&
-                    !fs_hot[s] && !lnp_hot[s];
+                    !ev_hot[s] && !fs_hot[s] && !lnp_hot[s] && !lnp1_hot[s];
     end
+  end
+  // Registered: a done slot stays done until its write starts (fin_q), which masks it at once.
+  logic [Slots-1:0] done_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) done_q <= '0;
+    else done_q <= done_vec;
   end
   rc_lowest #(
     .N   (Slots),
     .IdxW(SlotW)
   ) u_done (
-    .req_i  (done_vec),
+    .req_i  (done_q & ~fin_q),
     .valid_o(dn_any),
     .idx_o  (dn_idx),
     .hot_o  (dn_hot)
@@ -1246,8 +1403,11 @@ module rc_tracer #(
   logic [SlotW-1:0] fw_slot_q;
   logic [1:0]       fw_lane_q;
   logic [LaneW-1:0] fw_ln;
-  logic             st_valid_q, st_hit_q;
-  logic [OutW-1:0]  st_rec_q;    // {pixel, rgb, hit, tri, t, u, v, lights, bounce, refract}
+  // The lane's write in two stages (st_*, then st2_*), the sums registered before their bytes.
+  logic             st_valid_q, st_hit_q, st2_valid_q, st2_hit_q;
+  logic [OutW-1:0]  st_rec_q, st2_rec_q;  // {pixel, rgb, hit, tri, t, u, v, lights, bounce,
+                                          //  refract}
+  logic [3*SumW-1:0] st_sum_q;
   logic [2:0]       oq_count;
   logic             oq_valid;
   logic [OutW-1:0]  oq_wdata, oq_rdata;
@@ -1255,7 +1415,7 @@ module rc_tracer #(
   logic [23:0]      lb_rgb;
 
   assign fw_ln    = {fw_slot_q, fw_lane_q};
-  assign fw_room  = oq_count + 3'(st_valid_q) < 3'd4;
+  assign fw_room  = oq_count + 3'(st_valid_q) + 3'(st2_valid_q) < 3'd4;
   assign fw_issue = fw_busy_q && fw_room;
   assign fw_write = fw_issue && pmask_q[fw_slot_q][fw_lane_q];
   assign fw_free  = fw_issue && fw_lane_q == 2'd3;
@@ -1282,8 +1442,8 @@ module rc_tracer #(
     ) u_byte (
       .clk_i,
       .rst_ni,
-      .valid_i(fw_write),
-      .sum_i  (ln_fin_sum[c*SumW +: SumW]),
+      .valid_i(st_valid_q),
+      .sum_i  (st_sum_q[c*SumW +: SumW]),
       .valid_o(lb_valid[c]),
       .byte_o (lb_rgb[c*8 +: 8])
     );
@@ -1294,9 +1454,12 @@ module rc_tracer #(
       fw_busy_q  <= 1'b0;
       fw_slot_q  <= '0;
       fw_lane_q  <= '0;
-      st_valid_q <= 1'b0;
-      st_hit_q   <= 1'b0;
-      st_rec_q   <= '0;
+      st_valid_q  <= 1'b0;
+      st_hit_q    <= 1'b0;
+      st_rec_q    <= '0;
+      st2_valid_q <= 1'b0;
+      st2_hit_q   <= 1'b0;
+      st2_rec_q   <= '0;
     end else begin
       if (!fw_busy_q && dn_any) begin
         fw_busy_q <= 1'b1;
@@ -1306,7 +1469,12 @@ module rc_tracer #(
         fw_lane_q <= fw_lane_q + 1'b1;
         if (fw_free) fw_busy_q <= 1'b0;
       end
-      st_valid_q <= fw_write;
+      st_valid_q  <= fw_write;
+      st2_valid_q <= st_valid_q;
+      if (st_valid_q) begin
+        st2_hit_q <= st_hit_q;
+        st2_rec_q <= st_rec_q;
+      end
       if (fw_write) begin
         st_hit_q <= ln_fin_hit;
         st_rec_q <= {ln_fin_pixel, ln_fin_rgb, ln_fin_hit, ln_fin_tri, ln_fin_t, ln_fin_u,
@@ -1316,9 +1484,12 @@ module rc_tracer #(
   end
 
   // A hit's colour is its sums' bytes, a miss's the core's write.
+  always_ff @(posedge clk_i) begin
+    if (fw_write) st_sum_q <= ln_fin_sum;
+  end
   always_comb begin
-    oq_wdata = st_rec_q;
-    if (st_hit_q) oq_wdata[OutW-33 -: 24] = lb_rgb;
+    oq_wdata = st2_rec_q;
+    if (st2_hit_q) oq_wdata[OutW-33 -: 24] = lb_rgb;
   end
 
   rc_fifo #(
@@ -1328,7 +1499,7 @@ module rc_tracer #(
   ) u_out_q (
     .clk_i,
     .rst_ni,
-    .push_i (st_valid_q),
+    .push_i (st2_valid_q),
     .data_i (oq_wdata),
     .valid_o(oq_valid),
     .ready_i(fb_ready_i),
@@ -1345,21 +1516,56 @@ module rc_tracer #(
 
   // The slots' events, decoded (rc_onehot: two predecoded lines per slot, not a compare each).
   logic [SlotW-1:0] aq_slot;
-  logic [Slots-1:0] lt_hot, cws_hot, aq_hot, fq_hot, cw_hot, snd_hot, dec_hot, fwf_hot;
+  logic [Slots-1:0] lt_hot, cws_hot, aq_hot, fq_hot, mi_hot, cw_hot, snd_hot, dec_hot, fwf_hot;
   assign aq_slot = aq_ln[LaneW-1:2];
-  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_lt_hot  (.valid_i(1'b1),   .idx_i(lt_slot),
+
+  // The work's events (wk_q), registered: the counts take them a cycle later, and a slot with
+  // an event in the register is not done (ev_hot). Every event of the lighting comes with a
+  // sample taken (lt_take).
+  logic             ev_lt_q, ev_mi_q, ev_fq_q, ev_cws_q, ev_aq_q, ev_amb_q, ev_lt_end_q;
+  logic [2:0]       ev_rays_q;
+  logic [SlotW-1:0] ev_lt_slot_q, ev_mi_slot_q, ev_fq_slot_q, ev_cws_slot_q, ev_aq_slot_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ev_lt_q  <= 1'b0;
+      ev_mi_q  <= 1'b0;
+      ev_fq_q  <= 1'b0;
+      ev_cws_q <= 1'b0;
+      ev_aq_q  <= 1'b0;
+    end else begin
+      ev_lt_q  <= lt_take;
+      ev_mi_q  <= mi_issue;
+      ev_fq_q  <= fq_pop && fq_hits != 4'd0;
+      ev_cws_q <= cw_sh;
+      ev_aq_q  <= aq_pop;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    ev_rays_q     <= shq_push ? rc_pkg::ray_count(as_mask) : 3'd0;
+    ev_amb_q      <= lt_amb_push;
+    ev_lt_end_q   <= lt_lane_last && lt_light_last;
+    ev_lt_slot_q  <= lt_slot;
+    ev_mi_slot_q  <= fs_slot_q;
+    ev_fq_slot_q  <= fq_slot;
+    ev_cws_slot_q <= cws_slot;
+    ev_aq_slot_q  <= aq_slot;
+  end
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_lt_hot  (.valid_i(ev_lt_q),  .idx_i(ev_lt_slot_q),
                                                   .hot_o(lt_hot));
-  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_cws_hot (.valid_i(cw_sh),  .idx_i(cws_slot),
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_cws_hot (.valid_i(ev_cws_q), .idx_i(ev_cws_slot_q),
                                                   .hot_o(cws_hot));
-  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_aq_hot  (.valid_i(aq_pop), .idx_i(aq_slot),
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_aq_hot  (.valid_i(ev_aq_q),  .idx_i(ev_aq_slot_q),
                                                   .hot_o(aq_hot));
-  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_fq_hot  (.valid_i(fq_pop && fq_hits != 4'd0),
-                                                  .idx_i(fq_slot), .hot_o(fq_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_fq_hot  (.valid_i(ev_fq_q),  .idx_i(ev_fq_slot_q),
+                                                  .hot_o(fq_hot));
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_mi_hot  (.valid_i(ev_mi_q),  .idx_i(ev_mi_slot_q),
+                                                  .hot_o(mi_hot));
+  assign ev_hot = lt_hot | cws_hot | aq_hot | fq_hot | mi_hot;
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_cw_hot  (.valid_i(cw_cur), .idx_i(cw_slot),
                                                   .hot_o(cw_hot));
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_snd_hot (.valid_i(snd),    .idx_i(snd_slot),
                                                   .hot_o(snd_hot));
-  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_dec_hot (.valid_i(dec),    .idx_i(dec_slot),
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_dec_hot (.valid_i(dq_q),   .idx_i(dq_slot_q),
                                                   .hot_o(dec_hot));
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_fwf_hot (.valid_i(fw_free), .idx_i(fw_slot_q),
                                                   .hot_o(fwf_hot));
@@ -1381,12 +1587,11 @@ module rc_tracer #(
         // issue, an ambient term, a packet into the lighting; less a shadow ray's write, an
         // add, a packet's last sample.
         logic [4:0] wk_delta;
-        wk_delta = ((shq_push && lt_hot[s]) ? 5'(rc_pkg::ray_count(as_mask)) : 5'd0) +
-                   5'(mi_issue && fs_hot[s]) + 5'(lt_amb_push && lt_hot[s]) + 5'(fq_hot[s]) -
-                   5'(cws_hot[s]) - 5'(aq_hot[s]) -
-                   5'(lt_take && lt_lane_last && lt_light_last && lt_hot[s]);
+        wk_delta = (lt_hot[s] ? 5'(ev_rays_q) : 5'd0) + 5'(mi_hot[s]) +
+                   5'(ev_amb_q && lt_hot[s]) + 5'(fq_hot[s]) - 5'(cws_hot[s]) - 5'(aq_hot[s]) -
+                   5'(ev_lt_end_q && lt_hot[s]);
         wk_q[s*WkW +: WkW] <= wk_q[s*WkW +: WkW] + {{(WkW - 5){wk_delta[4]}}, wk_delta};
-        if (ext_take && pkt_mask_i != 4'd0 && free_hot[s]) begin
+        if (slot_take && free_hot[s]) begin
           busy_q[s] <= 1'b1;
           td_q[s]   <= 1'b0;
           fin_q[s]  <= 1'b0;
@@ -1407,8 +1612,8 @@ module rc_tracer #(
             cf_q[s] <= 1'b0;
           end
           if (dec_hot[s]) begin
-            if (dec_push) sp_q[s*DepthW +: DepthW] <= dec_sp + 1'b1;
-            if (dec_pop) sp_q[s*DepthW +: DepthW] <= dec_sp - 1'b1;
+            if (dec_push) sp_q[s*DepthW +: DepthW] <= dq_sp + 1'b1;
+            if (dec_pop) sp_q[s*DepthW +: DepthW] <= dq_sp - 1'b1;
             if (dec_done) td_q[s] <= 1'b1;
           end
           if (!fw_busy_q && dn_hot[s]) fin_q[s] <= 1'b1;
@@ -1434,13 +1639,14 @@ module rc_tracer #(
   // (ext_take or bq_pop: ext_take waits for an empty tree queue, so the core's packet is the
   // one written); by then its slot's sequencer and lighting have read the packet before it.
   // The sums: a reached shadow ray's term (read from u_terms in the ray's cycle) or, in a cycle
-  // without one, the add queue's head; the term is added in the next cycle.
+  // without one, the add queue's head; the term is added two cycles later (registered twice).
   assign ln_add        = cw_reached || aq_pop;
   assign ln_add_ln     = cw_reached ? {cws_slot, cw_lane} : aq_ln;
-  assign ln_add_term   = rs_q ? rs_term : aq_term_q;
-  assign ln_add_lights = (rs_q && rs_d0_q) ? MaxLights'(1) << rs_light_q : '0;
+  assign ln_add_term   = rs2_q ? rs_term_q : aq_term2_q;
+  assign ln_add_lights = (rs2_q && rs2_d0_q) ? MaxLights'(1) << rs2_light_q : '0;
   always_ff @(posedge clk_i) begin
-    if (aq_pop) aq_term_q <= aq_term;
+    aq_term_q  <= aq_term;
+    aq_term2_q <= aq_term_q;
   end
 
   rc_lane_store #(
@@ -1484,6 +1690,8 @@ module rc_tracer #(
     .add_ln_i         (ln_add_ln),
     .add_term_i       (ln_add_term),
     .add_lights_i     (ln_add_lights),
+    .add_pend1_o      (ln_add_pend1),
+    .add_pend1_slot_o (ln_add_slot1),
     .add_pend_o       (ln_add_pend),
     .add_pend_slot_o  (ln_add_slot),
     .fin_ln_i         (fin_ln),
@@ -1514,7 +1722,7 @@ module rc_tracer #(
     error_o = core_error;
     error_o[rc_pkg::CoreStatusBadAddress] = core_error[rc_pkg::CoreStatusBadAddress] || bad_addr_q;
   end
-  assign idle_o = core_idle && busy_q == '0 && !st_valid_q && !oq_valid;
+  assign idle_o = core_idle && busy_q == '0 && !st_valid_q && !st2_valid_q && !oq_valid;
 
   // Not read: the primary packets' kind, limits and start triangles (the controller makes the
   // secondary packets); the fields of the records the lighting does not use; the valid bits of
@@ -1522,7 +1730,7 @@ module rc_tracer #(
   // slot); the pixel id bits above the fields.
   logic unused;
   assign unused = ^{pkt_t_hi_i, pkt_start_tri_i, lb_valid, lmat_rsp_data_i, lshd_rsp_data_i,
-                    mo_valid_c, fq_count, core_fb_pixel};
+                    mo_valid_c, fq_count, core_fb_pixel, lt_tag[LaneW + 2 +: DepthW]};
 
   ////////////////
   // Assertions //
@@ -1561,13 +1769,25 @@ module rc_tracer #(
   // The add queue never overflows (its pushes are counted ahead).
   AddQueue_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                aq_push |-> 32'(aq_count) < AddQ || aq_pop);
+  // The room's count is the add queue's and the miss terms' in flight.
+  RoomCount_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                32'(pm_q) == 32'(aq_count) + 32'(mi_count_q));
   // A pop's packet is sent alone: no decision beside it (the stack RAM's word and the tree
   // packet queue's room are the pop's).
   PopAlone_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                pop_q |-> !dec);
+  // A decision is carried out alone: none is made in its second cycle (it may send a packet).
+  DecAlone_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               dq_q |-> !dec);
+  // The registered free slot is free: the slot taken in a cycle is not offered in the next.
+  SlotFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               slot_take |-> !busy_q[free_idx]);
+  // The registered free shadow packet is free: no packet is taken in two consecutive cycles.
+  SpFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             shq_push |-> !spb_q[sp_free]);
   // A push has room in its slot's MaxBounces entries (a tree pushes at most once per level).
   PushRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               dec_push |-> 32'(dec_sp) < MaxBounces);
+                               dec_push |-> 32'(dq_sp) < MaxBounces);
 `endif
 
 endmodule
