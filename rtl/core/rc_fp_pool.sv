@@ -5,9 +5,13 @@
 // Contract
 // - Function: in a cycle with issue_i[k] set, user k's operands a_i[k], b_i[k] enter the operator
 //   the user is placed on (Add: a - b where Sub[k] is set, a + b elsewhere); res_o[k] and
-//   valid_o[k] are that operator's result and valid, Stages cycles later (rc_fp_mul or rc_fp_add,
-//   bit for bit). Users placed on one operator see each other's results too: each reads res_o[k]
-//   at its own time, Stages cycles after its issue.
+//   valid_o[k] are that operator's result and valid, Latency = Stages + InReg cycles later
+//   (rc_fp_mul or rc_fp_add, bit for bit; Stages the package's [fp_stages]). Users placed on one
+//   operator see each other's results too: each reads res_o[k] at its own time, Latency cycles
+//   after its issue.
+// - InReg = 1: a register (operands, subtract bit and valid) between each operator's select and
+//   the operator, so the select (and whatever the owner puts before it) is all the logic of its
+//   cycle and the operator's first stage starts from flip-flops; the latency is one more.
 // - Placement: the owner takes its jobs at phase 0 modulo Period (rc_serial_sched, Phased), so
 //   user k issues at phase Time[k] mod Period and the next Cycles[k] - 1 phases. Users are placed
 //   by decreasing Cycles, then by increasing first phase, then by index, each on the lowest
@@ -18,14 +22,17 @@
 //   fewer operators at a longer Period (at 6 a vector operation's three cycles fill half an
 //   operator, at 12 a quarter), and the owner's schedule alone decides the sharing.
 // - Select: on each operator, its first user's operands unless another of its users issues (a
-//   chain of two-way selects), so an idle cycle's operands mean nothing.
+//   chain of two-way selects), so an idle cycle's operands mean nothing (with InReg, the input
+//   register takes them every cycle).
 // - issue_i must never set two users of one operator in a cycle (assertion): their phases are
 //   disjoint, so only an owner that breaks its own schedule can.
 // - Parameters: ExpW, FracW (the format); Add (0: rc_fp_mul, 1: rc_fp_add); Users (1 to 32); Sub
 //   (Add only: bit k, user k subtracts); Period (the owner's cycles per job, 3 to 16); Time: user
 //   k's issue time (after the job's slot 0) in bits [16k +: 16]; Cycles: bits [2k +: 2], the
-//   consecutive cycles user k issues in (1 to 3). The stages are the package's ([fp_stages]).
-// - Reset: rst_ni (active low, asynchronous) clears the operators' valid pipelines.
+//   consecutive cycles user k issues in (1 to 3); InReg (0 or 1, default 0: rc_fp_shared's; the
+//   light units take 1). The stages are the package's ([fp_stages]).
+// - Reset: rst_ni (active low, asynchronous) clears the operators' valid pipelines (and the input
+//   registers' valid bits; their data registers have no reset).
 module rc_fp_pool #(
   parameter int unsigned  ExpW   = rc_pkg::Fp24ExpW,
   parameter int unsigned  FracW  = rc_pkg::Fp24FracW,
@@ -35,6 +42,7 @@ module rc_fp_pool #(
   parameter int unsigned  Period = 6,
   parameter logic [511:0] Time   = '0,
   parameter logic [63:0]  Cycles = {32{2'd1}},
+  parameter bit           InReg  = 1'b0,
   // Derived (do not override).
   parameter int unsigned  W      = 1 + ExpW + FracW
 ) (
@@ -141,16 +149,36 @@ module rc_fp_pool #(
       end
     end
 
+    // The operator's inputs: the select's, or (InReg) the input register's.
+    logic [W-1:0] op_a, op_b;
+    logic         op_sub, op_issue;
+    if (InReg) begin : g_in_reg
+      logic [W-1:0] a_q, b_q;
+      logic         sub_q, issue_q;
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) issue_q <= 1'b0;
+        else issue_q <= issue;
+      end
+      always_ff @(posedge clk_i) begin
+        a_q   <= a;
+        b_q   <= b;
+        sub_q <= sub;
+      end
+      assign {op_a, op_b, op_sub, op_issue} = {a_q, b_q, sub_q, issue_q};
+    end else begin : g_no_in_reg
+      assign {op_a, op_b, op_sub, op_issue} = {a, b, sub, issue};
+    end
+
     if (Add) begin : g_add
       rc_fp_add #(.ExpW(ExpW), .FracW(FracW), .Stages(rc_pkg::FpStagesAdd)) u_add (
-        .clk_i, .rst_ni, .valid_i(issue), .sub_i(sub), .a_i(a), .b_i(b),
+        .clk_i, .rst_ni, .valid_i(op_issue), .sub_i(op_sub), .a_i(op_a), .b_i(op_b),
         .valid_o(op_valid[j]), .res_o(op_res[j*W +: W])
       );
     end else begin : g_mul
       logic unused_sub;
-      assign unused_sub = sub;
+      assign unused_sub = op_sub;
       rc_fp_mul #(.ExpW(ExpW), .FracW(FracW), .Stages(rc_pkg::FpStagesMul)) u_mul (
-        .clk_i, .rst_ni, .valid_i(issue), .a_i(a), .b_i(b), .valid_o(op_valid[j]),
+        .clk_i, .rst_ni, .valid_i(op_issue), .a_i(op_a), .b_i(op_b), .valid_o(op_valid[j]),
         .res_o(op_res[j*W +: W])
       );
     end

@@ -12,19 +12,26 @@
 //   2^k * 2^FixBits at most Max (else out_o = Max), out_o the integer nearest to
 //   1.f x 2^(k + FixBits), ties to even, then the clamp (which only a Max that is not a power of
 //   two needs: a value just below 2^TopK rounds up to it).
-// - Handshake: valid only, no backpressure. valid_o is valid_i one cycle later; out_o belongs to
-//   the input of the cycle before and is meaningful only while valid_o is 1.
-// - Latency: 1 (the output register).
+// - Structure: Stages = 1: one combinational segment into the output register (the shift by a
+//   subtracted exponent, the remainder compared with the half). Stages = 2: the shift selected by
+//   the exponent field itself, the rounding from the shifted-out bits' guard (the highest) and
+//   sticky OR (up = guard & (sticky | lsb)), a register (the kept bits, the round-up bit, the zero
+//   and saturate flags), then the increment and the clamp into the output register.
+// - Handshake: valid only, no backpressure. valid_o is valid_i Stages cycles later; out_o belongs
+//   to the input of Stages cycles before and is meaningful only while valid_o is 1.
+// - Latency: Stages (1 or 2).
 // - Parameters: ExpW, FracW: the number format (default fp24); FixBits: the fraction bits (default
 //   docs/spec.toml [light] fixed_bits), at most FracW; Max: the clamp (>= 1; default 2^FixBits),
-//   with Max / 2^FixBits < 2^(FracW - FixBits) so that every value below it shifts right.
+//   with Max / 2^FixBits < 2^(FracW - FixBits) so that every value below it shifts right;
+//   Stages: 1 or 2 (default 1; rc_light_term's 2).
 // - Illegal input: none; every bit pattern of x_i is legal.
-// - Reset: rst_ni (active low, asynchronous) clears only valid_o (rc_pipe_out).
+// - Reset: rst_ni (active low, asynchronous) clears only the valid chain (rc_pipe_out).
 module rc_fp_to_fix #(
   parameter int unsigned ExpW    = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW   = rc_pkg::Fp24FracW,
   parameter int unsigned FixBits = rc_pkg::LightFixedBits,
   parameter int unsigned Max     = 1 << FixBits,
+  parameter int unsigned Stages  = 1,
   // Derived (do not override).
   parameter int unsigned OutW    = $clog2(Max + 1)
 ) (
@@ -44,24 +51,23 @@ module rc_fp_to_fix #(
   if (FixBits > FracW || Max < 1 || TopK > FracW) begin : g_param_check
     $error("rc_fp_to_fix: need FixBits <= FracW, Max >= 1 and Max below 2^FracW");
   end
+  if (Stages < 1 || Stages > 2) begin : g_stages_check
+    $error("rc_fp_to_fix: Stages must be 1 or 2");
+  end
 
   localparam int unsigned W       = 1 + ExpW + FracW;
   localparam int unsigned BiasInt = (1 << (ExpW - 1)) - 1;
   localparam int unsigned MW      = FracW + 1;  // the significand 1.f as an integer
-  // The shift right of the significand: FracW - (k + FixBits) for x = 1.f x 2^k with
-  // k + FixBits < TopK, so at least FracW - TopK + 1 >= 1; a shift beyond MW leaves less than a
-  // half: 0, so sh is only used up to MW.
-  localparam int unsigned ShW     = $clog2(MW + 2) + 1;
 
   logic [ExpW-1:0]  e;
   logic [FracW-1:0] f;
   logic             s, is_nan, is_zero, ge_top;
   logic [MW-1:0]    m;
-  logic [ExpW:0]    sh_full;   // BiasInt - e + FracW - FixBits, for e < BiasInt + TopK - FixBits
-  logic [ShW-1:0]   sh;
-  logic             sh_big;
-  logic [MW-1:0]    q, rem, half;
-  logic             up;
+  logic [MW-1:0]    q;
+  // The first segment's results: the kept bits (below 2^TopK the shift leaves at most OutW + 1
+  // bits), the round-up bit, out_o = 0 (zero_s) and out_o = Max (sat_s).
+  logic [OutW:0]    q_s;
+  logic             up_s, zero_s, sat_s;
   logic [OutW:0]    rounded;   // at most 2^TopK
   logic [OutW-1:0]  out_d;
 
@@ -73,40 +79,93 @@ module rc_fp_to_fix #(
   // x >= 2^TopK / 2^FixBits: e - BiasInt + FixBits >= TopK.
   assign ge_top  = {1'b0, e} + (ExpW + 1)'(FixBits) >= (ExpW + 1)'(BiasInt + TopK);
   assign m       = {1'b1, f};
-  assign sh_full = (ExpW + 1)'(BiasInt) - {1'b0, e} + (ExpW + 1)'(FracW - FixBits);
-  assign sh_big  = sh_full > (ExpW + 1)'(MW);
-  assign sh      = ShW'(sh_full);
 
-  always_comb begin
-    q    = '0;
-    rem  = '0;
-    half = '0;
-    up   = 1'b0;
-    if (!sh_big) begin
-      // sh >= 1 here (below 2^TopK, see ShW).
-      q    = m >> sh;
-      rem  = m & ((MW'(1) << sh) - MW'(1));
-      half = MW'(1) << (sh - ShW'(1));
-      up   = (rem > half) || ((rem == half) && q[0]);
+  // The shift right of m is sh = BiasInt + FracW - FixBits - e: for x = 1.f x 2^k with
+  // k + FixBits < TopK at least FracW - TopK + 1 >= 1; a shift beyond MW leaves less than a half:
+  // 0, so sh is only used up to MW.
+  if (Stages == 1) begin : g_shift_sub
+    // sh from a subtraction; the remainder (the bits shifted out) against the half.
+    localparam int unsigned ShW = $clog2(MW + 2) + 1;
+    logic [ExpW:0]  sh_full;  // BiasInt - e + FracW - FixBits, for e < BiasInt + TopK - FixBits
+    logic [ShW-1:0] sh;
+    logic           sh_big;
+    logic [MW-1:0]  rem, half;
+    assign sh_full = (ExpW + 1)'(BiasInt) - {1'b0, e} + (ExpW + 1)'(FracW - FixBits);
+    assign sh_big  = sh_full > (ExpW + 1)'(MW);
+    assign sh      = ShW'(sh_full);
+    always_comb begin
+      q    = '0;
+      rem  = '0;
+      half = '0;
+      up_s = 1'b0;
+      if (!sh_big) begin
+        // sh >= 1 here (below 2^TopK, see above).
+        q    = m >> sh;
+        rem  = m & ((MW'(1) << sh) - MW'(1));
+        half = MW'(1) << (sh - ShW'(1));
+        up_s = (rem > half) || ((rem == half) && q[0]);
+      end
     end
+  end else begin : g_shift_sel
+    // Each shift 1 .. MW is one exponent field, so the kept bits, the guard (bit sh - 1) and the
+    // sticky OR below it are selected by e itself (a comparison with a constant per shift, no
+    // subtraction: shallower, for the register after it). The remainder is above half when guard
+    // and sticky are set, exactly half when guard is set alone.
+    logic guard, sticky;
+    always_comb begin
+      q      = '0;
+      guard  = 1'b0;
+      sticky = 1'b0;
+      for (int k = 1; k <= int'(MW); k++) begin
+        if (int'(BiasInt + FracW - FixBits) - k >= 0 &&
+            int'(BiasInt + FracW - FixBits) - k < (1 << ExpW) &&
+            int'(e) == int'(BiasInt + FracW - FixBits) - k) begin
+          q      = m >> k;
+          guard  = m[k-1];
+          sticky = |(m & ((MW'(1) << (k - 1)) - MW'(1)));
+        end
+      end
+    end
+    assign up_s = guard & (sticky | q[0]);
   end
 
-  assign rounded = (OutW + 1)'(q) + (OutW + 1)'(up);
+  assign q_s    = (OutW + 1)'(q);
+  assign zero_s = s || is_nan || is_zero;
+  assign sat_s  = ge_top;
   if (MW > OutW + 1) begin : g_q_hi
     logic unused_q_hi;
     assign unused_q_hi = ^q[MW-1:OutW+1];  // 0: below 2^TopK the shift leaves at most OutW bits
   end
 
+  // Stages = 2: the register between the two segments (its valid bit is rc_pipe_out's chain).
+  logic [OutW:0] q_r;
+  logic          up_r, zero_r, sat_r;
+  if (Stages == 2) begin : g_mid
+    logic [OutW:0] q_q;
+    logic          up_q, zero_q, sat_q;
+    always_ff @(posedge clk_i) begin
+      q_q    <= q_s;
+      up_q   <= up_s;
+      zero_q <= zero_s;
+      sat_q  <= sat_s;
+    end
+    assign {q_r, up_r, zero_r, sat_r} = {q_q, up_q, zero_q, sat_q};
+  end else begin : g_no_mid
+    assign {q_r, up_r, zero_r, sat_r} = {q_s, up_s, zero_s, sat_s};
+  end
+
+  assign rounded = q_r + (OutW + 1)'(up_r);
+
   always_comb begin
-    if (s || is_nan || is_zero) out_d = '0;
-    else if (ge_top || (!MaxPow && rounded > (OutW + 1)'(Max))) out_d = OutW'(Max);
+    if (zero_r) out_d = '0;
+    else if (sat_r || (!MaxPow && rounded > (OutW + 1)'(Max))) out_d = OutW'(Max);
     else out_d = OutW'(rounded);
   end
 
   rc_pipe_out #(
     .Width   (OutW),
     .DataRegs(1),
-    .Stages  (1)
+    .Stages  (Stages)
   ) u_out (
     .clk_i,
     .rst_ni,

@@ -24,30 +24,35 @@
 //   every vector value then travels as a stream of three consecutive components and every scalar
 //   as one value at a fixed cycle. A scalar that a vector operation needs (t, inv_len, the
 //   mirror term's c + c, the refraction term's g) is held for the three cycles of the stream by
-//   a register loaded in the stream's first cycle (c + c's before it). Hits are taken at phase 0 modulo Period, a
-//   multiple of 6 (rc_serial_sched, Phased), so operations whose cycles fall at different phases
-//   share an operator and no two hits meet there: every product (the streams t * d, d * inv_len,
-//   N * V, (c + c) * N, g * N and e * V; the two weights; c * c, e * e and e * c in consecutive
-//   cycles; e^2 (1 - c^2)) is a user of one pool of multipliers (rc_fp_pool), and every sum (the
-//   streams o + t d, V - (c + c) N and e V - g N; N.V's x + y and + z; 1 - c * c, q = 1 - x and
-//   g) of one pool of adders, which place each user on the first operator whose users' phases
-//   modulo Period it does not meet: 5 multipliers and 4 adders at Period 6, 3 and 3 at 12 (e * V
-//   issued as V leaves and (c + c) * N ShiftK cycles after c + c, both off the path to the
-//   output: the times below). c + c is rc_fp_twice (exact doubling, a cycle). Each value reaches its operation through rc_delay
-//   lines (rc_delay_ram memories where
-//   they are long) of the lengths the fp units' latencies give (the times below, in cycles after
-//   slot 0), so a stream's timing never depends on its neighbours: a hit may follow another after
-//   Period cycles or after any gap (rc_serial_sched keeps the slots and says which job time is
-//   now). The last stage collects each stream's three components into the output FIFO.
+//   a register loaded in the stream's first cycle (c + c's before it). Hits are taken at phase 0
+//   modulo Period, a multiple of 6 (rc_serial_sched, Phased), so operations whose cycles fall at
+//   different phases share an operator and no two hits meet there: every product (the streams
+//   t * d, d * inv_len, N * V, (c + c) * N, g * N and e * V; the two weights; c * c, e * e and
+//   e * c in consecutive cycles; e^2 (1 - c^2)) is a user of one pool of multipliers
+//   (rc_fp_pool), and every sum (the streams o + t d, V - (c + c) N and e V - g N; N.V's x + y
+//   and + z; 1 - c * c, q = 1 - x and g) of one pool of adders, which place each user on the first
+//   operator whose users' phases modulo Period it does not meet: 5 multipliers and 4 adders at
+//   Period 6, 3 and 3 at 12 (e * V issued ShiftE cycles after V leaves and (c + c) * N ShiftK
+//   cycles after c + c, both off the path to the output, and N.V's + z WaitZ cycles after its x +
+//   y: the times below). Each pool has an input register before every operator (rc_fp_pool InReg),
+//   so an operand's select and the operator's first stage are in different cycles: a product takes
+//   Lm = [fp_stages] mul + 1 cycles, a sum La = add + 1. c + c is rc_fp_twice (exact doubling, a
+//   cycle). Each value reaches its operation through rc_delay lines (rc_delay_ram memories where
+//   they are long) of the lengths these latencies give (the times below, in cycles after slot 0),
+//   so a stream's timing never depends on its neighbours: a hit may follow another after Period
+//   cycles or after any gap (rc_serial_sched keeps the slots and says which job time is now). The
+//   last stage collects each stream's three components into the output FIFO.
 // - Handshake: valid_i/ready_o in, valid_o/ready_i out, with backpressure. An operation is taken
 //   when valid_i & ready_o. ready_o is the AND of two flip-flops (rc_credit_fifo's credit
 //   register and the input register's free flag) and never depends on valid_i or ready_i;
 //   valid_o never depends on ready_i. Results leave in order; nothing is dropped or duplicated.
 //   tag_i travels with the operation to tag_o.
 // - Latency: TimeT + 4 cycles from the taking cycle to valid_o when the FIFO is empty and ready_i
-//   is 1 (71 at the default fp_stages: mul 4, add 6, sqrt 10): input register 1, then the chain
-//   V, N.V, the sum c, c * c, 1 - c * c, e^2 (1 - c^2), q, sqrt(q), g, g * N, e * V - g * N
-//   (TimeT = 67 after slot 0), two cycles for the stream's y and z, the FIFO's output register 1.
+//   is 1 (84 at the default fp_stages: mul 4, add 6, sqrt 10, so Lm = 5, La = 7): input register
+//   1, then the chain V (Lm), N.V (Lm, a cycle for y, La for x + y, WaitZ = 2, La for + z: the
+//   sum c), c * c (Lm), 1 - c * c (La), e^2 (1 - c^2) (Lm), q (La), sqrt(q) (10), g (La), g * N
+//   (Lm), e * V - g * N (La) (TimeT = 80 after slot 0), two cycles for the stream's y and z, the
+//   FIFO's output register 1.
 // - Throughput: one hit per Period cycles while ready_i is 1; ready_o is high only in cycles
 //   whose phase modulo Period lets a hit start at phase 0, so a hit offered after a gap may wait
 //   up to Period - 1 cycles. The FIFO holds Latency / Period + 2 entries, enough credits for
@@ -100,8 +105,10 @@ module rc_hit_geom #(
 );
 
   localparam int unsigned W  = ExpW + FracW + 1;
-  localparam int unsigned Lm = rc_pkg::FpStagesMul;
-  localparam int unsigned La = rc_pkg::FpStagesAdd;
+  // Every product and sum is an operation of a pool (rc_fp_pool, InReg): the pool's input
+  // register, then the operator, so its latency is the operator's ([fp_stages]) plus one.
+  localparam int unsigned Lm = rc_pkg::FpStagesMul + 1;
+  localparam int unsigned La = rc_pkg::FpStagesAdd + 1;
   localparam int unsigned Ls = rc_pkg::FpStagesSqrt;
 
   // The cycle (after slot 0) at which each value, or a stream's x, leaves its operation.
@@ -109,14 +116,20 @@ module rc_hit_geom #(
   localparam int unsigned TimeP   = TimeV + La;        // P = o + t * d
   localparam int unsigned TimeNv  = TimeV + Lm;        // N * V, per component
   localparam int unsigned TimeS01 = TimeNv + 1 + La;   // N.x V.x + N.y V.y (issued with y)
-  localparam int unsigned TimeC   = TimeS01 + La;      // c
+  // N.V's + z is issued WaitZ cycles after x + y leaves (on the path to the output: two cycles of
+  // latency, for the pools' counts below).
+  localparam int unsigned WaitZ   = 2;
+  localparam int unsigned TimeC   = TimeS01 + WaitZ + La; // c
   localparam int unsigned TimeK   = TimeC + 1;         // c + c (rc_fp_twice)
-  // (c + c) * N is issued ShiftK cycles after c + c leaves, and e * V as V leaves (TimeV): both
-  // off the path to the output, placed where the pools need fewer operators at Period 12 (3
-  // multipliers and 3 adders instead of 4 and 4, and 5 and 4 at 6 instead of 5 and 5, at the
-  // default fp stages; the results then wait, so the latency is the same). ShiftK + 2 <= 6: the
-  // stream reads c + c from the register the next job's c + c overwrites 6 cycles later at 6.
-  localparam int unsigned ShiftK  = 4;
+  // (c + c) * N is issued ShiftK cycles after c + c leaves, and e * V ShiftE cycles after V
+  // leaves (TimeEv): both off the path to the output, placed where the pools need fewer
+  // operators (with WaitZ: 3 multipliers and 3 adders at Period 12, 5 and 4 at 6, at the default
+  // fp stages, as a search over these three found; all three at 0, 5 and 4, 9 and 6; the results
+  // then wait). 1 <= ShiftK and ShiftK + 2 <= 6: the stream reads c + c from the register loaded
+  // at TimeK, which the next job's c + c overwrites 6 cycles later at 6.
+  localparam int unsigned ShiftK  = 1;
+  localparam int unsigned ShiftE  = 3;
+  localparam int unsigned TimeEv  = TimeV + ShiftE;    // e * V issued
   localparam int unsigned TimeKi  = TimeK + ShiftK;    // (c + c) * N issued
   localparam int unsigned TimeKn  = TimeKi + Lm;       // (c + c) * N
   localparam int unsigned TimeR   = TimeKn + La;       // R = V - (c + c) N
@@ -125,7 +138,7 @@ module rc_hit_geom #(
   localparam int unsigned TimeQ   = TimeX + La;        // q
   localparam int unsigned TimeSq  = TimeQ + Ls;        // sqrt(q)
   localparam int unsigned TimeG   = TimeSq + La;       // g = e c + sqrt(q)
-  localparam int unsigned TimeGn  = TimeG + Lm;        // g * N and e * V
+  localparam int unsigned TimeGn  = TimeG + Lm;        // g * N (e * V waits for it)
   localparam int unsigned TimeT   = TimeGn + La;       // e V - g N
   localparam int unsigned TimeOut = TimeT + 2;         // z of the last streams: the FIFO write
   localparam int unsigned Latency = TimeT + 4;
@@ -249,10 +262,14 @@ module rc_hit_geom #(
   assign n_dv = n_at_v;
 
   // c = (N.x V.x + N.y V.y) + N.z V.z: N * V in u_muls, x + y as y's product leaves (x's a
-  // cycle later), then + z (z's product La - 1 cycles later), both in u_adds.
-  logic [W-1:0] nv, nv_d1, nv_dz, s01;
+  // cycle later), then + z WaitZ cycles after x + y leaves (z's product La - 1 + WaitZ cycles
+  // later), both in u_adds.
+  logic [W-1:0] nv, nv_d1, nv_dz, s01, s01_d;
   rc_delay #(.Width(W), .Cycles(1)) u_dly_nvx (.clk_i, .data_i(nv), .data_o(nv_d1));
-  rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_nvz (.clk_i, .data_i(nv), .data_o(nv_dz));
+  rc_delay #(.Width(W), .Cycles(La - 1 + WaitZ)) u_dly_nvz (
+    .clk_i, .data_i(nv), .data_o(nv_dz)
+  );
+  rc_delay #(.Width(W), .Cycles(WaitZ)) u_dly_s01 (.clk_i, .data_i(s01), .data_o(s01_d));
 
   //////////////////////////////////////
   // R = V - (c + c) N                //
@@ -280,10 +297,10 @@ module rc_hit_geom #(
 
   // e (the input register's, one of the two ratios) as a stream: at slot k the register holds it,
   // so a delay line of T gives it at T, T + 1, T + 2.
-  logic [W-1:0] e_at_v, e_at_c;
-  rc_delay #(.Width(W), .Cycles(TimeV)) u_dly_e0 (.clk_i, .data_i(eta_q), .data_o(e_at_v));
-  rc_delay_ram #(.Width(W), .Cycles(TimeC - TimeV)) u_dly_e1 (
-    .clk_i, .rst_ni, .data_i(e_at_v), .data_o(e_at_c)
+  logic [W-1:0] e_at_ev, e_at_c;
+  rc_delay #(.Width(W), .Cycles(TimeEv)) u_dly_e0 (.clk_i, .data_i(eta_q), .data_o(e_at_ev));
+  rc_delay_ram #(.Width(W), .Cycles(TimeC - TimeEv)) u_dly_e1 (
+    .clk_i, .rst_ni, .data_i(e_at_ev), .data_o(e_at_c)
   );
 
   // One user of u_muls: c * c at TimeC, e * e at TimeC + 1, e * c at TimeC + 2.
@@ -318,10 +335,11 @@ module rc_hit_geom #(
     .clk_i, .rst_ni, .data_i(tir_b), .data_o(tir_at_t)
   );
 
-  // g * N (at TimeG) and e * V (at TimeV, waiting for g * N): in u_muls; e V - g N (at TimeGn):
+  // g * N (at TimeG) and e * V (at TimeEv, waiting for g * N): in u_muls; e V - g N (at TimeGn):
   // in u_adds.
-  logic [W-1:0] gn, ev, ev_d, t_s;
-  rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeV)) u_dly_ev (
+  logic [W-1:0] gn, ev, ev_d, t_s, v_at_ev;
+  rc_delay #(.Width(W), .Cycles(ShiftE)) u_dly_vev (.clk_i, .data_i(v_s), .data_o(v_at_ev));
+  rc_delay_ram #(.Width(W), .Cycles(TimeG - TimeEv)) u_dly_ev (
     .clk_i, .rst_ni, .data_i(ev), .data_o(ev_d)
   );
 
@@ -349,7 +367,7 @@ module rc_hit_geom #(
   // for the weights, one for a scalar), and every sum, a user of one pool of adders; each result
   // is read at its own time.
   localparam int unsigned MulUsers = 9;
-  localparam logic [511:0] MulTimes  = 512'({16'(TimeV), 16'(TimeG), 16'(TimeS), 16'(TimeKi),
+  localparam logic [511:0] MulTimes  = 512'({16'(TimeEv), 16'(TimeG), 16'(TimeS), 16'(TimeKi),
                                               16'(TimeC), 16'(TimeV), 16'(0), 16'(0), 16'(0)});
   localparam logic [63:0]  MulCycles = 64'({2'd3, 2'd3, 2'd1, 2'd3, 2'd3, 2'd3, 2'd2, 2'd3,
                                             2'd3});
@@ -357,13 +375,13 @@ module rc_hit_geom #(
   logic [MulUsers*W-1:0] mul_a, mul_b, mul_res;
   // e * V, g * N, e^2 (1 - c^2), (c + c) * N, c * c | e * e | e * c, N * V, the weights,
   // d * inv_len, t * d.
-  assign mul_issue = {strm[TimeV], strm[TimeG], at[TimeS], strm[TimeKi], strm[TimeC], strm[TimeV],
-                      slot_q[0] | slot_q[1], strm[0], strm[0]};
-  assign mul_a     = {e_at_v, g_b, e2_d, k_b, m5_a, n_dv, w_q, d_s, t_q};
-  assign mul_b     = {v_s, n_at_g, s_res, n_at_k, m5_b, v_s, wf_s, ilen_q, d_s};
+  assign mul_issue = {strm[TimeEv], strm[TimeG], at[TimeS], strm[TimeKi], strm[TimeC],
+                      strm[TimeV], slot_q[0] | slot_q[1], strm[0], strm[0]};
+  assign mul_a     = {e_at_ev, g_b, e2_d, k_b, m5_a, n_dv, w_q, d_s, t_q};
+  assign mul_b     = {v_at_ev, n_at_g, s_res, n_at_k, m5_b, v_s, wf_s, ilen_q, d_s};
   rc_fp_pool #(
     .ExpW(ExpW), .FracW(FracW), .Users(MulUsers), .Period(Period), .Time(MulTimes),
-    .Cycles(MulCycles)
+    .Cycles(MulCycles), .InReg(1'b1)
   ) u_muls (
     .clk_i, .rst_ni, .issue_i(mul_issue), .a_i(mul_a), .b_i(mul_b), .valid_o(mul_vld),
     .res_o(mul_res)
@@ -371,7 +389,7 @@ module rc_hit_geom #(
   assign {ev, gn, x_res, kn, m5, nv, wx, v_s, td} = mul_res;
 
   localparam int unsigned AddUsers = 8;
-  localparam logic [511:0] AddTimes  = 512'({16'(TimeS01), 16'(TimeNv + 1), 16'(TimeSq),
+  localparam logic [511:0] AddTimes  = 512'({16'(TimeS01 + WaitZ), 16'(TimeNv + 1), 16'(TimeSq),
                                               16'(TimeX), 16'(TimeC + Lm), 16'(TimeKn),
                                               16'(TimeGn), 16'(TimeV)});
   localparam logic [63:0]  AddCycles = 64'({2'd1, 2'd1, 2'd1, 2'd1, 2'd1, 2'd3, 2'd3, 2'd3});
@@ -379,13 +397,13 @@ module rc_hit_geom #(
   logic [AddUsers*W-1:0] add_a, add_b, add_res;
   // N.V's + z and x + y, g = e c + sqrt(q), q = 1 - x, 1 - c * c, R = V - (c + c) N,
   // e V - g N, P = o + t d.
-  assign add_issue = {at[TimeS01], at[TimeNv + 1], at[TimeSq], at[TimeX], at[TimeC + Lm],
+  assign add_issue = {at[TimeS01 + WaitZ], at[TimeNv + 1], at[TimeSq], at[TimeX], at[TimeC + Lm],
                       strm[TimeKn], strm[TimeGn], strm[TimeV]};
-  assign add_a     = {s01, nv_d1, ec_d, One, One, v_at_kn, ev_d, o_d};
+  assign add_a     = {s01_d, nv_d1, ec_d, One, One, v_at_kn, ev_d, o_d};
   assign add_b     = {nv_dz, nv, sq_res, x_res, m5, kn, gn, td};
   rc_fp_pool #(
     .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(AddUsers), .Sub(32'b00011110),
-    .Period(Period), .Time(AddTimes), .Cycles(AddCycles)
+    .Period(Period), .Time(AddTimes), .Cycles(AddCycles), .InReg(1'b1)
   ) u_adds (
     .clk_i, .rst_ni, .issue_i(add_issue), .a_i(add_a), .b_i(add_b), .valid_o(add_vld),
     .res_o(add_res)
@@ -475,7 +493,7 @@ module rc_hit_geom #(
   // which also carry the other users' results on the same operator).
   logic [MulUsers-1:0] mul_due;
   logic [AddUsers-1:0] add_due;
-  assign mul_due = {strm[TimeV + Lm], strm[TimeGn], at[TimeX], strm[TimeKn], strm[TimeC + Lm],
+  assign mul_due = {strm[TimeEv + Lm], strm[TimeGn], at[TimeX], strm[TimeKn], strm[TimeC + Lm],
                     strm[TimeNv], at[Lm] | at[Lm + 1], strm[TimeV], strm[TimeV]};
   assign add_due = {at[TimeC], at[TimeS01], at[TimeG], at[TimeQ], at[TimeS], strm[TimeR],
                     strm[TimeT], strm[TimeP]};

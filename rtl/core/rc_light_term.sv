@@ -25,20 +25,26 @@
 //   scalar as one value at a fixed cycle after the job's first (the Time* constants below). A
 //   scalar that a vector operation needs (inv, cos, spec) is held for its stream's three cycles by
 //   a register loaded in the first. A dot product (dist2, cos, H.H, N.H) takes a stream's
-//   products, then x + y as y's leaves, then + z (z's product La - 1 cycles later). The power is
-//   ExpBits steps, each taking b * b and then r * b in consecutive cycles. Jobs are taken at
-//   phase 0 modulo Period, a multiple of 6 (rc_serial_sched, Phased), so operations whose cycles
-//   fall at different phases share an operator and no two jobs meet there. Modulo 3: one square
-//   root and one divider serve both 1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after
-//   its sum): pipelined at Period 6, iterative with two lanes at 12 (rc_fp_sqrt_iter,
-//   rc_fp_div_iter; the same results and latencies). Every product (the streams L * L, L * inv, kd * ambient, ka * w, kd * cos,
+//   products, then x + y as y's leaves, then + z as x + y leaves (z's product La - 1 cycles
+//   later; H.H's x + y and cos's + z a cycle later still: WaitXyH, WaitZC below). The power is
+//   ExpBits steps of Lm cycles, each taking b * b and then r * b in consecutive cycles (the next
+//   b * b as this one leaves). Jobs are taken at phase 0 modulo Period, a multiple of 6
+//   (rc_serial_sched, Phased), so operations whose cycles fall at different phases share an
+//   operator and no two jobs meet there. Modulo 3: one square root and one divider serve both
+//   1 / sqrt(dist2) and 1 / sqrt(H.H) (H.H enters a cycle after its sum): pipelined at Period 6,
+//   iterative with two lanes at 12 (rc_fp_sqrt_iter, rc_fp_div_iter; the same results and
+//   latencies). Every product (the streams L * L, L * inv, kd * ambient, ka * w, kd * cos,
 //   ks * spec, sum * lcol and its * w, N * lh, H * H and N * H; the scalars dist and nh; the
 //   power's steps) is a user of one pool of multipliers (rc_fp_pool), which places each on the
-//   first multiplier whose users' phases modulo Period it does not meet: 11 multipliers at
+//   first multiplier whose users' phases modulo Period it does not meet: 10 multipliers at
 //   Period 6, 5 at 12. Every sum (the streams L = lpos - p, H = lh - v and kd cos + ks spec; the
 //   dot products' x + y and + z) is a user of one pool of adders: 4 at Period 6, 2 at 12. (The
 //   ambient term and the cos and N.H dot products start later than their operands allow, off the
-//   path to the output, for those counts: ShiftA, ShiftC, ShiftN below.)
+//   path to the output, for those counts: ShiftA, ShiftC, ShiftN, WaitZC below.) Each pool has
+//   an input register before every operator (rc_fp_pool InReg), so an operand's select and the
+//   operator's first stage are in different cycles: a product takes Lm = [fp_stages] mul + 1
+//   cycles, a sum La = add + 1. The fixed-point conversions are rc_fp_to_fix at two stages
+//   (Lf = 2: the shift, then the rounding).
 //   Values wait for their operations in rc_delay lines (short) and rc_delay_ram memories (long),
 //   so a job may follow another after Period cycles or after any gap (rc_serial_sched keeps the
 //   slots and the job times). The last stage collects each stream's three components into the
@@ -47,7 +53,12 @@
 //   is the AND of two flip-flops; valid_o never depends on ready_i; results leave in order;
 //   tag_i travels with the operation to tag_o).
 // - Latency: TimeOut + 2 cycles from the taking cycle to valid_o when the FIFO is empty and
-//   ready_i is 1 (170 at the default fp_stages: mul 4, add 6, sqrt 10, div 11, and ExpBits 10).
+//   ready_i is 1 (187 at the default fp_stages: mul 4, add 6, sqrt 10, div 11, so Lm = 5 and
+//   La = 7, and ExpBits 10): input register 1, then the chain L (La), L.L (Lm, 1, 2 La), sqrt
+//   (10), 1 / sqrt (11), lh (Lm), H (La), H.H (Lm, 2, 2 La), 1 into the root, sqrt, 1 / sqrt, nh
+//   (Lm), the power (ExpBits Lm + 1), ks * spec (Lm), kd cos + ks spec (La), * lcol, * w (2 Lm),
+//   fix (Lf) (TimeFix = 183 after slot 0), two cycles for the stream's y and z, the FIFO's output
+//   register 1.
 // - Throughput: one job per Period cycles while ready_i is 1; ready_o is high only in cycles
 //   whose phase modulo Period lets a job start at phase 0, so a job offered after a gap may wait
 //   up to Period - 1 cycles. The FIFO holds Latency / Period + 2 entries.
@@ -98,19 +109,27 @@ module rc_light_term #(
 
   localparam int unsigned W  = ExpW + FracW + 1;
   localparam int unsigned FW = FixBits + 1;
-  localparam int unsigned Lm = rc_pkg::FpStagesMul;
-  localparam int unsigned La = rc_pkg::FpStagesAdd;
+  // Every product and sum is an operation of a pool (rc_fp_pool, InReg): the pool's input
+  // register, then the operator, so its latency is the operator's ([fp_stages]) plus one.
+  localparam int unsigned Lm = rc_pkg::FpStagesMul + 1;
+  localparam int unsigned La = rc_pkg::FpStagesAdd + 1;
   localparam int unsigned Ls = rc_pkg::FpStagesSqrt;
   localparam int unsigned Ld = rc_pkg::FpStagesDiv;
+  localparam int unsigned Lf = 2;  // rc_fp_to_fix's Stages (its shift, then its rounding)
 
   // Off the path to the output, three things start later than their operands allow, where the
-  // pools need fewer operators (at the default fp stages: 5 multipliers and 2 adders at Period
-  // 12 instead of 7 and 3, 11 and 4 at 6 instead of 12 and 5; their results then wait, so the
-  // latency is the same): the ambient term's two products ShiftA cycles, the cos dot product
-  // ShiftC and the N.H dot product ShiftN.
-  localparam int unsigned ShiftA   = 9;
-  localparam int unsigned ShiftC   = 8;
-  localparam int unsigned ShiftN   = 4;
+  // pools need fewer operators: the ambient term's two products ShiftA cycles, the cos dot
+  // product's stream ShiftC and the N.H dot product's ShiftN; and cos's + z waits WaitZC cycles
+  // after its x + y leaves. On the path, H.H's x + y waits WaitXyH cycles after its y's product
+  // leaves (a cycle of latency, which also puts H.H's turn at the shared root at another phase
+  // modulo 3 than dist2's). At the default fp stages these take 5 multipliers and 2 adders at
+  // Period 12 and 10 and 4 at 6, as a search over them found (as soon as the operands are there:
+  // 11 and 4, 19 and 5, with the root's phases clashing; their results then wait).
+  localparam int unsigned ShiftA   = 1;
+  localparam int unsigned ShiftC   = 2;
+  localparam int unsigned ShiftN   = 2;
+  localparam int unsigned WaitZC   = 1;
+  localparam int unsigned WaitXyH  = 1;
   // The cycle (after slot 0) at which each value, or a stream's x, leaves its operation.
   localparam int unsigned TimeL    = La;                      // L = lpos - p
   localparam int unsigned TimeLl   = TimeL + Lm;              // L * L
@@ -119,18 +138,30 @@ module rc_light_term #(
   localparam int unsigned TimeSq1  = TimeD2 + Ls;             // sqrt(dist2)
   localparam int unsigned TimeInv  = TimeSq1 + Ld;            // 1 / sqrt(dist2)
   localparam int unsigned TimeLh   = TimeInv + Lm;            // lh, dist
-  localparam int unsigned TimeCos  = TimeLh + 2 + ShiftC + Lm + 1 + 2 * La; // (N.lh: TimeDc)
   localparam int unsigned TimeH    = TimeLh + La;             // H = lh - v
-  localparam int unsigned TimeHh   = TimeH + Lm + 1 + 2 * La; // H.H
-  localparam int unsigned TimeNhd  = TimeHh + 1 + ShiftN;     // N.H
+  // The dot products N.lh (cos), H.H and N.H: their streams of products are issued at TimeDc,
+  // TimeDh and TimeDn, their x + y at TimeXy* (y's product leaving, plus a wait) and their + z at
+  // TimeZ* (x + y leaving, plus a wait); each sum leaves La cycles after its issue.
+  localparam int unsigned TimeDc   = TimeLh + 2 + ShiftC;
+  localparam int unsigned TimeDh   = TimeH;
+  localparam int unsigned TimeDn   = TimeH + 1 + ShiftN;
+  localparam int unsigned TimeXyC  = TimeDc + Lm + 1;
+  localparam int unsigned TimeXyH  = TimeDh + Lm + 1 + WaitXyH;
+  localparam int unsigned TimeXyN  = TimeDn + Lm + 1;
+  localparam int unsigned TimeZC   = TimeXyC + La + WaitZC;
+  localparam int unsigned TimeZH   = TimeXyH + La;
+  localparam int unsigned TimeZN   = TimeXyN + La;
+  localparam int unsigned TimeCos  = TimeZC + La;             // cos = N.lh
+  localparam int unsigned TimeHh   = TimeZH + La;             // H.H
+  localparam int unsigned TimeNhd  = TimeZN + La;             // N.H
   localparam int unsigned TimeHs   = TimeHh + 1;              // H.H into the shared root
   localparam int unsigned TimeIh   = TimeHs + Ls + Ld;        // 1 / sqrt(H.H)
   localparam int unsigned TimeNh   = TimeIh + Lm;             // nh
-  localparam int unsigned PowStep  = Lm + 1;
-  localparam int unsigned TimeSpec = TimeNh + ExpBits * PowStep;
+  localparam int unsigned PowStep  = Lm;
+  localparam int unsigned TimeSpec = TimeNh + ExpBits * PowStep + 1;
   localparam int unsigned TimeSum  = TimeSpec + Lm + La;      // kd cos + ks spec
   localparam int unsigned TimeX    = TimeSum + 2 * Lm;        // (...) * lcol * w
-  localparam int unsigned TimeFix  = TimeX + 1;
+  localparam int unsigned TimeFix  = TimeX + Lf;
   localparam int unsigned TimeKa   = ShiftA;                  // kd * ambient issued
   localparam int unsigned TimeAw   = TimeKa + Lm;             // (kd * ambient) * w issued
   localparam int unsigned TimeOut  = TimeFix + 2;
@@ -294,22 +325,28 @@ module rc_light_term #(
   rc_delay #(.Width(W), .Cycles(TimeDn - TimeH)) u_dly_h1 (
     .clk_i, .data_i(h_s), .data_o(h_at_dn)
   );
-  // cos = N.lh, H.H and N.H, each (x + y) + z as every dot product: the stream's
-  // products in u_muls, x + y as y's product leaves (x's a cycle later), then + z (z's product
-  // La - 1 cycles later), both in u_adds. N.lh's stream is issued 2 + ShiftC cycles late
-  // (TimeDc), H.H's on time (TimeDh), N.H's 1 + ShiftN late (TimeDn): cos leaves at TimeCos, H.H
-  // at TimeHh, N.H at TimeNhd. (The first offsets, 2 and 1, once kept the three sums apart modulo
-  // 3 in two adders of their own; the shifts are the pools', above.)
-  localparam int unsigned TimeDc = TimeLh + 2 + ShiftC;
-  localparam int unsigned TimeDh = TimeH;
-  localparam int unsigned TimeDn = TimeH + 1 + ShiftN;
-  logic [3*W-1:0] dp, dp_d1, dp_dz, dxy, dz;  // per dot product (cos, H.H, N.H)
+  // cos = N.lh, H.H and N.H, each (x + y) + z as every dot product: the stream's products in
+  // u_muls, x + y as y's product leaves (x's a cycle later) and + z as x + y leaves (z's product
+  // La - 1 cycles later), both in u_adds; H.H's x + y WaitXyH cycles later (x's and y's products
+  // wait) and cos's + z WaitZC (x + y and z's product wait). N.lh's stream is issued
+  // 2 + ShiftC cycles late (TimeDc), H.H's on time (TimeDh), N.H's 1 + ShiftN late (TimeDn): cos
+  // leaves at TimeCos, H.H at TimeHh, N.H at TimeNhd. (The first offsets, 2 and 1, once kept
+  // the three sums apart modulo 3 in two adders of their own; the shifts are the pools', above.)
+  logic [3*W-1:0] dp, dp_dx, dp_dy, dp_dz, dxy, dxy_d, dz;  // per dot product (cos, H.H, N.H)
   for (genvar k = 0; k < 3; k++) begin : g_dot
-    rc_delay #(.Width(W), .Cycles(1)) u_dly_x (
-      .clk_i, .data_i(dp[k*W +: W]), .data_o(dp_d1[k*W +: W])
+    localparam int unsigned WaitXy = (k == 1) ? WaitXyH : 0;
+    localparam int unsigned WaitZ  = (k == 0) ? WaitZC : 0;
+    rc_delay #(.Width(W), .Cycles(1 + WaitXy)) u_dly_x (
+      .clk_i, .data_i(dp[k*W +: W]), .data_o(dp_dx[k*W +: W])
     );
-    rc_delay #(.Width(W), .Cycles(La - 1)) u_dly_z (
+    rc_delay #(.Width(W), .Cycles(WaitXy)) u_dly_y (
+      .clk_i, .data_i(dp[k*W +: W]), .data_o(dp_dy[k*W +: W])
+    );
+    rc_delay #(.Width(W), .Cycles(La - 1 + WaitXy + WaitZ)) u_dly_z (
       .clk_i, .data_i(dp[k*W +: W]), .data_o(dp_dz[k*W +: W])
+    );
+    rc_delay #(.Width(W), .Cycles(WaitZ)) u_dly_xy (
+      .clk_i, .data_i(dxy[k*W +: W]), .data_o(dxy_d[k*W +: W])
     );
   end
   assign cos_res = dz[0 +: W];
@@ -360,10 +397,12 @@ module rc_light_term #(
   // spec = lt(0, nh) ? pow(nh, ns) : +0                  //
   //////////////////////////////////////////////////////////
 
-  // Step i at T_i = TimeNh + i * PowStep: b * b at T_i, r * b at T_i + 1 (u_muls' user 10 + i,
-  // two cycles). Word i of b_src and r_src holds b_i and r_i at T_i (flat: Yosys 0.23 reads no
-  // multi-dimensional packed arrays); r_src's word ExpBits is the power at TimeSpec.
-  logic [ExpBits*W-1:0]     b_src, b_d1_q, r_d1_q, step_a, step_b;
+  // Step i at T_i = TimeNh + i * PowStep (PowStep = Lm): b * b at T_i, r * b at T_i + 1 (u_muls'
+  // user 10 + i, two cycles). Word i of b_src holds b_i at T_i (b_0 = nh; b_{i+1} = b_i * b_i
+  // leaves at T_i + Lm = T_{i+1}), word i of r_src r_i at T_i + 1 (r_0 = 1; r_{i+1} = r_i * b_i
+  // where bit i of ns is set, else r_i, at T_{i+1} + 1), flat: Yosys 0.23 reads no
+  // multi-dimensional packed arrays. r_src's word ExpBits is the power at TimeSpec.
+  logic [ExpBits*W-1:0]     b_src, b_d1_q, step_a, step_b;
   logic [(ExpBits+1)*W-1:0] r_src;
   logic [ExpBits-1:0]       step_issue;
   logic [ExpBits*W-1:0]     pow_prod;
@@ -376,36 +415,34 @@ module rc_light_term #(
   assign b_src[0 +: W] = nh;
   assign r_src[0 +: W] = One;
 
+  // b_i for r * b, a cycle after its b * b.
   always_ff @(posedge clk_i) begin
     b_d1_q <= b_src;
-    r_d1_q <= r_src[ExpBits*W-1:0];
   end
 
   for (genvar i = 0; i < ExpBits; i++) begin : g_pow
     logic [W-1:0] prod, r_keep;
     logic         bit_i;
     assign step_issue[i]     = at[TimeNh + i*PowStep] | at[TimeNh + i*PowStep + 1];
-    assign step_a[i*W +: W] = at[TimeNh + i*PowStep + 1] ? r_d1_q[i*W +: W] : b_src[i*W +: W];
+    assign step_a[i*W +: W] = at[TimeNh + i*PowStep + 1] ? r_src[i*W +: W] : b_src[i*W +: W];
     assign step_b[i*W +: W] = at[TimeNh + i*PowStep + 1] ? b_d1_q[i*W +: W] : b_src[i*W +: W];
     assign prod = pow_prod[i*W +: W];
-    // r_i waits from T_i + 1 to T_{i+1}; bit i of ns arrives at T_{i+1}.
-    rc_delay #(.Width(W), .Cycles(Lm)) u_dly_r (
-      .clk_i, .data_i(r_d1_q[i*W +: W]), .data_o(r_keep)
+    // r_i waits from T_i + 1 to T_{i+1} + 1, where bit i of ns arrives.
+    rc_delay #(.Width(W), .Cycles(PowStep)) u_dly_r (
+      .clk_i, .data_i(r_src[i*W +: W]), .data_o(r_keep)
     );
-    rc_delay #(.Width(1), .Cycles((i + 1) * PowStep)) u_dly_bit (
+    rc_delay #(.Width(1), .Cycles((i + 1) * PowStep + 1)) u_dly_bit (
       .clk_i, .data_i(ns_at_nh[i]), .data_o(bit_i)
     );
     assign r_src[(i+1)*W +: W] = bit_i ? prod : r_keep;
-    // b_{i+1} leaves at T_i + Lm, one cycle before T_{i+1} (the last step's is not needed).
+    // b_{i+1}: the product as it leaves (the last step's is not needed).
     if (i + 1 < ExpBits) begin : g_next_b
-      rc_delay #(.Width(W), .Cycles(1)) u_dly_b (
-        .clk_i, .data_i(prod), .data_o(b_src[(i+1)*W +: W])
-      );
+      assign b_src[(i+1)*W +: W] = prod;
     end
   end
 
   logic nh_pos_at_spec;
-  rc_delay #(.Width(1), .Cycles(ExpBits * PowStep)) u_dly_nhpos (
+  rc_delay #(.Width(1), .Cycles(ExpBits * PowStep + 1)) u_dly_nhpos (
     .clk_i, .data_i(pos(nh)), .data_o(nh_pos_at_spec)
   );
   assign spec_v = nh_pos_at_spec ? r_src[ExpBits*W +: W] : PosZero;
@@ -441,7 +478,7 @@ module rc_light_term #(
   assign x_s   = xw;
   logic [FW-1:0] term_s;
   logic          term_vld;
-  rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_t (
+  rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits), .Stages(Lf)) u_fix_t (
     .clk_i, .rst_ni, .valid_i(strm[TimeX]), .x_i(x_s), .valid_o(term_vld), .out_o(term_s)
   );
   logic pres_at_fix;
@@ -459,10 +496,10 @@ module rc_light_term #(
   // kd * ambient (at TimeKa) and ka * w (at TimeAw): in u_muls.
   rc_delay #(.Width(W), .Cycles(TimeKa)) u_dly_kda (.clk_i, .data_i(kd_s), .data_o(kd_at_ka));
   rc_delay #(.Width(W), .Cycles(TimeAw)) u_dly_wa (.clk_i, .data_i(w_q), .data_o(w_at_ka));
-  rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits)) u_fix_a (
+  rc_fp_to_fix #(.ExpW(ExpW), .FracW(FracW), .FixBits(FixBits), .Stages(Lf)) u_fix_a (
     .clk_i, .rst_ni, .valid_i(strm[TimeAw + Lm]), .x_i(aw), .valid_o(amb_vld), .out_o(amb_s)
   );
-  rc_delay_ram #(.Width(FW), .Cycles(TimeFix - (TimeAw + Lm + 1))) u_dly_amb (
+  rc_delay_ram #(.Width(FW), .Cycles(TimeFix - (TimeAw + Lm + Lf))) u_dly_amb (
     .clk_i, .rst_ni, .data_i(amb_s), .data_o(amb_at_fix)
   );
 
@@ -516,7 +553,7 @@ module rc_light_term #(
                       cos_b, w_at_ka, spec_b, ambient_i};
   rc_fp_pool #(
     .ExpW(ExpW), .FracW(FracW), .Users(MulUsers), .Period(Period), .Time(mul_times()),
-    .Cycles(mul_cycles())
+    .Cycles(mul_cycles()), .InReg(1'b1)
   ) u_muls (
     .clk_i, .rst_ni, .issue_i(mul_issue), .a_i(mul_a), .b_i(mul_b), .valid_o(mul_vld),
     .res_o(mul_res)
@@ -527,26 +564,24 @@ module rc_light_term #(
   // Every sum, likewise in one pool of adders (4 at Period 6, 2 at 12): the streams L = lpos - p
   // (at 0), H = lh - v (at TimeLh) and kd cos + ks spec (at TimeSpec + Lm), dist2's scalar sums
   // x + y (at TimeLl + 1) and + z (at TimeD01), then the other dot products' x + y (cos, H.H and
-  // N.H, Lm + 1 after their streams) and their + z (La later).
-  localparam logic [511:0] AddTimes  = 512'({16'(TimeDn + Lm + 1 + La), 16'(TimeDh + Lm + 1 + La),
-                                              16'(TimeDc + Lm + 1 + La), 16'(TimeDn + Lm + 1),
-                                              16'(TimeDh + Lm + 1), 16'(TimeDc + Lm + 1),
+  // N.H, at TimeXy*) and their + z (at TimeZ*).
+  localparam logic [511:0] AddTimes  = 512'({16'(TimeZN), 16'(TimeZH), 16'(TimeZC),
+                                              16'(TimeXyN), 16'(TimeXyH), 16'(TimeXyC),
                                               16'(TimeD01), 16'(TimeLl + 1), 16'(TimeSpec + Lm),
                                               16'(TimeLh), 16'(0)});
   localparam logic [63:0]  AddCycles = 64'({{8{2'd1}}, 2'd3, 2'd3, 2'd3});
   localparam int unsigned  AddUsers  = 11;
   logic [AddUsers-1:0]   add_issue, add_vld;
   logic [AddUsers*W-1:0] add_a, add_b, add_res;
-  assign add_issue = {at[TimeDn + Lm + 1 + La], at[TimeDh + Lm + 1 + La], at[TimeDc + Lm + 1 + La],
-                      at[TimeDn + Lm + 1], at[TimeDh + Lm + 1], at[TimeDc + Lm + 1],
+  assign add_issue = {at[TimeZN], at[TimeZH], at[TimeZC], at[TimeXyN], at[TimeXyH], at[TimeXyC],
                       at[TimeD01], at[TimeLl + 1], strm[TimeSpec + Lm], strm[TimeLh], strm[0]};
-  assign add_a     = {dxy[2*W +: W], dxy[W +: W], dxy[0 +: W], dp_d1[2*W +: W], dp_d1[W +: W],
-                      dp_d1[0 +: W], d01, ll_d1, kdcos_d, lh_s, lp_s};
-  assign add_b     = {dp_dz[2*W +: W], dp_dz[W +: W], dp_dz[0 +: W], dp[2*W +: W], dp[W +: W],
-                      dp[0 +: W], ll_dz, ll, ksspec, v_at_lh, p_s};
+  assign add_a     = {dxy_d[2*W +: W], dxy_d[W +: W], dxy_d[0 +: W], dp_dx[2*W +: W],
+                      dp_dx[W +: W], dp_dx[0 +: W], d01, ll_d1, kdcos_d, lh_s, lp_s};
+  assign add_b     = {dp_dz[2*W +: W], dp_dz[W +: W], dp_dz[0 +: W], dp_dy[2*W +: W],
+                      dp_dy[W +: W], dp_dy[0 +: W], ll_dz, ll, ksspec, v_at_lh, p_s};
   rc_fp_pool #(
     .ExpW(ExpW), .FracW(FracW), .Add(1'b1), .Users(AddUsers), .Sub(32'b00011), .Period(Period),
-    .Time(AddTimes), .Cycles(AddCycles)
+    .Time(AddTimes), .Cycles(AddCycles), .InReg(1'b1)
   ) u_adds (
     .clk_i, .rst_ni, .issue_i(add_issue), .a_i(add_a), .b_i(add_b), .valid_o(add_vld),
     .res_o(add_res)
@@ -620,7 +655,7 @@ module rc_light_term #(
   Schedule_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
       rt_vld == (at[TimeSq1] | at[TimeHs + Ls]) &&
       rinv_vld == (at[TimeInv] | at[TimeIh]) &&
-      term_vld == strm[TimeFix] && amb_vld == strm[TimeAw + Lm + 1]);
+      term_vld == strm[TimeFix] && amb_vld == strm[TimeAw + Lm + Lf]);
   // Every product leaves its multiplier when its user reads it, Lm cycles after its issue (the
   // pool's multipliers' valid chains, which also carry the other users' products).
   logic [MulUsers-1:0] mul_due;
@@ -636,7 +671,7 @@ module rc_light_term #(
   // Likewise every sum of u_adds, La cycles after its issue.
   logic [AddUsers-1:0] add_due;
   assign add_due = {at[TimeNhd], at[TimeHh], at[TimeCos],
-                    at[TimeDn + Lm + 1 + La], at[TimeDh + Lm + 1 + La], at[TimeDc + Lm + 1 + La],
+                    at[TimeXyN + La], at[TimeXyH + La], at[TimeXyC + La],
                     at[TimeD2], at[TimeD01], strm[TimeSum], strm[TimeH], strm[TimeL]};
   Sums_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                           (add_due & ~add_vld) == '0);

@@ -23,6 +23,7 @@
 
 #include "Vrc_fp_to_exp.h"
 #include "Vrc_fp_to_fix.h"
+#include "Vrc_fp_to_fix_s2.h"
 #include "Vrc_fp_to_u8.h"
 #include "Vrc_fp_twice.h"
 #include "Vrc_hit_geom.h"
@@ -55,6 +56,11 @@ constexpr int64_t kAdd = spec::kFpStagesAdd, kMul = spec::kFpStagesMul, kCmp = s
                   kDiv = spec::kFpStagesDiv;
 // rc_fp_to_u8: max, min, multiply, round.
 constexpr int64_t kToU8Latency = 2 * kCmp + kMul + 1;
+// The light units' operations (rc_hit_geom, rc_light_term): every product and sum goes through an
+// rc_fp_pool with an input register before its operator (one cycle more than the operator), and
+// rc_light_term's fixed-point conversions are rc_fp_to_fix with two stages.
+constexpr int64_t kPoolMul = kMul + 1, kPoolAdd = kAdd + 1;
+constexpr int64_t kLightFixLatency = 2;
 constexpr int kW = T::kWidth;  // 24
 constexpr uint32_t kTagMask = 0xffff;
 
@@ -901,10 +907,13 @@ void run_timing(const char* unit, int64_t want_latency, uint64_t want_depth, Cas
   h.drain();
   EXPECT_EQ(h.latency(), want_latency) << unit << ": latency";
   // ready_i low: the unit must take exactly its FIFO depth of operations, then hold ready_o low.
+  // 400 cycles: long enough for a unit at one job per 12 cycles to take 17 (rc_light_term at the
+  // lit board's period: 16 intervals and up to 11 cycles for the first phase), then show it
+  // stops.
   h.set_ready_mode(2);
   h.dut().valid_i = 1;
   uint64_t taken = 0;
-  for (int c = 0; c < 200; ++c) {
+  for (int c = 0; c < 400; ++c) {
     h.dut().tag_i = 0;
     if (h.dut().ready_o) {
       // Present a real operation whenever the unit is ready.
@@ -1051,10 +1060,12 @@ void hit_geom_random() {
 TEST(CoreUnits, HitGeomRandom) { hit_geom_random<Vrc_hit_geom>(); }
 TEST(CoreUnits, HitGeomRandomPeriod12) { hit_geom_random<Vrc_hit_geom_p12>(); }
 
-// rc_hit_geom's latency: input register; V, N.V, the two sums of c, c * c, 1 - c^2,
-// e^2 (1 - c^2), q, sqrt(q), g, g * N, e V - g N; y and z behind x; the output FIFO.
-constexpr int64_t kHitGeomLatency =
-    1 + 2 * kMul + 1 + 2 * kAdd + 3 * kMul + 4 * kAdd + spec::kFpStagesSqrt + 2 + 1;
+// rc_hit_geom's latency: input register; V, N.V (its products; x + y as y's product leaves, a
+// cycle after x's; + z two cycles after x + y leaves), c * c, 1 - c^2, e^2 (1 - c^2), q, sqrt(q),
+// g, g * N, e V - g N (products and sums at the pools' latencies); y and z behind x; the output
+// FIFO.
+constexpr int64_t kHitGeomLatency = 1 + 2 * kPoolMul + 1 + kPoolAdd + 2 + kPoolAdd + 3 * kPoolMul +
+                                    4 * kPoolAdd + spec::kFpStagesSqrt + 2 + 1;
 
 // The light units' cycles per job: docs/spec.toml [light] unit_period (the default models), or
 // 12 (the _p12 models; the lit board's [board] lit_light_period).
@@ -1106,14 +1117,17 @@ void light_term_random() {
 TEST(CoreUnits, LightTermRandom) { light_term_random<Vrc_light_term>(); }
 TEST(CoreUnits, LightTermRandomPeriod12) { light_term_random<Vrc_light_term_p12>(); }
 
-// rc_light_term's latency: input register; L, L.L, its two sums, sqrt, 1 / sqrt, lh, N.lh's
-// product, H, H.H, its two sums, sqrt, 1 / sqrt, nh, the power (a multiply and a cycle per bit),
-// ks * spec, kd cos + ks spec, * colour, * w, fix; y and z behind x; the output FIFO. H.H enters
-// the shared square root a cycle after its sum (the root's other user is a phase earlier).
-constexpr int64_t kLightTermLatency = 1 + kAdd + kMul + 1 + 2 * kAdd + spec::kFpStagesSqrt + kDiv +
-                                      kMul + kAdd + kMul + 1 + 2 * kAdd + 1 + spec::kFpStagesSqrt +
-                                      kDiv + kMul + int64_t{spec::kLightExponentBits} * (kMul + 1) +
-                                      kMul + kAdd + 2 * kMul + 1 + 2 + 1;
+// rc_light_term's latency: input register; L, L.L (its products, x + y a cycle after x's, + z),
+// sqrt, 1 / sqrt, lh, H, H.H (its products, x + y two cycles after x's, + z), sqrt, 1 / sqrt, nh,
+// the power (a multiply per bit, b * b as the last one leaves, and the last r * b a cycle after
+// its b * b), ks * spec, kd cos + ks spec, * colour, * w, fix (products and sums at the pools'
+// latencies); y and z behind x; the output FIFO. H.H enters the shared square root a cycle after
+// its sum.
+constexpr int64_t kLightTermLatency =
+    1 + kPoolAdd + kPoolMul + 1 + 2 * kPoolAdd + spec::kFpStagesSqrt + kDiv + kPoolMul + kPoolAdd +
+    kPoolMul + 2 + 2 * kPoolAdd + 1 + spec::kFpStagesSqrt + kDiv + kPoolMul +
+    int64_t{spec::kLightExponentBits} * kPoolMul + 1 + kPoolMul + kPoolAdd + 2 * kPoolMul +
+    kLightFixLatency + 2 + 1;
 
 // rc_light_term takes one job per unit_period cycles; a job waits at most unit_period - 1 cycles
 // for its phase.
@@ -1209,6 +1223,16 @@ TEST(CoreUnits, ToFixExhaustive) {
   std::printf("[info] rc_fp_to_fix: %llu encodings at an exact x.5 tie\n",
               static_cast<unsigned long long>(ties));
   EXPECT_GT(ties, 1000u);
+}
+
+// rc_fp_to_fix with Stages = 2 (rc_light_term's: latency 2) against light_fixed<fp24>() for every
+// fp24 encoding.
+TEST(CoreUnits, ToFixTwoStagesExhaustive) {
+  const uint64_t bad = run_every_encoding<Vrc_fp_to_fix_s2>(
+      "rc_fp_to_fix (Stages 2) vs golden light_fixed<fp24>", kLightFixLatency, 506,
+      [](uint32_t x) { return light_fixed<T>(fb(x)); },
+      [](const Vrc_fp_to_fix_s2& m) { return static_cast<uint32_t>(m.out_o); });
+  EXPECT_EQ(bad, 0u);
 }
 
 // rc_fp_to_exp (rc_fp_to_fix with no fraction bits and a clamp that is not a power of two,
