@@ -5,14 +5,16 @@
 // Contract
 // - Function: exactly rc::light_exponent() (tb/golden/trace.hpp), bit for bit: rc_fp_to_fix with
 //   no fraction bits and Max = 2^ExpBits - 1.
-// - Handshake, latency, reset: rc_fp_to_fix's (valid only; latency 1).
+// - Handshake, latency, reset: rc_fp_to_fix's (valid only; latency Stages).
 // - Parameters: ExpW, FracW: the number format (default fp24); ExpBits: the exponent's bits
-//   (docs/spec.toml [light] exponent_bits), below FracW.
+//   (docs/spec.toml [light] exponent_bits), below FracW; Stages: rc_fp_to_fix's, 1 or 2
+//   (default 1; rc_tracer's 2).
 // - Illegal input: none; every bit pattern of x_i is legal.
 module rc_fp_to_exp #(
   parameter int unsigned ExpW    = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW   = rc_pkg::Fp24FracW,
-  parameter int unsigned ExpBits = rc_pkg::LightExponentBits
+  parameter int unsigned ExpBits = rc_pkg::LightExponentBits,
+  parameter int unsigned Stages  = 1
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
@@ -26,7 +28,8 @@ module rc_fp_to_exp #(
     .ExpW   (ExpW),
     .FracW  (FracW),
     .FixBits(0),
-    .Max    ((1 << ExpBits) - 1)
+    .Max    ((1 << ExpBits) - 1),
+    .Stages (Stages)
   ) u_fix (
     .clk_i,
     .rst_ni,

@@ -111,15 +111,14 @@ module rc_fp_to_fix #(
     // sticky OR below it are selected by e itself (a comparison with a constant per shift, no
     // subtraction: shallower, for the register after it). The remainder is above half when guard
     // and sticky are set, exactly half when guard is set alone.
+    localparam int ShBase = BiasInt + FracW - FixBits;  // sh = ShBase - e
     logic guard, sticky;
     always_comb begin
       q      = '0;
       guard  = 1'b0;
       sticky = 1'b0;
-      for (int k = 1; k <= int'(MW); k++) begin
-        if (int'(BiasInt + FracW - FixBits) - k >= 0 &&
-            int'(BiasInt + FracW - FixBits) - k < (1 << ExpW) &&
-            int'(e) == int'(BiasInt + FracW - FixBits) - k) begin
+      for (int k = 1; k <= MW; k++) begin
+        if (ShBase - k >= 0 && ShBase - k < (1 << ExpW) && 32'(e) == 32'(ShBase - k)) begin
           q      = m >> k;
           guard  = m[k-1];
           sticky = |(m & ((MW'(1) << (k - 1)) - MW'(1)));

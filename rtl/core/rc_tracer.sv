@@ -235,8 +235,8 @@ module rc_tracer #(
   // pending (ambient and miss terms, at most two add queues' worth) and its packets in
   // rc_hit_light (at most MaxBounces + 1): one counter, as the slot waits for all three.
   localparam int unsigned WkW    = $clog2(4 * ShadowPackets + 2 * AddQ + MaxBounces + 2);
-  // The miss term's latency: the weight's register, the product, the fixed point.
-  localparam int unsigned MissL  = 1 + rc_pkg::FpStagesMul + 1;
+  // The miss term's latency: the weight's register, the product, the fixed point (two stages).
+  localparam int unsigned MissL  = 1 + rc_pkg::FpStagesMul + 2;
   localparam int unsigned KsLsb  = 8 * (rc_pkg::ImageMaterialKs - rc_pkg::ImageMaterialKd);
   localparam int unsigned NsLsb  = 8 * (rc_pkg::ImageMaterialNs - rc_pkg::ImageMaterialKd);
   localparam int unsigned IorLsb = 8 * (rc_pkg::ImageMaterialIor - rc_pkg::ImageMaterialKd);
@@ -770,20 +770,21 @@ module rc_tracer #(
   assign lmat_rsp_ready_o = 1'b1;
   assign lmat_take        = lmat_rsp_valid_i;
 
-  // Ns as the integer exponent (one cycle), the entry beside it; the entry is complete with Ns.
+  // Ns as the integer exponent (two cycles), the entry beside it; the entry is complete with Ns.
   // eta_enter = 1 / ior is the record's eta (the image holds it rounded once, as the rules
   // compute it); a failed read gives ior 0 and eta +inf, which is 1 / 0.
   logic [W-1:0]      lmat_ns, lmat_ior, lmat_eta;
   logic              ns_valid;
   logic [ExpB-1:0]   ns_val;
-  logic [FetchW-1:0] ns_tag_q;
+  logic [FetchW-1:0] ns_tag1_q, ns_tag_q;
   assign lmat_ns  = lmat_rsp_error_i ? W'(0) : lmat_rsp_data_i[NsLsb +: W];
   assign lmat_ior = lmat_rsp_error_i ? W'(0) : lmat_rsp_data_i[IorLsb +: W];
   assign lmat_eta = lmat_rsp_error_i ? FpInf : lmat_rsp_data_i[EtaLsb +: W];
   rc_fp_to_exp #(
     .ExpW   (ExpW),
     .FracW  (FracW),
-    .ExpBits(ExpB)
+    .ExpBits(ExpB),
+    .Stages (2)
   ) u_ns (
     .clk_i,
     .rst_ni,
@@ -808,6 +809,7 @@ module rc_tracer #(
       lmat_req_valid_q <= 1'b0;
       lmat_req_tag_q   <= '0;
       lmat_req_index_q <= '0;
+      ns_tag1_q        <= '0;
       ns_tag_q         <= '0;
     end else begin
       if (fq_pop && fq_work != 4'd0) begin
@@ -833,7 +835,8 @@ module rc_tracer #(
       end else if (lmat_req_ready_i) begin
         lmat_req_valid_q <= 1'b0;
       end
-      if (lmat_take) ns_tag_q <= lmat_rsp_tag_i;
+      ns_tag1_q <= lmat_rsp_tag_i;
+      ns_tag_q  <= ns_tag1_q;
     end
   end
 
@@ -1190,7 +1193,8 @@ module rc_tracer #(
     rc_fp_to_fix #(
       .ExpW   (ExpW),
       .FracW  (FracW),
-      .FixBits(rc_pkg::LightFixedBits)
+      .FixBits(rc_pkg::LightFixedBits),
+      .Stages (2)
     ) u_fix (
       .clk_i,
       .rst_ni,

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "Vrc_fp_to_exp.h"
+#include "Vrc_fp_to_exp_s2.h"
 #include "Vrc_fp_to_fix.h"
 #include "Vrc_fp_to_fix_s2.h"
 #include "Vrc_fp_to_u8.h"
@@ -1255,6 +1256,16 @@ TEST(CoreUnits, ToExpExhaustive) {
               static_cast<unsigned long long>(ties), static_cast<unsigned long long>(near_top));
   EXPECT_GT(ties, 1000u);
   EXPECT_GT(near_top, 10u);
+}
+
+// rc_fp_to_exp with Stages = 2 (rc_tracer's: latency 2) against light_exponent<fp24>() for every
+// fp24 encoding (the same inputs as above: ties and values just below the clamp).
+TEST(CoreUnits, ToExpTwoStagesExhaustive) {
+  const uint64_t bad = run_every_encoding<Vrc_fp_to_exp_s2>(
+      "rc_fp_to_exp (Stages 2) vs golden light_exponent<fp24>", 2, 607,
+      [](uint32_t x) { return light_exponent<T>(fb(x)); },
+      [](const Vrc_fp_to_exp_s2& m) { return static_cast<uint32_t>(m.ns_o); });
+  EXPECT_EQ(bad, 0u);
 }
 
 // rc_light_byte (valid-only, latency 1) against light_byte(): every sum below 2^23 (2^16 and up
