@@ -235,8 +235,9 @@ module rc_tracer #(
   // pending (ambient and miss terms, at most two add queues' worth) and its packets in
   // rc_hit_light (at most MaxBounces + 1): one counter, as the slot waits for all three.
   localparam int unsigned WkW    = $clog2(4 * ShadowPackets + 2 * AddQ + MaxBounces + 2);
-  // The miss term's latency: the weight's register, the product, the fixed point (two stages).
-  localparam int unsigned MissL  = 1 + rc_pkg::FpStagesMul + 2;
+  // The miss term's latency: the weight's register and three channels, one a cycle (the term
+  // leaves with the third), the product, the fixed point (two stages).
+  localparam int unsigned MissL  = 3 + rc_pkg::FpStagesMul + 2;
   localparam int unsigned KsLsb  = 8 * (rc_pkg::ImageMaterialKs - rc_pkg::ImageMaterialKd);
   localparam int unsigned NsLsb  = 8 * (rc_pkg::ImageMaterialNs - rc_pkg::ImageMaterialKd);
   localparam int unsigned IorLsb = 8 * (rc_pkg::ImageMaterialIor - rc_pkg::ImageMaterialKd);
@@ -734,9 +735,10 @@ module rc_tracer #(
   logic [FetchW-1:0] lshd_req_tag_q;
   logic [31:0]       lshd_req_index_q;
   logic              mi_ok;       // room for a miss term
+  logic              mi_free;     // the miss term's multiplier takes a miss
   assign fs_room_hit  = fe_count_q != (FetchW + 1)'(FetchEntries) &&
                         (!lshd_req_valid_q || lshd_req_ready_i);
-  assign fs_room_miss = mi_ok;
+  assign fs_room_miss = mi_ok && mi_free;
   // A packet without hits is decided at its last miss's issue (dec_seq), after its weights are
   // read.
   logic fs_final, dec_seq;
@@ -1001,23 +1003,27 @@ module rc_tracer #(
     gm.depth  = geo_depth + 1'b1;
     gr.depth  = geo_depth + 1'b1;
     // A loop over the lanes with constant part-selects: a select at a computed offset becomes a
-    // barrel shifter over the whole record in synthesis.
+    // barrel shifter over the whole record in synthesis. A lane's origin and start triangle are
+    // written into both packets when it has either ray (a lane without its ray is never read),
+    // so the two packets' copies are the same registers (synthesis merges them).
     for (int r = 0; r < 4; r++) begin
+      if (geo_lane == 2'(r) && geo_take && geo_deeper && (geo_mirror || geo_refract)) begin
+        gm.org[r*3*W +: 3*W]   = geo_p;
+        gm.stri[r*32 +: 32]    = geo_tri;
+      end
       if (geo_lane == 2'(r) && geo_take && geo_deeper && geo_mirror) begin
         gm.mask[r]             = 1'b1;
-        gm.org[r*3*W +: 3*W]   = geo_p;
         gm.dir[r*3*W +: 3*W]   = geo_r;
         gm.w[r*W +: W]         = geo_w_mirror;
-        gm.stri[r*32 +: 32]    = geo_tri;
       end
       if (geo_lane == 2'(r) && geo_take && geo_deeper && geo_refract) begin
         gr.mask[r]             = 1'b1;
-        gr.org[r*3*W +: 3*W]   = geo_p;
         gr.dir[r*3*W +: 3*W]   = geo_refr;
         gr.w[r*W +: W]         = geo_w_refract;
-        gr.stri[r*32 +: 32]    = geo_tri;
       end
     end
+    gr.org  = gm.org;
+    gr.stri = gm.stri;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -1102,13 +1108,31 @@ module rc_tracer #(
     .rdata_o(stk_top)
   );
 
+  // A popped packet's slot takes its mask, mirror flag and depth a cycle after it is sent
+  // (pop2_q), from a register behind the block RAM: the slot's next write, fetch or decision
+  // is far later, and no decision is carried out in that cycle (the tree packet queue holds
+  // the packet).
+  logic              pop2_q, pop2_mirror_q;
+  logic [SlotW-1:0]  pop2_slot_q;
+  logic [3:0]        pop2_mask_q;
+  logic [DepthW-1:0] pop2_depth_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       pop_q      <= 1'b0;
       pop_slot_q <= '0;
+      pop2_q     <= 1'b0;
     end else begin
-      pop_q <= dec_pop;
+      pop_q  <= dec_pop;
+      pop2_q <= pop_q;
       if (dec_pop) pop_slot_q <= dq_slot_q;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (pop_q) begin
+      pop2_slot_q  <= pop_slot_q;
+      pop2_mask_q  <= stk_top.mask;
+      pop2_mirror_q <= stk_top.mirror;
+      pop2_depth_q <= stk_top.depth;
     end
   end
 
@@ -1116,9 +1140,23 @@ module rc_tracer #(
   logic             snd;
   logic [SlotW-1:0] snd_slot;
   child_t           snd_pkt;
+  // The slot's registers take a sent packet's mask, mirror flag and depth (sw_*): a decision's
+  // packet at once, a popped one a cycle after it is sent.
+  logic              sw, sw_mirror;
+  logic [SlotW-1:0]  sw_slot;
+  logic [3:0]        sw_mask;
+  logic [DepthW-1:0] sw_depth;
   assign snd      = dec_now || pop_q;
   assign snd_slot = pop_q ? pop_slot_q : dq_slot_q;
   assign snd_pkt  = pop_q ? stk_top : dec_m.mask != 4'd0 ? dec_m : dec_r;
+  assign sw      = dec_now || pop2_q;
+  assign sw_slot = pop2_q ? pop2_slot_q : dq_slot_q;
+  always_comb begin
+    if (pop2_q) {sw_mask, sw_mirror, sw_depth} = {pop2_mask_q, pop2_mirror_q, pop2_depth_q};
+    else if (dec_m.mask != 4'd0) {sw_mask, sw_mirror, sw_depth} = {dec_m.mask, dec_m.mirror,
+                                                                  dec_m.depth};
+    else {sw_mask, sw_mirror, sw_depth} = {dec_r.mask, dec_r.mirror, dec_r.depth};
+  end
   assign bq_push  = snd;
   assign bq_wdata = {snd_pkt.depth == DepthW'(1), snd_pkt.mirror, snd_pkt.mask, snd_pkt.org,
                      snd_pkt.dir, snd_pkt.w, snd_pkt.stri, snd_slot};
@@ -1165,46 +1203,67 @@ module rc_tracer #(
   localparam int unsigned PmW = $clog2(AddQ + MissL + 1);
   logic [PmW-1:0] pm_q;
   assign mi_ok = 32'(pm_q) + 2 <= AddQ;
-  logic [2:0] mo_valid_c;
-  logic       mi_v_q;
+  // Channel-serial: one multiplier and one conversion take the three channels in consecutive
+  // cycles (mi_ph_q 1, 2, 3: red, green, blue), the weight held in mi_w_q; a miss may issue
+  // while the last channel enters (mi_free), so one per three cycles. The results leave in the
+  // same order, three consecutive ones per miss (mo_ch_q counts them), and the term goes with
+  // the third.
+  logic [1:0]   mi_ph_q, mo_ch_q;
   logic [W-1:0] mi_w_q;  // the weight, registered off the lane records' block RAM
+  logic [W-1:0] mi_bg;
+  logic         mm_valid, mf_valid;
+  logic [W-1:0] mm_res;
+  logic [FW-1:0] mf_out, mo_r_q, mo_g_q;
+  assign mi_free = mi_ph_q == 2'd0 || mi_ph_q == 2'd3;
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) mi_v_q <= 1'b0;
-    else mi_v_q <= mi_issue;
+    if (!rst_ni) begin
+      mi_ph_q <= 2'd0;
+      mo_ch_q <= 2'd0;
+    end else begin
+      if (mi_issue) mi_ph_q <= 2'd1;
+      else if (mi_ph_q != 2'd0) mi_ph_q <= mi_ph_q + 2'd1;  // 3 wraps to 0
+      if (mf_valid) mo_ch_q <= (mo_ch_q == 2'd2) ? 2'd0 : mo_ch_q + 2'd1;
+    end
   end
   always_ff @(posedge clk_i) begin
     if (mi_issue) mi_w_q <= seq_w;
+    if (mf_valid && mo_ch_q == 2'd0) mo_r_q <= mf_out;
+    if (mf_valid && mo_ch_q == 2'd1) mo_g_q <= mf_out;
   end
-  for (genvar c = 0; c < 3; c++) begin : g_miss
-    logic          mm_valid;
-    logic [W-1:0]  mm_res;
-    rc_fp_mul #(
-      .ExpW (ExpW),
-      .FracW(FracW)
-    ) u_mul (
-      .clk_i,
-      .rst_ni,
-      .valid_i(mi_v_q),
-      .a_i    (bg_i[c*W +: W]),
-      .b_i    (mi_w_q),
-      .valid_o(mm_valid),
-      .res_o  (mm_res)
-    );
-    rc_fp_to_fix #(
-      .ExpW   (ExpW),
-      .FracW  (FracW),
-      .FixBits(rc_pkg::LightFixedBits),
-      .Stages (2)
-    ) u_fix (
-      .clk_i,
-      .rst_ni,
-      .valid_i(mm_valid),
-      .x_i    (mm_res),
-      .valid_o(mo_valid_c[c]),
-      .out_o  (mo_term[c*FW +: FW])
-    );
+  always_comb begin
+    unique case (mi_ph_q)
+      2'd2:    mi_bg = bg_i[1*W +: W];
+      2'd3:    mi_bg = bg_i[2*W +: W];
+      default: mi_bg = bg_i[0*W +: W];
+    endcase
   end
-  assign mo_valid = mo_valid_c[0];
+  rc_fp_mul #(
+    .ExpW (ExpW),
+    .FracW(FracW)
+  ) u_miss_mul (
+    .clk_i,
+    .rst_ni,
+    .valid_i(mi_ph_q != 2'd0),
+    .a_i    (mi_bg),
+    .b_i    (mi_w_q),
+    .valid_o(mm_valid),
+    .res_o  (mm_res)
+  );
+  rc_fp_to_fix #(
+    .ExpW   (ExpW),
+    .FracW  (FracW),
+    .FixBits(rc_pkg::LightFixedBits),
+    .Stages (2)
+  ) u_miss_fix (
+    .clk_i,
+    .rst_ni,
+    .valid_i(mm_valid),
+    .x_i    (mm_res),
+    .valid_o(mf_valid),
+    .out_o  (mf_out)
+  );
+  assign mo_valid = mf_valid && mo_ch_q == 2'd2;
+  assign mo_term  = {mf_out, mo_g_q, mo_r_q};
   rc_delay #(
     .Width (LaneW),
     .Cycles(MissL)
@@ -1567,7 +1626,7 @@ module rc_tracer #(
   assign ev_hot = lt_hot | cws_hot | aq_hot | fq_hot | mi_hot;
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_cw_hot  (.valid_i(cw_cur), .idx_i(cw_slot),
                                                   .hot_o(cw_hot));
-  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_snd_hot (.valid_i(snd),    .idx_i(snd_slot),
+  rc_onehot #(.N(Slots), .IdxW(SlotW)) u_snd_hot (.valid_i(sw),     .idx_i(sw_slot),
                                                   .hot_o(snd_hot));
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_dec_hot (.valid_i(dq_q),   .idx_i(dq_slot_q),
                                                   .hot_o(dec_hot));
@@ -1610,9 +1669,9 @@ module rc_tracer #(
             if (!cw_d0 && core_fb_rgb[0]) cf_q[s] <= 1'b1;
           end
           if (snd_hot[s]) begin
-            pend_q[s*3 +: 3] <= rc_pkg::ray_count(snd_pkt.mask);
-            depth_q[s*DepthW +: DepthW] <= snd_pkt.depth;
-            cm_q[s] <= snd_pkt.mirror;
+            pend_q[s*3 +: 3] <= rc_pkg::ray_count(sw_mask);
+            depth_q[s*DepthW +: DepthW] <= sw_depth;
+            cm_q[s] <= sw_mirror;
             cf_q[s] <= 1'b0;
           end
           if (dec_hot[s]) begin
@@ -1633,7 +1692,7 @@ module rc_tracer #(
       pmask_q[free_idx] <= pkt_mask_i;
       cmask_q[free_idx] <= pkt_mask_i;
     end
-    if (snd) cmask_q[snd_slot] <= snd_pkt.mask;
+    if (sw) cmask_q[sw_slot] <= sw_mask;
     for (int i = 0; i < 4 * Slots; i++) begin  // a decoded write, not a shifted one
       if (cw_hot[i / 4] && cw_lane == 2'(i % 4)) hit_q[i] <= core_fb_hit;
     end
@@ -1731,10 +1790,11 @@ module rc_tracer #(
   // Not read: the primary packets' kind, limits and start triangles (the controller makes the
   // secondary packets); the fields of the records the lighting does not use; the valid bits of
   // units whose latency is known; the fetch queue's count (it never overflows: one entry per
-  // slot); the pixel id bits above the fields.
+  // slot); the pixel id bits above the fields; the depth in the lighting's tag (the geometry
+  // reads it).
   logic unused;
   assign unused = ^{pkt_t_hi_i, pkt_start_tri_i, lb_valid, lmat_rsp_data_i, lshd_rsp_data_i,
-                    mo_valid_c, fq_count, core_fb_pixel, lt_tag[LaneW + 2 +: DepthW]};
+                    fq_count, core_fb_pixel, lt_tag[LaneW + 2 +: DepthW]};
 
   ////////////////
   // Assertions //
@@ -1747,11 +1807,10 @@ module rc_tracer #(
     .rst_ni,
     .on_o (checks_on)
   );
-  logic cw_expected, fs_held, mo_matches;
+  logic cw_expected, fs_held;
   assign cw_expected = cw_shadow ? spb_q[cw_sp] && sp_cnt_q[cw_sp] != '0 :
                                    busy_q[cw_slot] && pend_q[cw_slot*3 +: 3] != '0;
   assign fs_held     = busy_q[fs_slot_q];
-  assign mo_matches  = mo_valid_c == {3{mo_valid}};
   // The controller makes the secondary packets itself.
   PrimaryOnly_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   pkt_valid_i |-> pkt_kind_i ==
@@ -1768,8 +1827,9 @@ module rc_tracer #(
   // A slot is not freed while the fetch still issues for it.
   FetchSlot_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 fs_busy_q |-> fs_held);
-  // The three channels' miss terms leave together.
-  MissTerm_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1) mo_matches);
+  // A miss issues only when the miss term's multiplier takes it.
+  MissIssue_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                mi_issue |-> mi_free);
   // The add queue never overflows (its pushes are counted ahead).
   AddQueue_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                aq_push |-> 32'(aq_count) < AddQ || aq_pop);
