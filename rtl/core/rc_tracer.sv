@@ -35,8 +35,8 @@
 //   weights, depth and the core's writes. Every non-shadow packet the core gets carries
 //   {0, depth 0, depth 1, slot, lane} as its pixel ids, a shadow packet {1, from a primary hit,
 //   light, slot, shadow packet, lane} (PixD0 below), so that a write brings what it needs; the
-//   core's writes come back here and are always taken. When a packet's writes are all back, its lanes go to the
-//   fetch in lane order: a hit to a shading request, then a material request (Ns through
+//   core's writes come back here and are always taken. When a packet's writes are all back, its
+//   lanes go to the fetch in lane order: a hit to a shading request, then a material request (Ns through
 //   rc_fp_to_exp; eta_enter = 1 / ior is the record's eta), put back in order in FetchEntries
 //   entries, then to rc_hit_light with the packet's ray and weight; a miss below a mirror or
 //   refraction ray (depth > 0) to fix(bg x weight). A sample at light 0 adds the hit's ambient
@@ -290,7 +290,8 @@ module rc_tracer #(
   logic [3:0]             cmask_q  [Slots];   // the current packet's rays
   logic [Slots*4-1:0]     hit_q;               // its hits, at {slot, lane}
   // The per-lane records are block RAMs (u_lanes, below), the stacks too (u_stack).
-  // The adds to the lanes' sums (u_lanes): an add is read in one cycle, written in the next.
+  // The adds to the lanes' sums (u_lanes): an add is read in one cycle, its old sum registered
+  // in the next and the sum written in the third.
   logic                   ln_add, ln_add_pend, ln_add_pend1;
   logic [LaneW-1:0]       ln_add_ln;
   logic [SlotW-1:0]       ln_add_slot, ln_add_slot1;
@@ -602,8 +603,8 @@ module rc_tracer #(
   // A shadow ray reached its light: no hit, and its packet met no error (colour 1).
   assign cw_reached = cw_sh && !core_fb_hit && !core_fb_rgb[0];
 
-  // The shadow packets in flight: slot, light, whether from a primary hit, rays out (the four
-  // terms are a block RAM, u_terms, below).
+  // The shadow packets in flight: busy and rays out (the four terms are a block RAM, u_terms,
+  // below; the slot, light and whether from a primary hit travel in the rays' pixel ids).
   logic [ShadowPackets-1:0] spb_q;
   logic [2:0]               sp_cnt_q   [ShadowPackets];
   logic [SlotW-1:0]         cws_slot;
@@ -1044,10 +1045,10 @@ module rc_tracer #(
   // top; with neither the tree is done. It takes two cycles: in the first (dec) the slot and
   // whether it has packets are registered (dq_*); in the second (dq_q) the slot's stack pointer
   // is read and the decision carried out: a packet is sent or the stack's top read, the stack
-  // pointer and the tree's end written (the geometry, held in that cycle, leaves the last record's packets in
-  // gm_q and gr_q). A pop sends its packet in the cycle after (pop_q). No decision is made in
-  // the second cycle nor in a pop's (dec_room), so the tree packet queue, empty at the decision,
-  // has room for the packet.
+  // pointer and the tree's end written (the geometry, held in that cycle, leaves the last
+  // record's packets in gm_q and gr_q). A pop sends its packet in the cycle after (pop_q). No
+  // decision is made in the second cycle nor in a pop's (dec_room), so the tree packet queue,
+  // empty at the decision, has room for the packet.
   localparam int unsigned StkDepth = Slots * MaxBounces;
   localparam int unsigned ChildW   = 4 + 1 + DepthW + 24 * W + 4 * W + 128;  // child_t's bits
   localparam int unsigned StkIdxW  = (StkDepth > 1) ? $clog2(StkDepth) : 1;
@@ -1369,9 +1370,8 @@ module rc_tracer #(
 
   // The shadow packets' terms, a word of four per packet: written with the packet, read at a
   // reached ray's write, its lane's term registered a cycle later (rs_q) and added in the
-  // cycle after (rs2_q). The word read belongs to a packet in
-  // flight and the word written to a free one, so a word is never read in the cycle it is
-  // written.
+  // cycle after (rs2_q). The word read belongs to a packet in flight and the word written to a
+  // free one, so a word is never read in the cycle it is written.
   logic [12*FW-1:0] term_word;
   rc_ram #(
     .Width (12 * FW),
