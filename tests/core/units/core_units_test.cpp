@@ -1124,11 +1124,11 @@ TEST(CoreUnits, LightTermRandomPeriod12) { light_term_random<Vrc_light_term_p12>
 // its b * b), ks * spec, kd cos + ks spec, * colour, * w, fix (products and sums at the pools'
 // latencies); y and z behind x; the output FIFO. H.H enters the shared square root a cycle after
 // its sum.
-constexpr int64_t kLightTermLatency =
-    1 + kPoolAdd + kPoolMul + 1 + 2 * kPoolAdd + spec::kFpStagesSqrt + kDiv + kPoolMul + kPoolAdd +
-    kPoolMul + 2 + 2 * kPoolAdd + 1 + spec::kFpStagesSqrt + kDiv + kPoolMul +
-    int64_t{spec::kLightExponentBits} * kPoolMul + 1 + kPoolMul + kPoolAdd + 2 * kPoolMul +
-    kLightFixLatency + 2 + 1;
+constexpr int64_t kLightTermLatency = 1 + kPoolAdd + kPoolMul + 1 + 2 * kPoolAdd +
+                                      spec::kFpStagesSqrt + kDiv + kPoolMul + kPoolAdd + kPoolMul +
+                                      2 + 2 * kPoolAdd + 1 + spec::kFpStagesSqrt + kDiv + kPoolMul +
+                                      int64_t{spec::kLightExponentBits} * kPoolMul + 1 + kPoolMul +
+                                      kPoolAdd + 2 * kPoolMul + kLightFixLatency + 2 + 1;
 
 // rc_light_term takes one job per unit_period cycles; a job waits at most unit_period - 1 cycles
 // for its phase.
