@@ -209,6 +209,7 @@ module rc_board #(
   /////////////////////
 
   logic        start_req, gen_start, gen_busy, core_idle, size_ok, cfg_ok;
+  logic        pkt_held;  // with Lit, a packet waits in the register between generator and core
   logic [31:0] pixels_q, cycles_q;
   logic        size_ok_q, cfg_ok_q;
 
@@ -269,7 +270,7 @@ module rc_board #(
       // the core is not idle from the cycle after it took a packet until its last write. The
       // end of the frame is registered (fin_q: the core's idle, an AND over its thread states,
       // ends at one flip-flop instead of at the frame control) and acted on a cycle later.
-      fin_q <= running_q && !gen_busy && core_idle;
+      fin_q <= running_q && !gen_busy && !pkt_held && core_idle;
       if (running_q) begin
         cycles_q <= cycles_q + 32'd1;
         if (fin_q) begin
@@ -405,6 +406,34 @@ module rc_board #(
     localparam int unsigned DepthW = $clog2(rc_pkg::LightBounceLimit + 1);
     localparam int unsigned LMatW  =
         8 * (rc_pkg::ImageMaterialEta + 4 - rc_pkg::ImageMaterialKd);
+    // The generator's packets reach the tree controller through a register (a one-entry queue:
+    // one packet per two cycles, where the lit frame takes one per 24 or more): the core's
+    // take and the generator's advance, at opposite ends of the die, no longer meet in a cycle.
+    localparam int unsigned PktW = 4 + 28 * W + 128;
+    logic            pq_valid, pq_ready, pq_count;
+    logic [PktW-1:0] pq_rdata;
+    logic [3:0]      pq_mask;
+    logic [12*W-1:0] pq_org, pq_dir;
+    logic [4*W-1:0]  pq_inv_len;
+    logic [127:0]    pq_pixel;
+    rc_fifo #(
+      .Width   (PktW),
+      .Depth   (1),
+      .MemArray(1'b0)
+    ) u_pkt_q (
+      .clk_i,
+      .rst_ni,
+      .push_i (pkt_valid && !pq_count),
+      .data_i ({pkt_mask, pkt_org, pkt_dir, pkt_inv_len, pkt_pixel}),
+      .valid_o(pq_valid),
+      .ready_i(pq_ready),
+      .data_o (pq_rdata),
+      .count_o(pq_count)
+    );
+    assign {pq_mask, pq_org, pq_dir, pq_inv_len, pq_pixel} = pq_rdata;
+    assign pkt_ready = !pq_count;
+    assign pkt_held  = pq_count;
+
     logic [CountW-1:0]        light_count;
     logic [MaxLights-1:0]     light_dir;
     logic [MaxLights*3*W-1:0] light_pos, light_col;
@@ -473,13 +502,13 @@ module rc_board #(
     .max_bounces_i   (max_bounces),
     .bg_i            (light_bg),
     .t_eps_i         (regs_q[rc_pkg::BoardRegTEps][W-1:0]),
-    .pkt_valid_i     (pkt_valid),
-    .pkt_ready_o     (pkt_ready),
-    .pkt_mask_i      (pkt_mask),
-    .pkt_org_i       (pkt_org),
-    .pkt_dir_i       (pkt_dir),
-    .pkt_inv_len_i   (pkt_inv_len),
-    .pkt_pixel_i     (pkt_pixel),
+    .pkt_valid_i     (pq_valid),
+    .pkt_ready_o     (pq_ready),
+    .pkt_mask_i      (pq_mask),
+    .pkt_org_i       (pq_org),
+    .pkt_dir_i       (pq_dir),
+    .pkt_inv_len_i   (pq_inv_len),
+    .pkt_pixel_i     (pq_pixel),
     .pkt_kind_i      (rc_pkg::RayPrimary),
     .pkt_t_hi_i      ('0),
     .pkt_start_tri_i ('0),
@@ -566,6 +595,7 @@ module rc_board #(
     );
   end else begin : g_core
     logic [W-1:0] core_fb_dz;
+    assign pkt_held = 1'b0;  // the generator's packets go to the core directly
     rc_core #(
       .ExpW   (ExpW),
       .FracW  (FracW),

@@ -11,6 +11,8 @@
 //     ray_i:   a packet goes to the core as slot ray_slot_i's current packet (the primary one,
 //              or one of its tree): its four lanes' rays {inv_len, dir, org} and weights (the
 //              lanes without a ray are written with what the ports hold: never read).
+//   These two are registered and reach their memories at the next edge: a lane they write is
+//   not read in the cycle after either.
 //     cw_i:    the core's write of lane cw_ln_i of its slot's current packet: its triangle, t and
 //              d'z; at depth 0 (cw_d0_i) also the primary hit record {hit, tri, t, u, v, rgb},
 //              and the lane's first mirror and refraction triangles become -2 (none) and its
@@ -40,8 +42,8 @@
 //   other; both written by every add).
 // - Parameters: ExpW, FracW (the format); Slots; MaxLights; FW (the lighting's fixed-point term
 //   bits); SumW (a sum's bits).
-// - Reset: rst_ni (active low, asynchronous) clears the add pipeline's valid bits; the memories
-//   are written before they are read.
+// - Reset: rst_ni (active low, asynchronous) clears the add pipeline's valid bits and the
+//   registered writes' enables; the memories are written before they are read.
 module rc_lane_store #(
   parameter int unsigned ExpW      = rc_pkg::Fp24ExpW,
   parameter int unsigned FracW     = rc_pkg::Fp24FracW,
@@ -131,12 +133,34 @@ module rc_lane_store #(
   // Rays and weights    //
   /////////////////////////
 
-  logic [4*RwW-1:0]   rw_wdata, rw_rdata;
+  // The packet's write and the primary pixel ids' are registered (rw_*_q, pr_*_q) and written a
+  // cycle later: the core's take, which enables them, and their data come from across the die,
+  // and the records are read only after the core's writes of the packet.
+  logic [4*RwW-1:0]   rw_wdata_q, rw_rdata;
+  logic               rw_we_q, pr_we_q;
+  logic [SlotW-1:0]   rw_slot_q, pr_slot_q;
+  logic [127:0]       pr_pixel_q;
   logic [1:0]         seq_lane_q;
-  always_comb begin
-    for (int r = 0; r < 4; r++) begin
-      rw_wdata[r*RwW +: RwW] = {ray_w_i[r*W +: W], ray_inv_len_i[r*W +: W],
-                                ray_dir_i[r*3*W +: 3*W], ray_org_i[r*3*W +: 3*W]};
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      rw_we_q <= 1'b0;
+      pr_we_q <= 1'b0;
+    end else begin
+      rw_we_q <= ray_i;
+      pr_we_q <= prim_i;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (ray_i) begin
+      rw_slot_q <= ray_slot_i;
+      for (int r = 0; r < 4; r++) begin
+        rw_wdata_q[r*RwW +: RwW] <= {ray_w_i[r*W +: W], ray_inv_len_i[r*W +: W],
+                                     ray_dir_i[r*3*W +: 3*W], ray_org_i[r*3*W +: 3*W]};
+      end
+    end
+    if (prim_i) begin
+      pr_slot_q  <= prim_slot_i;
+      pr_pixel_q <= prim_pixel_i;
     end
   end
   rc_ram #(
@@ -145,9 +169,9 @@ module rc_lane_store #(
     .OutReg(1'b0)
   ) u_rw (
     .clk_i,
-    .we_i   (ray_i),
-    .waddr_i(ray_slot_i),
-    .wdata_i(rw_wdata),
+    .we_i   (rw_we_q),
+    .waddr_i(rw_slot_q),
+    .wdata_i(rw_wdata_q),
     .re_i   (1'b1),
     .raddr_i(seq_ln_i[LaneW-1:2]),
     .rdata_o(rw_rdata)
@@ -207,9 +231,9 @@ module rc_lane_store #(
     .OutReg(1'b0)
   ) u_pix (
     .clk_i,
-    .we_i   (prim_i),
-    .waddr_i(prim_slot_i),
-    .wdata_i(prim_pixel_i),
+    .we_i   (pr_we_q),
+    .waddr_i(pr_slot_q),
+    .wdata_i(pr_pixel_q),
     .re_i   (1'b1),
     .raddr_i(fin_ln_i[LaneW-1:2]),
     .rdata_o(pix_rdata)

@@ -610,9 +610,10 @@ module rc_tracer #(
   logic [SlotW-1:0]         cws_slot;
   assign cws_slot = core_fb_pixel[PixSlot +: SlotW];
 
-  // A free shadow packet: the lowest, registered. It was free in the cycle before; a packet
-  // taken then is not offered again, as a shadow packet is never taken in two consecutive
-  // cycles (the one-entry shadow packet queue is full after a take, lt_ready).
+  // A free shadow packet: the lowest, registered. It was free in the cycle before. A packet
+  // taken at a close becomes busy at its push, the cycle after, and the next close is two
+  // cycles later still (lt_ready: none in the push's cycle, nor while the one-entry shadow
+  // packet queue is full), so a packet taken is not offered again.
   logic                     sp_free_any, sp_free_any_c;
   logic [SpW-1:0]           sp_free, sp_free_c;
   logic [ShadowPackets-1:0] sp_free_hot, sp_free_hot_c;
@@ -1007,17 +1008,22 @@ module rc_tracer #(
     // barrel shifter over the whole record in synthesis. A lane's origin and start triangle are
     // written into both packets when it has either ray (a lane without its ray is never read),
     // so the two packets' copies are the same registers (synthesis merges them).
+    // The rays' fields are loaded whenever a record is offered (geo_valid), not only when it
+    // is taken: the geometry FIFO holds it until the take, records come in order, and the
+    // decision reads the packets before (in dq_q, a cycle in which no record is taken), so the
+    // wide enables do not wait for geo_ready. Only the masks (and with them the mirror flag
+    // and depth) wait for the take.
     for (int r = 0; r < 4; r++) begin
-      if (geo_lane == 2'(r) && geo_take && geo_deeper && (geo_mirror || geo_refract)) begin
+      if (geo_lane == 2'(r) && geo_valid && geo_deeper && (geo_mirror || geo_refract)) begin
         gm.org[r*3*W +: 3*W]   = geo_p;
         gm.stri[r*32 +: 32]    = geo_tri;
       end
-      if (geo_lane == 2'(r) && geo_take && geo_deeper && geo_mirror) begin
-        gm.mask[r]             = 1'b1;
+      if (geo_lane == 2'(r) && geo_valid && geo_deeper && geo_mirror) begin
+        gm.mask[r]             = 1'b1;  // loaded at the take only
         gm.dir[r*3*W +: 3*W]   = geo_r;
         gm.w[r*W +: W]         = geo_w_mirror;
       end
-      if (geo_lane == 2'(r) && geo_take && geo_deeper && geo_refract) begin
+      if (geo_lane == 2'(r) && geo_valid && geo_deeper && geo_refract) begin
         gr.mask[r]             = 1'b1;
         gr.dir[r*3*W +: 3*W]   = geo_refr;
         gr.w[r*W +: W]         = geo_w_refract;
@@ -1027,26 +1033,37 @@ module rc_tracer #(
     gr.stri = gm.stri;
   end
 
+  // The packets' heads {mask, mirror, depth} and rays {org, dir, w, stri}, as child_t packs them.
+  localparam int unsigned HeadW = 5 + DepthW;
+  localparam int unsigned RaysW = 24 * W + 4 * W + 128;
+  logic [HeadW-1:0] gm_head_q, gr_head_q;
+  logic [RaysW-1:0] gm_rays_q, gr_rays_q;
+  assign gm_q = {gm_head_q, gm_rays_q};
+  assign gr_q = {gr_head_q, gr_rays_q};
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      gm_q <= '0;
-      gr_q <= '0;
+      gm_head_q <= '0;
+      gr_head_q <= '0;
     end else if (geo_take) begin
-      gm_q <= gm;
-      gr_q <= gr;
+      gm_head_q <= gm[HeadW+RaysW-1 -: HeadW];
+      gr_head_q <= gr[HeadW+RaysW-1 -: HeadW];
     end else if (dq_q && dq_geo_q) begin  // the decision took the last record's packets
-      gm_q.mask <= 4'd0;
-      gr_q.mask <= 4'd0;
+      gm_head_q[HeadW-1 -: 4] <= 4'd0;
+      gr_head_q[HeadW-1 -: 4] <= 4'd0;
     end
+  end
+  always_ff @(posedge clk_i) begin
+    gm_rays_q <= gm[RaysW-1:0];
+    gr_rays_q <= gr[RaysW-1:0];
   end
 
   // The decision: the mirror packet becomes the slot's current packet and the refraction packet
   // goes onto its stack; without a mirror packet the refraction packet is sent, or the stack's
-  // top; with neither the tree is done. It takes two cycles: in the first (dec) the slot and
-  // whether it has packets are registered (dq_*); in the second (dq_q) the slot's stack pointer
-  // is read and the decision carried out: a packet is sent or the stack's top read, the stack
-  // pointer and the tree's end written (the geometry, held in that cycle, leaves the last
-  // record's packets in gm_q and gr_q). A pop sends its packet in the cycle after (pop_q). No
+  // top; with neither the tree is done. It takes two cycles: in the first (dec) the slot,
+  // whether it has packets, its stack pointer and its stack addresses are registered (dq_*,
+  // stk_*); in the second (dq_q) the decision is carried out: a packet is sent or the stack's
+  // top read, the stack pointer and the tree's end written (the geometry, held in that cycle,
+  // leaves the last record's packets in gm_q and gr_q). A pop sends its packet in the cycle after (pop_q). No
   // decision is made in the second cycle nor in a pop's (dec_room), so the tree packet queue,
   // empty at the decision, has room for the packet.
   localparam int unsigned StkDepth = Slots * MaxBounces;
@@ -1062,19 +1079,43 @@ module rc_tracer #(
   assign dec_m_any = dec_geo && gm.mask != 4'd0;
   assign dec_r_any = dec_geo && gr.mask != 4'd0;
 
-  logic              dq_geo_q, dq_now_q, dq_push_q;
+  // The slot's stack pointer and its stack addresses are registered in the first cycle too:
+  // a pointer is written only in a decision's second cycle, in which none is made, so the
+  // registered one is the pointer of the second (DqSp_A). Each candidate slot's are made from
+  // registers, the decision's kind chooses among them, and the block RAM's address and read
+  // enable come from flip-flops.
+  logic              dq_geo_q, dq_now_q, dq_push_q, stk_re_q;
   logic [SlotW-1:0]  dq_slot_q;
-  logic [StkIdxW-1:0] stk_waddr, stk_raddr;
+  logic [DepthW-1:0] sp_geo, sp_seq, sp_fq, dec_sp;
+  logic [StkIdxW-1:0] wa_geo, wa_seq, wa_fq, ra_geo, ra_seq, ra_fq, stk_waddr_q, stk_raddr_q;
+  assign sp_geo = sp_q[geo_slot*DepthW +: DepthW];
+  assign sp_seq = sp_q[fs_slot_q*DepthW +: DepthW];
+  assign sp_fq  = sp_q[fq_slot*DepthW +: DepthW];
+  assign wa_geo = StkIdxW'(geo_slot * MaxBounces + 32'(sp_geo));
+  assign wa_seq = StkIdxW'(fs_slot_q * MaxBounces + 32'(sp_seq));
+  assign wa_fq  = StkIdxW'(fq_slot * MaxBounces + 32'(sp_fq));
+  assign ra_geo = StkIdxW'(geo_slot * MaxBounces + 32'(sp_geo) - 1);
+  assign ra_seq = StkIdxW'(fs_slot_q * MaxBounces + 32'(sp_seq) - 1);
+  assign ra_fq  = StkIdxW'(fq_slot * MaxBounces + 32'(sp_fq) - 1);
+  assign dec_sp = dec_geo ? sp_geo : dec_seq ? sp_seq : sp_fq;
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) dq_q <= 1'b0;
-    else dq_q <= dec;
+    if (!rst_ni) begin
+      dq_q     <= 1'b0;
+      stk_re_q <= 1'b0;
+    end else begin
+      dq_q     <= dec;
+      stk_re_q <= dec && !(dec_m_any || dec_r_any) && dec_sp != '0;
+    end
   end
   always_ff @(posedge clk_i) begin
     if (dec) begin
-      dq_geo_q   <= dec_geo;
-      dq_slot_q  <= dec_slot;
-      dq_now_q   <= dec_m_any || dec_r_any;
-      dq_push_q  <= dec_m_any && dec_r_any;
+      dq_geo_q    <= dec_geo;
+      dq_slot_q   <= dec_slot;
+      dq_now_q    <= dec_m_any || dec_r_any;
+      dq_push_q   <= dec_m_any && dec_r_any;
+      dq_sp       <= dec_sp;
+      stk_waddr_q <= dec_geo ? wa_geo : dec_seq ? wa_seq : wa_fq;
+      stk_raddr_q <= dec_geo ? ra_geo : dec_seq ? ra_seq : ra_fq;
     end
   end
   always_comb begin
@@ -1085,12 +1126,9 @@ module rc_tracer #(
       dec_r.mask = '0;
     end
   end
-  assign dq_sp     = sp_q[dq_slot_q*DepthW +: DepthW];
-  assign stk_waddr = StkIdxW'(dq_slot_q * MaxBounces + 32'(dq_sp));
-  assign stk_raddr = StkIdxW'(dq_slot_q * MaxBounces + 32'(dq_sp) - 1);
   assign dec_now   = dq_q && dq_now_q;
   assign dec_push  = dq_q && dq_push_q;
-  assign dec_pop   = dq_q && !dq_now_q && dq_sp != '0;
+  assign dec_pop   = stk_re_q;  // dq_q && !dq_now_q && dq_sp != 0
   assign dec_done  = dq_q && !dq_now_q && dq_sp == '0;
 
   // The stacks: a slot's MaxBounces entries from slot * MaxBounces; a word is never read in the
@@ -1102,10 +1140,10 @@ module rc_tracer #(
   ) u_stack (
     .clk_i,
     .we_i   (dec_push),
-    .waddr_i(stk_waddr),
+    .waddr_i(stk_waddr_q),
     .wdata_i(dec_r),
     .re_i   (dec_pop),
-    .raddr_i(stk_raddr),
+    .raddr_i(stk_raddr_q),
     .rdata_o(stk_top)
   );
 
@@ -1285,6 +1323,7 @@ module rc_tracer #(
 
   // A light's samples: the ambient term at light 0 (to the add queue, after a miss term in the
   // same cycle), the light's shadow packet assembled from the present ones.
+  logic              shp_q;  // a closed shadow packet is pushed (a cycle after its close)
   logic [LaneW-1:0]  lt_ln;
   logic [SlotW-1:0]  lt_slot;
   logic [1:0]        lt_lane;
@@ -1293,7 +1332,7 @@ module rc_tracer #(
   assign {lt_tri, lt_d0, lt_ln} = {lt_tag[HlTagW-1 -: 32], lt_tag[LaneW + 1], lt_tag[LaneW-1:0]};
   assign lt_slot     = lt_ln[LaneW-1:2];
   assign lt_lane     = lt_ln[1:0];
-  assign lt_ready    = !shq_count && sp_free_any && !mo_valid &&
+  assign lt_ready    = !shq_count && !shp_q && sp_free_any && !mo_valid &&
                        32'(pm_q) + 1 <= AddQ;
   assign lt_take     = lt_valid && lt_ready;
   assign lt_close    = lt_take && lt_lane_last;
@@ -1301,47 +1340,61 @@ module rc_tracer #(
   assign aq_push     = mo_valid || lt_amb_push;
   assign aq_wdata    = mo_valid ? {mo_ln, mo_term} : {lt_ln, lt_amb};
 
+  // The packet being assembled. A present sample's fields are loaded into its lane whenever it
+  // is offered (lt_valid), not only when taken: the light unit's output holds it until the
+  // take, samples come in order, and the packet before was pushed from these registers before
+  // (so the wide enables do not wait for lt_ready). Only the mask waits for the take. The
+  // closed packet is pushed a cycle after its last sample (shp_q), from the registers: no
+  // sample is taken in that cycle (lt_ready), nor in the next (the queue is full).
   logic [3:0]        as_mask_q, as_mask;
-  logic [12*W-1:0]   as_org_q, as_dir_q, as_org, as_dir;
-  logic [4*W-1:0]    as_t_hi_q, as_t_hi;
-  logic [127:0]      as_tri_q, as_tri;
-  logic [12*FW-1:0]  as_term_q, as_term;
+  logic [12*W-1:0]   as_org_q, as_dir_q;
+  logic [4*W-1:0]    as_t_hi_q;
+  logic [127:0]      as_tri_q;
+  logic [12*FW-1:0]  as_term_q;
+  logic              sh_close;
+  logic [3:0]        shp_mask_q;
+  logic              shp_d0_q;
+  logic [LightW-1:0] shp_light_q;
+  logic [SlotW-1:0]  shp_slot_q;
+  logic [SpW-1:0]    shp_sp_q;
+  logic [ShadowPackets-1:0] shp_hot_q;
   always_comb begin
     as_mask = as_mask_q;
-    as_org  = as_org_q;
-    as_dir  = as_dir_q;
-    as_t_hi = as_t_hi_q;
-    as_tri  = as_tri_q;
-    as_term = as_term_q;
-    for (int r = 0; r < 4; r++) begin  // constant part-selects, as for the tree's packets
-      if (lt_lane == 2'(r) && lt_take && lt_present) begin
-        as_mask[r]              = 1'b1;
-        as_org[r*3*W +: 3*W]    = lt_org;
-        as_dir[r*3*W +: 3*W]    = lt_dir;
-        as_t_hi[r*W +: W]       = lt_t_hi;
-        as_tri[r*32 +: 32]      = lt_tri;
-        as_term[r*3*FW +: 3*FW] = lt_term;
-      end
+    for (int r = 0; r < 4; r++) begin
+      if (lt_lane == 2'(r) && lt_take && lt_present) as_mask[r] = 1'b1;
     end
   end
-  assign shq_push  = lt_close && as_mask != 4'd0;
-  assign shq_wdata = {as_mask, as_org, as_dir, as_t_hi, as_tri, lt_d0, lt_light, lt_slot,
-                       sp_free};
+  assign sh_close  = lt_close && as_mask != 4'd0;
+  assign shq_push  = shp_q;
+  assign shq_wdata = {shp_mask_q, as_org_q, as_dir_q, as_t_hi_q, as_tri_q, shp_d0_q, shp_light_q,
+                      shp_slot_q, shp_sp_q};
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       as_mask_q <= '0;
-    end else if (lt_take) begin
-      as_mask_q <= lt_lane_last ? 4'd0 : as_mask;
+      shp_q     <= 1'b0;
+    end else begin
+      if (lt_take) as_mask_q <= lt_lane_last ? 4'd0 : as_mask;
+      shp_q <= sh_close;
     end
   end
   always_ff @(posedge clk_i) begin
-    if (lt_take) begin
-      as_org_q  <= as_org;
-      as_dir_q  <= as_dir;
-      as_t_hi_q <= as_t_hi;
-      as_tri_q  <= as_tri;
-      as_term_q <= as_term;
+    for (int r = 0; r < 4; r++) begin  // constant part-selects, as for the tree's packets
+      if (lt_lane == 2'(r) && lt_valid && lt_present) begin
+        as_org_q[r*3*W +: 3*W]    <= lt_org;
+        as_dir_q[r*3*W +: 3*W]    <= lt_dir;
+        as_t_hi_q[r*W +: W]       <= lt_t_hi;
+        as_tri_q[r*32 +: 32]      <= lt_tri;
+        as_term_q[r*3*FW +: 3*FW] <= lt_term;
+      end
+    end
+    if (sh_close) begin
+      shp_mask_q  <= as_mask;
+      shp_d0_q    <= lt_d0;
+      shp_light_q <= lt_light;
+      shp_slot_q  <= lt_slot;
+      shp_sp_q    <= sp_free;
+      shp_hot_q   <= sp_free_hot;
     end
   end
 
@@ -1357,21 +1410,22 @@ module rc_tracer #(
     end else begin
       for (int k = 0; k < ShadowPackets; k++) begin  // decoded writes
         if (cwsf_hot[k]) spb_q[k] <= 1'b0;
-        if (shq_push && sp_free_hot[k]) spb_q[k] <= 1'b1;
+        if (shq_push && shp_hot_q[k]) spb_q[k] <= 1'b1;
       end
     end
   end
   always_ff @(posedge clk_i) begin
     if (cw_sh) sp_cnt_q[cw_sp] <= sp_cnt_q[cw_sp] - 1'b1;
     if (shq_push) begin
-      sp_cnt_q[sp_free]   <= rc_pkg::ray_count(as_mask);
+      sp_cnt_q[shp_sp_q] <= rc_pkg::ray_count(shp_mask_q);
     end
   end
 
-  // The shadow packets' terms, a word of four per packet: written with the packet, read at a
-  // reached ray's write, its lane's term registered a cycle later (rs_q) and added in the
-  // cycle after (rs2_q). The word read belongs to a packet in flight and the word written to a
-  // free one, so a word is never read in the cycle it is written.
+  // The shadow packets' terms, a word of four per packet: written at the packet's push (from
+  // the assembly's registers), read at a reached ray's write, its lane's term registered a cycle
+  // later (rs_q) and added in the cycle after (rs2_q). The word read belongs to a packet whose
+  // rays are out and the word written to one whose rays are not yet, so a word is never read in
+  // the cycle it is written.
   logic [12*FW-1:0] term_word;
   rc_ram #(
     .Width (12 * FW),
@@ -1380,8 +1434,8 @@ module rc_tracer #(
   ) u_terms (
     .clk_i,
     .we_i   (shq_push),
-    .waddr_i(sp_free),
-    .wdata_i(as_term),
+    .waddr_i(shp_sp_q),
+    .wdata_i(as_term_q),
     .re_i   (cw_reached),
     .raddr_i(cw_sp),
     .rdata_o(term_word)
@@ -1478,7 +1532,14 @@ module rc_tracer #(
   logic [23:0]      lb_rgb;
 
   assign fw_ln    = {fw_slot_q, fw_lane_q};
-  assign fw_room  = oq_count + 3'(st_valid_q) + 3'(st2_valid_q) < 3'd4;
+  // The room: fw_cnt_q counts the output queue's entries and the writes in its two stages
+  // (FwCnt_A), so the room is a compare of a register with a constant.
+  logic [2:0] fw_cnt_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) fw_cnt_q <= '0;
+    else fw_cnt_q <= fw_cnt_q + 3'(fw_write) - 3'(oq_valid && fb_ready_i);
+  end
+  assign fw_room  = fw_cnt_q < 3'd4;
   assign fw_issue = fw_busy_q && fw_room;
   assign fw_write = fw_issue && pmask_q[fw_slot_q][fw_lane_q];
   assign fw_free  = fw_issue && fw_lane_q == 2'd3;
@@ -1518,8 +1579,6 @@ module rc_tracer #(
       fw_slot_q  <= '0;
       fw_lane_q  <= '0;
       st_valid_q  <= 1'b0;
-      st_hit_q    <= 1'b0;
-      st_rec_q    <= '0;
       st2_valid_q <= 1'b0;
       st2_hit_q   <= 1'b0;
       st2_rec_q   <= '0;
@@ -1538,17 +1597,16 @@ module rc_tracer #(
         st2_hit_q <= st_hit_q;
         st2_rec_q <= st_rec_q;
       end
-      if (fw_write) begin
-        st_hit_q <= ln_fin_hit;
-        st_rec_q <= {ln_fin_pixel, ln_fin_rgb, ln_fin_hit, ln_fin_tri, ln_fin_t, ln_fin_u,
-                     ln_fin_v, ln_fin_hit ? ln_fin_lights : '0, ln_fin_btri, ln_fin_rtri};
-      end
     end
   end
 
-  // A hit's colour is its sums' bytes, a miss's the core's write.
+  // The first stage loads in every cycle, without an enable (fw_write's fan-out): only a
+  // write's (st_valid_q) goes on. A hit's colour is its sums' bytes, a miss's the core's write.
   always_ff @(posedge clk_i) begin
-    if (fw_write) st_sum_q <= ln_fin_sum;
+    st_hit_q <= ln_fin_hit;
+    st_rec_q <= {ln_fin_pixel, ln_fin_rgb, ln_fin_hit, ln_fin_tri, ln_fin_t, ln_fin_u,
+                 ln_fin_v, ln_fin_hit ? ln_fin_lights : '0, ln_fin_btri, ln_fin_rtri};
+    st_sum_q <= ln_fin_sum;
   end
   always_comb begin
     oq_wdata = st2_rec_q;
@@ -1604,7 +1662,7 @@ module rc_tracer #(
     end
   end
   always_ff @(posedge clk_i) begin
-    ev_rays_q     <= shq_push ? rc_pkg::ray_count(as_mask) : 3'd0;
+    ev_rays_q     <= sh_close ? rc_pkg::ray_count(as_mask) : 3'd0;
     ev_amb_q      <= lt_amb_push;
     ev_lt_end_q   <= lt_lane_last && lt_light_last;
     ev_lt_slot_q  <= lt_slot;
@@ -1846,9 +1904,18 @@ module rc_tracer #(
   // The registered free slot is free: the slot taken in a cycle is not offered in the next.
   SlotFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                slot_take |-> !busy_q[free_idx]);
-  // The registered free shadow packet is free: no packet is taken in two consecutive cycles.
+  // The registered free shadow packet is free: closes are at least three cycles apart.
   SpFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                             shq_push |-> !spb_q[sp_free]);
+                             sh_close |-> !spb_q[sp_free]);
+  // The final write's count is the output queue's entries and the writes in its two stages.
+  FwCnt_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            fw_cnt_q == oq_count + 3'(st_valid_q) + 3'(st2_valid_q));
+  // The pointer registered in a decision's first cycle is its slot's in the second.
+  DqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                           dq_q |-> dq_sp == sp_q[dq_slot_q*DepthW +: DepthW]);
+  // The registered read enable is the pop's.
+  StkRe_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            stk_re_q == (dq_q && !dq_now_q && dq_sp != '0));
   // A push has room in its slot's MaxBounces entries (a tree pushes at most once per level).
   PushRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                dec_push |-> 32'(dq_sp) < MaxBounces);
