@@ -143,8 +143,13 @@ module rc_credit_fifo #(
   // from the write port (the entry if there is a write, a value out_v_q marks empty otherwise):
   // its enable is out_free alone and its select a register compare, so neither the write's valid
   // nor the bypass decision reaches the head's Width clock enables.
+  // With Depth 1 a write never meets a valid head (one credit: HeadFree1_A), so the head loads
+  // only while it is empty, and ready_i reaches no clock enable at all (the tracer's one-packet
+  // queues, hundreds of bits wide, popped by the core's take).
+  logic head_load;
+  assign head_load = (Depth == 1) ? ~out_v_q : out_free;
   always_ff @(posedge clk_i) begin
-    if (out_free) begin
+    if (head_load) begin
       out_q <= ram_any ? ram_data : wr_data_i;
     end
   end
@@ -205,6 +210,9 @@ module rc_credit_fifo #(
     .on_o (checks_on)
   );
 
+  // Depth 1: a write finds the head empty (its one credit was free at the take).
+  HeadFree1_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                Depth == 1 && wr_valid_i |-> !out_v_q);
   // An operation may only enter the pipeline with a credit, or its result could find no slot.
   TakeHasCredit_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                     take_i |-> credit_o);

@@ -428,7 +428,8 @@ module rc_tracer #(
   assign free_hot = use_hi ? hi_hot_q : lo_hot_q;
 
   // The controller's own packets first: shadow packets, then the trees' packets.
-  logic ext_take;
+  logic ext_take, slot_offer;
+  assign slot_offer     = pkt_valid_i && free_any;
   assign pkt_ready_o    = core_pkt_ready && !shq_valid && !bq_valid && free_any;
   assign ext_take       = pkt_valid_i && pkt_ready_o;
   assign slot_take      = ext_take && pkt_mask_i != 4'd0;
@@ -1063,9 +1064,9 @@ module rc_tracer #(
   // whether it has packets, its stack pointer and its stack addresses are registered (dq_*,
   // stk_*); in the second (dq_q) the decision is carried out: a packet is sent or the stack's
   // top read, the stack pointer and the tree's end written (the geometry, held in that cycle,
-  // leaves the last record's packets in gm_q and gr_q). A pop sends its packet in the cycle after (pop_q). No
-  // decision is made in the second cycle nor in a pop's (dec_room), so the tree packet queue,
-  // empty at the decision, has room for the packet.
+  // leaves the last record's packets in gm_q and gr_q). A pop sends its packet in the cycle
+  // after (pop_q). No decision is made in the second cycle nor in a pop's (dec_room), so the
+  // tree packet queue, empty at the decision, has room for the packet.
   localparam int unsigned StkDepth = Slots * MaxBounces;
   localparam int unsigned ChildW   = 4 + 1 + DepthW + 24 * W + 4 * W + 128;  // child_t's bits
   localparam int unsigned StkIdxW  = (StkDepth > 1) ? $clog2(StkDepth) : 1;
@@ -1712,8 +1713,11 @@ module rc_tracer #(
                    5'(ev_amb_q && lt_hot[s]) + 5'(fq_hot[s]) - 5'(cws_hot[s]) - 5'(aq_hot[s]) -
                    5'(ev_lt_end_q && lt_hot[s]);
         wk_q[s*WkW +: WkW] <= wk_q[s*WkW +: WkW] + {{(WkW - 5){wk_delta[4]}}, wk_delta};
-        if (slot_take && free_hot[s]) begin
-          busy_q[s] <= 1'b1;
+        // The free slot's state is cleared while a primary packet is offered (slot_offer), not
+        // only when it is taken: the slot is free (SlotOffer_A), and nothing reads a free
+        // slot's state but busy_q, which alone waits for the core's take.
+        if (slot_offer && free_hot[s]) begin
+          busy_q[s] <= slot_take;
           td_q[s]   <= 1'b0;
           fin_q[s]  <= 1'b0;
           cf_q[s]   <= 1'b0;
@@ -1746,7 +1750,7 @@ module rc_tracer #(
 
   // The slots' payload (no reset: written before it is read).
   always_ff @(posedge clk_i) begin
-    if (ext_take) begin
+    if (slot_offer) begin  // the free slot's, as above
       pmask_q[free_idx] <= pkt_mask_i;
       cmask_q[free_idx] <= pkt_mask_i;
     end
@@ -1904,6 +1908,9 @@ module rc_tracer #(
   // The registered free slot is free: the slot taken in a cycle is not offered in the next.
   SlotFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                slot_take |-> !busy_q[free_idx]);
+  // The free slot offered to a primary packet is free, taken or not.
+  SlotOffer_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                                slot_offer |-> !busy_q[free_idx]);
   // The registered free shadow packet is free: closes are at least three cycles apart.
   SpFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                              sh_close |-> !spb_q[sp_free]);
