@@ -28,7 +28,8 @@
 //   read that is not used, then the write), which adds never enter in its cycle. One add or
 //   zero per cycle; the sums of the two before it are forwarded to it when they are to its
 //   lane, so any sequence of them is exact.
-// - Reads (registered: the lane given in a cycle is on the outputs in the next one):
+// - Reads (registered: the lane given in a cycle is on the outputs in the next one; seq_ln_i's
+//   two cycles later, its address registered before the block RAMs):
 //     seq_ln_i -> seq_*: the current packet's ray, weight, triangle, t and d'z (the sequencer);
 //     fin_ln_i -> fin_*: the primary record, pixel id, sums, lights and the two triangles (the
 //              final write).
@@ -141,6 +142,7 @@ module rc_lane_store #(
   logic [SlotW-1:0]   rw_slot_q, pr_slot_q;
   logic [127:0]       pr_pixel_q;
   logic [1:0]         seq_lane_q;
+  logic [LaneW-1:0]   seq_ln_q;  // the sequencer's lane, registered beside the block RAMs
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       rw_we_q <= 1'b0;
@@ -173,7 +175,7 @@ module rc_lane_store #(
     .waddr_i(rw_slot_q),
     .wdata_i(rw_wdata_q),
     .re_i   (1'b1),
-    .raddr_i(seq_ln_i[LaneW-1:2]),
+    .raddr_i(seq_ln_q[LaneW-1:2]),
     .rdata_o(rw_rdata)
   );
   // The lane: a multiplexer (an indexed part-select of the word would be a shifter).
@@ -200,7 +202,7 @@ module rc_lane_store #(
     .waddr_i(cw_ln_i),
     .wdata_i({cw_tri_i, cw_t_i, cw_dz_i}),
     .re_i   (1'b1),
-    .raddr_i(seq_ln_i),
+    .raddr_i(seq_ln_q),
     .rdata_o({seq_tri_o, seq_t_o, seq_dz_o})
   );
 
@@ -358,7 +360,8 @@ module rc_lane_store #(
       a_zero_q <= l_zero_q;
     end
     if (a_q) fwd_data_q <= a_new;
-    seq_lane_q <= seq_ln_i[1:0];
+    seq_ln_q   <= seq_ln_i;
+    seq_lane_q <= seq_ln_q[1:0];
     fin_lane_q <= fin_ln_i[1:0];
   end
 

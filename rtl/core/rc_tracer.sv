@@ -707,8 +707,10 @@ module rc_tracer #(
   assign fs_hit  = fs_hits_q[fs_lane];
   assign fs_last = (fs_lanes_q & fs_hits_q & ~(4'd1 << fs_lane)) == 4'd0;  // its last hit
 
-  // The lane's records (u_lanes) are read a cycle ahead: at a pop its first lane, at a step the
-  // next one, else the lane again; so seq_* always hold fs_lane's.
+  // The lane's records (u_lanes) are read two cycles ahead (the address registered beside the
+  // block RAMs, then their read register): at a pop its first lane, at a step the next one,
+  // else the lane again; so seq_* hold fs_lane's from the second cycle after a pop or a step
+  // on, and the sequencer waits one cycle after each (fs_wait_q): a lane per two cycles.
   logic [LaneW-1:0] seq_ln;
   logic [7*W-1:0]   seq_ray;
   logic [W-1:0]     seq_w, seq_t, seq_dz;
@@ -746,7 +748,8 @@ module rc_tracer #(
   // read.
   logic fs_final, dec_seq;
   assign fs_final     = fs_hits_q == 4'd0 && (fs_lanes_q & ~(4'd1 << fs_lane)) == 4'd0;
-  assign fs_step      = fs_busy_q && (fs_hit ? fs_room_hit : fs_room_miss) &&
+  logic fs_wait_q;
+  assign fs_step      = fs_busy_q && !fs_wait_q && (fs_hit ? fs_room_hit : fs_room_miss) &&
                         (!fs_final || (dec_room && !geo_end));
   assign dec_seq      = fs_step && fs_final;
   logic fs_alloc, mi_issue;
@@ -805,6 +808,7 @@ module rc_tracer #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       fs_busy_q        <= 1'b0;
+      fs_wait_q        <= 1'b0;
       fs_slot_q        <= '0;
       fs_lanes_q       <= '0;
       fs_hits_q        <= '0;
@@ -817,6 +821,7 @@ module rc_tracer #(
       ns_tag1_q        <= '0;
       ns_tag_q         <= '0;
     end else begin
+      fs_wait_q <= (fq_pop && fq_work != 4'd0) || fs_step;
       if (fq_pop && fq_work != 4'd0) begin
         fs_busy_q  <= 1'b1;
         fs_slot_q  <= fq_slot;
