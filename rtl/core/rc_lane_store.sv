@@ -152,18 +152,16 @@ module rc_lane_store #(
       pr_we_q <= prim_i;
     end
   end
+  // The addresses and data load in every cycle, without an enable (the take's fan-out): only
+  // a write's are used, in the cycle after it.
   always_ff @(posedge clk_i) begin
-    if (ray_i) begin
-      rw_slot_q <= ray_slot_i;
-      for (int r = 0; r < 4; r++) begin
-        rw_wdata_q[r*RwW +: RwW] <= {ray_w_i[r*W +: W], ray_inv_len_i[r*W +: W],
-                                     ray_dir_i[r*3*W +: 3*W], ray_org_i[r*3*W +: 3*W]};
-      end
+    rw_slot_q <= ray_slot_i;
+    for (int r = 0; r < 4; r++) begin
+      rw_wdata_q[r*RwW +: RwW] <= {ray_w_i[r*W +: W], ray_inv_len_i[r*W +: W],
+                                   ray_dir_i[r*3*W +: 3*W], ray_org_i[r*3*W +: 3*W]};
     end
-    if (prim_i) begin
-      pr_slot_q  <= prim_slot_i;
-      pr_pixel_q <= prim_pixel_i;
-    end
+    pr_slot_q  <= prim_slot_i;
+    pr_pixel_q <= prim_pixel_i;
   end
   rc_ram #(
     .Width (4 * RwW),

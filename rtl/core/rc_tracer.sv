@@ -995,7 +995,11 @@ module rc_tracer #(
   assign geo_slot   = geo_ln[LaneW-1:2];
   assign geo_lane   = geo_ln[1:0];
   assign geo_depth  = geo_tag[LaneW + 2 +: DepthW];
-  assign geo_deeper = geo_depth < max_bounces_i;
+  // max_bounces_i registered here (quasi-static): it comes from the board's register file,
+  // across the die, into the children's enables.
+  logic [DepthW-1:0] max_bounces_q;
+  always_ff @(posedge clk_i) max_bounces_q <= max_bounces_i;
+  assign geo_deeper = geo_depth < max_bounces_q;
   // The decision waits while the sequencer still issues the packet's misses (it reads the
   // packet's weights, which the decision replaces).
   assign geo_ready  = !dq_q && (!geo_last || (dec_room && !(fs_busy_q && fs_slot_q == geo_slot)));
@@ -1394,14 +1398,14 @@ module rc_tracer #(
         as_term_q[r*3*FW +: 3*FW] <= lt_term;
       end
     end
-    if (sh_close) begin
-      shp_mask_q  <= as_mask;
-      shp_d0_q    <= lt_d0;
-      shp_light_q <= lt_light;
-      shp_slot_q  <= lt_slot;
-      shp_sp_q    <= sp_free;
-      shp_hot_q   <= sp_free_hot;
-    end
+    // Loaded in every cycle (read only in the cycle after a close, shp_q): the mask as it is
+    // at a close, whose sample is taken.
+    shp_mask_q  <= as_mask_q | (lt_present ? 4'd1 << lt_lane : 4'd0);
+    shp_d0_q    <= lt_d0;
+    shp_light_q <= lt_light;
+    shp_slot_q  <= lt_slot;
+    shp_sp_q    <= sp_free;
+    shp_hot_q   <= sp_free_hot;
   end
 
   // The shadow packets' entries.
@@ -1793,11 +1797,11 @@ module rc_tracer #(
     .prim_slot_i      (free_idx),
     .prim_pixel_i     (pkt_pixel_i),
     .ray_i            (ext_take || bq_pop),
-    .ray_slot_i       (bq_pop ? bq_slot : free_idx),
+    .ray_slot_i       (bq_valid && !shq_valid ? bq_slot : free_idx),
     .ray_org_i        (core_pkt_org),
     .ray_dir_i        (core_pkt_dir),
     .ray_inv_len_i    (core_pkt_inv_len),
-    .ray_w_i          (bq_pop ? bq_w : {4{FpOne}}),
+    .ray_w_i          (bq_valid && !shq_valid ? bq_w : {4{FpOne}}),
     .cw_i             (cw_cur),
     .cw_ln_i          (cw_ln),
     .cw_d0_i          (cw_d0),
@@ -1913,6 +1917,10 @@ module rc_tracer #(
   // The registered free slot is free: the slot taken in a cycle is not offered in the next.
   SlotFree_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                slot_take |-> !busy_q[free_idx]);
+  // The closed packet's mask is the one its registers were loaded with.
+  ShpMask_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              sh_close |-> as_mask == (as_mask_q | (lt_present ? 4'd1 << lt_lane
+                                                                               : 4'd0)));
   // The free slot offered to a primary packet is free, taken or not.
   SlotOffer_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 slot_offer |-> !busy_q[free_idx]);
