@@ -408,7 +408,7 @@ module rc_board #(
         8 * (rc_pkg::ImageMaterialEta + 4 - rc_pkg::ImageMaterialKd);
     // The generator's packets reach the tree controller through a register (a one-entry queue:
     // one packet per two cycles, where the lit frame takes one per 24 or more): the core's
-    // take and the generator's advance, at opposite ends of the die, no longer meet in a cycle.
+    // take and the generator's advance, placed apart, no longer meet in a cycle.
     localparam int unsigned PktW = 4 + 28 * W + 128;
     logic            pq_valid, pq_ready, pq_count;
     logic [PktW-1:0] pq_rdata;

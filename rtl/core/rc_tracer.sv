@@ -698,7 +698,7 @@ module rc_tracer #(
   logic geo_end;
   assign fq_pop   = fq_valid && !fs_busy_q && (fq_work != 4'd0 || (dec_room && !geo_end));
 
-  // The sequencer: the popped packet's lanes, one per cycle.
+  // The sequencer: the popped packet's lanes, one per two cycles (fs_wait_q, below).
   logic [SlotW-1:0] fs_slot_q;
   logic [3:0]       fs_lanes_q, fs_hits_q;
   logic [1:0]       fs_lane;
