@@ -1082,7 +1082,7 @@ module rc_tracer #(
   logic              dec, dec_now, dec_push, dec_pop, dec_done, dec_m_any, dec_r_any;
   logic [SlotW-1:0]  dec_slot, pop_slot_q;
   child_t            dec_m, dec_r, stk_top;
-  logic [DepthW-1:0] dq_sp;
+  logic [DepthW-1:0] dq_sp_q;
   assign dec       = dec_geo || dec_seq || (fq_pop && fq_work == 4'd0);
   assign dec_slot  = dec_geo ? geo_slot : dec_seq ? fs_slot_q : fq_slot;
   // Outside dec_geo there are no packets: a packet without rays is neither sent nor pushed.
@@ -1123,7 +1123,7 @@ module rc_tracer #(
       dq_slot_q   <= dec_slot;
       dq_now_q    <= dec_m_any || dec_r_any;
       dq_push_q   <= dec_m_any && dec_r_any;
-      dq_sp       <= dec_sp;
+      dq_sp_q     <= dec_sp;
       stk_waddr_q <= dec_geo ? wa_geo : dec_seq ? wa_seq : wa_fq;
       stk_raddr_q <= dec_geo ? ra_geo : dec_seq ? ra_seq : ra_fq;
     end
@@ -1138,8 +1138,8 @@ module rc_tracer #(
   end
   assign dec_now   = dq_q && dq_now_q;
   assign dec_push  = dq_q && dq_push_q;
-  assign dec_pop   = stk_re_q;  // dq_q && !dq_now_q && dq_sp != 0
-  assign dec_done  = dq_q && !dq_now_q && dq_sp == '0;
+  assign dec_pop   = stk_re_q;  // dq_q && !dq_now_q && dq_sp_q != 0
+  assign dec_done  = dq_q && !dq_now_q && dq_sp_q == '0;
 
   // The stacks: a slot's MaxBounces entries from slot * MaxBounces; a word is never read in the
   // cycle it is written (one decision at a time).
@@ -1746,8 +1746,8 @@ module rc_tracer #(
             cf_q[s] <= 1'b0;
           end
           if (dec_hot[s]) begin
-            if (dec_push) sp_q[s*DepthW +: DepthW] <= dq_sp + 1'b1;
-            if (dec_pop) sp_q[s*DepthW +: DepthW] <= dq_sp - 1'b1;
+            if (dec_push) sp_q[s*DepthW +: DepthW] <= dq_sp_q + 1'b1;
+            if (dec_pop) sp_q[s*DepthW +: DepthW] <= dq_sp_q - 1'b1;
             if (dec_done) td_q[s] <= 1'b1;
           end
           if (!fw_busy_q && dn_hot[s]) fin_q[s] <= 1'b1;
@@ -1932,13 +1932,13 @@ module rc_tracer #(
                             fw_cnt_q == oq_count + 3'(st_valid_q) + 3'(st2_valid_q));
   // The pointer registered in a decision's first cycle is its slot's in the second.
   DqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                           dq_q |-> dq_sp == sp_q[dq_slot_q*DepthW +: DepthW]);
+                           dq_q |-> dq_sp_q == sp_q[dq_slot_q*DepthW +: DepthW]);
   // The registered read enable is the pop's.
   StkRe_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                            stk_re_q == (dq_q && !dq_now_q && dq_sp != '0));
+                            stk_re_q == (dq_q && !dq_now_q && dq_sp_q != '0));
   // A push has room in its slot's MaxBounces entries (a tree pushes at most once per level).
   PushRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                               dec_push |-> 32'(dq_sp) < MaxBounces);
+                               dec_push |-> 32'(dq_sp_q) < MaxBounces);
 `endif
 
 endmodule
