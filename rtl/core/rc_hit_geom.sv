@@ -173,14 +173,16 @@ module rc_hit_geom #(
   assign ready_o = credit & in_free_q;
   assign take    = valid_i & ready_o;
 
-  // The input register (loaded when taken; no reset: slot_q says when it holds a hit).
+  // The input register (no reset: slot_q says when it holds a hit) loads in every cycle the
+  // unit is ready, taken or not: the hit before no longer needs it then (a take would
+  // overwrite it too), so the enable is ready_o's two flip-flops, not valid_i's net.
   logic [TagW-1:0] tag_q;
   logic [3*W-1:0]  org_q, dir_q, n_q;
   logic [W-1:0]    ilen_q, t_q, eta_q, w_q, mirror_q, transmit_q;
   logic            back_q;
 
   always_ff @(posedge clk_i) begin
-    if (take) begin
+    if (ready_o) begin
       tag_q      <= tag_i;
       org_q      <= org_i;
       dir_q      <= dir_i;

@@ -40,7 +40,8 @@
 //   one per Period x light_count_i cycles with more lights (rc_hit_geom and rc_light_term each
 //   take one job per Period cycles).
 // - Configuration: ambient_i, light_count_i (0 .. MaxLights) and the lights are quasi-static:
-//   they may change only while no hit is in the unit.
+//   they may change only while no hit is in the unit. The unit registers them (a change is seen
+//   from the next cycle on, before a hit taken after it reaches them).
 // - Parameters: ExpW, FracW: the number format; TagW: tag bits (>= 1); MaxLights (>= 1):
 //   docs/spec.toml [light] max_lights; FixBits, ExpBits: [light] fixed_bits, exponent_bits;
 //   Period: [light] unit_period, the cycles per hit of rc_hit_geom and per job of rc_light_term.
@@ -195,8 +196,21 @@ module rc_hit_light #(
   logic [1:0]        wk_q;          // the next lane to fill
   logic [3:0]        lanes_q;       // bank b's last lane at [2b +: 2]
 
+  // The configuration is registered here, loaded in every cycle (cfg_*_q): the register file
+  // that holds it is across the die, and its nets ran into the split's and the issue side's
+  // control. It is quasi-static, and a hit reaches the split many cycles after it enters
+  // rc_hit_geom, so the registers hold the configuration it was taken with.
+  logic               cfg_none_q;     // no lights
+  logic [CountW-1:0]  cfg_last_q;     // the last light's index, light_count_i - 1
+  logic [W-1:0]       cfg_amb_q;
+  always_ff @(posedge clk_i) begin
+    cfg_none_q <= light_count_i == '0;
+    cfg_last_q <= light_count_i - CountW'(1);
+    cfg_amb_q  <= ambient_i;
+  end
+
   assign {hg_tag_hit, hg_last, hg_mat} = hg_tag;
-  assign no_lights      = light_count_i == '0;
+  assign no_lights      = cfg_none_q;
   assign fill_bank_full = wb_q ? full_q[1] : full_q[0];
   assign hg_ready       = (geo_count != CntFW'(GeoDepth)) & (no_lights | ~fill_bank_full);
   assign hg_take        = hg_valid & hg_ready;
@@ -239,7 +253,7 @@ module rc_hit_light #(
   assign {iss_tag, iss_p, iss_n, iss_view, iss_kd, iss_ks, iss_ns, iss_w} =
       lane_mem_q[{rb_q, rk_q}];
   assign lane_last  = rk_q == lanes_q[2*rb_q +: 2];
-  assign light_last = CountW'(rl_q) == light_count_i - CountW'(1);
+  assign light_last = CountW'(rl_q) == cfg_last_q;
   assign lt_take    = iss_valid & lt_ready;
 
   always_comb begin
@@ -275,9 +289,17 @@ module rc_hit_light #(
     end
   end
 
-  // The light of the issue side's index (an AND-OR select over the configuration).
-  logic             sel_dir;
-  logic [3*W-1:0]   sel_pos, sel_col;
+  // The light of the issue side's index (an AND-OR select over the configuration), registered
+  // (sel_*_q, loaded in every cycle): rl_q changes only at a take, and rc_light_term takes a job
+  // at most every other cycle (Period >= 2), so at a take the registers hold rl_q's light
+  // (LightSel_A).
+  logic             sel_dir, sel_dir_q;
+  logic [3*W-1:0]   sel_pos, sel_col, sel_pos_q, sel_col_q;
+  always_ff @(posedge clk_i) begin
+    sel_dir_q <= sel_dir;
+    sel_pos_q <= sel_pos;
+    sel_col_q <= sel_col;
+  end
   always_comb begin
     sel_dir = 1'b0;
     sel_pos = '0;
@@ -309,16 +331,16 @@ module rc_hit_light #(
   ) u_light (
     .clk_i,
     .rst_ni,
-    .ambient_i,
+    .ambient_i  (cfg_amb_q),
     .valid_i    (iss_valid),
     .ready_o    (lt_ready),
     .tag_i      ({iss_tag, rl_q, lane_last, light_last, iss_p}),
     .p_i        (iss_p),
     .n_i        (iss_n),
     .v_i        (iss_view),
-    .dir_light_i(sel_dir),
-    .lpos_i     (sel_pos),
-    .lcol_i     (sel_col),
+    .dir_light_i(sel_dir_q),
+    .lpos_i     (sel_pos_q),
+    .lcol_i     (sel_col_q),
     .kd_i       (iss_kd),
     .ks_i       (iss_ks),
     .ns_i       (iss_ns),
@@ -352,6 +374,10 @@ module rc_hit_light #(
   // The issue side's light index stays below the count while it issues.
   LightIndex_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                  iss_valid |-> CountW'(rl_q) < light_count_i);
+  // A job is taken with its light's configuration in the select registers.
+  LightSel_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               lt_take |-> {sel_dir_q, sel_pos_q, sel_col_q} ==
+                                           {sel_dir, sel_pos, sel_col});
   // A packet has at most four hits.
   PacketLanes_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   fill && wk_q == 2'd3 |-> hg_last);

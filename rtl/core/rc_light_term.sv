@@ -201,6 +201,9 @@ module rc_light_term #(
   assign ready_o = credit & in_free_q;
   assign take    = valid_i & ready_o;
 
+  // The input register loads in every cycle the unit is ready, taken or not: the job before no
+  // longer needs it then (a take would overwrite it too), so the enable is ready_o's two
+  // flip-flops, not valid_i's net.
   logic [TagW-1:0]    tag_q;
   logic [3*W-1:0]     p_q, n_q, v_q, lpos_q, lcol_q, kd_q, ks_q;
   logic [ExpBits-1:0] ns_q;
@@ -208,7 +211,7 @@ module rc_light_term #(
   logic               dirl_q;
 
   always_ff @(posedge clk_i) begin
-    if (take) begin
+    if (ready_o) begin
       tag_q  <= tag_i;
       p_q    <= p_i;
       n_q    <= n_i;

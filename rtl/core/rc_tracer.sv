@@ -428,56 +428,91 @@ module rc_tracer #(
   assign free_hot = use_hi ? hi_hot_q : lo_hot_q;
 
   // The controller's own packets first: shadow packets, then the trees' packets.
+  // The queues' valid bits select about a thousand multiplexer bits into the core's set-up unit
+  // and the lane records' ray write: each is also five kept copies (rc_reg_copies), loaded from
+  // its queue's next valid (a one-entry queue: a push into an empty queue, or a packet held and
+  // not popped), so no one flip-flop's net spans them all (ShqSel_A, BqSel_A). Copy 0 makes the
+  // handshakes, 1 the origins, 2 the directions and the rest of the rays, 3 the pixel ids and
+  // start triangles, 4 the lane records' slot and weights.
+  localparam int unsigned SelCopies = 5;
+  logic [SelCopies-1:0] shq_sel, bq_sel;
+  rc_reg_copies #(
+    .Width   (1),
+    .Copies  (SelCopies),
+    .HasReset(1'b1)
+  ) u_shq_sel (
+    .clk_i,
+    .rst_ni,
+    .d_i(shq_push || (shq_valid && !shq_pop)),
+    .q_o(shq_sel)
+  );
+  rc_reg_copies #(
+    .Width   (1),
+    .Copies  (SelCopies),
+    .HasReset(1'b1)
+  ) u_bq_sel (
+    .clk_i,
+    .rst_ni,
+    .d_i(bq_push || (bq_valid && !bq_pop)),
+    .q_o(bq_sel)
+  );
+
   logic ext_take, slot_offer;
   assign slot_offer     = pkt_valid_i && free_any;
-  assign pkt_ready_o    = core_pkt_ready && !shq_valid && !bq_valid && free_any;
+  assign pkt_ready_o    = core_pkt_ready && !shq_sel[0] && !bq_sel[0] && free_any;
   assign ext_take       = pkt_valid_i && pkt_ready_o;
   assign slot_take      = ext_take && pkt_mask_i != 4'd0;
-  assign shq_pop        = shq_valid && core_pkt_ready;
-  assign bq_pop         = bq_valid && !shq_valid && core_pkt_ready;
-  assign core_pkt_valid = shq_valid || bq_valid || (pkt_valid_i && free_any);
+  assign shq_pop        = shq_sel[0] && core_pkt_ready;
+  assign bq_pop         = bq_sel[0] && !shq_sel[0] && core_pkt_ready;
+  assign core_pkt_valid = shq_sel[0] || bq_sel[0] || (pkt_valid_i && free_any);
 
+  // Each field's select reads its own copy.
   always_comb begin
-    core_pkt_mask      = pkt_mask_i;
-    core_pkt_org       = pkt_org_i;
-    core_pkt_dir       = pkt_dir_i;
-    core_pkt_inv_len   = pkt_inv_len_i;
-    core_pkt_kind      = rc_pkg::RayKindBits'(rc_pkg::RayKindPrimary);
-    core_pkt_t_hi      = '0;
-    core_pkt_start_tri = '0;
-    core_pkt_pixel     = '0;
-    for (int r = 0; r < 4; r++) begin
-      core_pkt_pixel[r*32 +: 32]         = 32'({free_idx, 2'(r)});
-      core_pkt_pixel[r*32 + PixD0]       = 1'b1;
+    core_pkt_org = shq_sel[1] ? shq_org : bq_sel[1] ? bq_org : pkt_org_i;
+    if (shq_sel[2]) begin
+      core_pkt_mask    = shq_mask;
+      core_pkt_dir     = shq_dir;
+      core_pkt_inv_len = {4{FpOne}};
+      core_pkt_kind    = rc_pkg::RayKindBits'(rc_pkg::RayKindShadow);
+      core_pkt_t_hi    = shq_t_hi;
+    end else if (bq_sel[2]) begin
+      core_pkt_mask    = bq_mask;
+      core_pkt_dir     = bq_dir;
+      core_pkt_inv_len = {4{FpOne}};
+      core_pkt_kind    = rc_pkg::RayKindBits'(bq_mirror ? rc_pkg::RayKindBounce :
+                                                           rc_pkg::RayKindRefract);
+      core_pkt_t_hi    = {4{FpInf}};
+    end else begin
+      core_pkt_mask    = pkt_mask_i;
+      core_pkt_dir     = pkt_dir_i;
+      core_pkt_inv_len = pkt_inv_len_i;
+      core_pkt_kind    = rc_pkg::RayKindBits'(rc_pkg::RayKindPrimary);
+      core_pkt_t_hi    = '0;
     end
-    if (shq_valid) begin
-      core_pkt_mask      = shq_mask;
-      core_pkt_org       = shq_org;
-      core_pkt_dir       = shq_dir;
-      core_pkt_inv_len   = {4{FpOne}};
-      core_pkt_kind      = rc_pkg::RayKindBits'(rc_pkg::RayKindShadow);
-      core_pkt_t_hi      = shq_t_hi;
+    core_pkt_pixel = '0;
+    if (shq_sel[3]) begin
       core_pkt_start_tri = shq_tri;
       for (int r = 0; r < 4; r++) begin
-        core_pkt_pixel[r*32 +: 32]         = 32'({shq_light, shq_slot, shq_sp, 2'(r)});
-        core_pkt_pixel[r*32 + 31]          = 1'b1;
-        core_pkt_pixel[r*32 + PixD0]       = shq_d0;
+        core_pkt_pixel[r*32 +: 32]   = 32'({shq_light, shq_slot, shq_sp, 2'(r)});
+        core_pkt_pixel[r*32 + 31]    = 1'b1;
+        core_pkt_pixel[r*32 + PixD0] = shq_d0;
       end
-    end else if (bq_valid) begin
-      core_pkt_mask      = bq_mask;
-      core_pkt_org       = bq_org;
-      core_pkt_dir       = bq_dir;
-      core_pkt_inv_len   = {4{FpOne}};
-      core_pkt_kind      = rc_pkg::RayKindBits'(bq_mirror ? rc_pkg::RayKindBounce :
-                                                             rc_pkg::RayKindRefract);
-      core_pkt_t_hi      = {4{FpInf}};
+    end else if (bq_sel[3]) begin
       core_pkt_start_tri = bq_tri;
       for (int r = 0; r < 4; r++) begin
-        core_pkt_pixel[r*32 +: 32]         = 32'({bq_slot, 2'(r)});
-        core_pkt_pixel[r*32 + PixD1]       = bq_d1;
+        core_pkt_pixel[r*32 +: 32]   = 32'({bq_slot, 2'(r)});
+        core_pkt_pixel[r*32 + PixD1] = bq_d1;
+      end
+    end else begin
+      core_pkt_start_tri = '0;
+      for (int r = 0; r < 4; r++) begin
+        core_pkt_pixel[r*32 +: 32]   = 32'({free_idx, 2'(r)});
+        core_pkt_pixel[r*32 + PixD0] = 1'b1;
       end
     end
   end
+  logic lane_bq;  // the lane records' ray write is a tree packet's
+  assign lane_bq = bq_sel[4] && !shq_sel[4];
 
   //////////////
   // The core //
@@ -1491,9 +1526,9 @@ module rc_tracer #(
   ////////////////////////
 
   // Done slots: the lowest first, one slot's lanes at a time, one lane per cycle.
-  logic [Slots-1:0] done_vec, dn_hot, fs_hot, lnp_hot, lnp1_hot, ev_hot;
-  logic             dn_any;
-  logic [SlotW-1:0] dn_idx;
+  logic [Slots-1:0] done_vec, dn_hot, dn_hot_q, fs_hot, lnp_hot, lnp1_hot, ev_hot;
+  logic             dn_any, dn_any_q;
+  logic [SlotW-1:0] dn_idx, dn_idx_q;
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_fs_hot  (.valid_i(fs_busy_q),   .idx_i(fs_slot_q),
                                                   .hot_o(fs_hot));
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_lnp_hot (.valid_i(ln_add_pend), .idx_i(ln_add_slot),
@@ -1524,6 +1559,18 @@ module rc_tracer #(
     .idx_o  (dn_idx),
     .hot_o  (dn_hot)
   );
+  // The pick, registered (dn_*_q): the pick's carry chain and the final write's read address
+  // (fin_ln, into the lane records' block RAMs) are a cycle apart. A write lasts four cycles at
+  // least, and its slot is masked (fin_q) from the cycle after it starts, so the pick a write
+  // starts with is always a done slot not being written (DonePick_A).
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) dn_any_q <= 1'b0;
+    else dn_any_q <= dn_any;
+  end
+  always_ff @(posedge clk_i) begin
+    dn_idx_q <= dn_idx;
+    dn_hot_q <= dn_hot;
+  end
 
   localparam int unsigned OutW = 32 + 24 + 1 + 32 + 3 * W + MaxLights + 64;
   logic             fw_busy_q, fw_issue, fw_room, fw_free, fw_write;
@@ -1564,7 +1611,7 @@ module rc_tracer #(
   logic [3*SumW-1:0]    ln_fin_sum;
   logic [MaxLights-1:0] ln_fin_lights;
   always_comb begin
-    if (!fw_busy_q && dn_any) fin_ln = {dn_idx, 2'd0};
+    if (!fw_busy_q && dn_any_q) fin_ln = {dn_idx_q, 2'd0};
     else if (fw_issue) fin_ln = {fw_slot_q, fw_lane_q + 2'd1};
     else fin_ln = fw_ln;
   end
@@ -1593,9 +1640,9 @@ module rc_tracer #(
       st2_hit_q   <= 1'b0;
       st2_rec_q   <= '0;
     end else begin
-      if (!fw_busy_q && dn_any) begin
+      if (!fw_busy_q && dn_any_q) begin
         fw_busy_q <= 1'b1;
-        fw_slot_q <= dn_idx;
+        fw_slot_q <= dn_idx_q;
         fw_lane_q <= '0;
       end else if (fw_issue) begin
         fw_lane_q <= fw_lane_q + 1'b1;
@@ -1750,7 +1797,7 @@ module rc_tracer #(
             if (dec_pop) sp_q[s*DepthW +: DepthW] <= dq_sp_q - 1'b1;
             if (dec_done) td_q[s] <= 1'b1;
           end
-          if (!fw_busy_q && dn_hot[s]) fin_q[s] <= 1'b1;
+          if (!fw_busy_q && dn_any_q && dn_hot_q[s]) fin_q[s] <= 1'b1;
           if (fwf_hot[s]) busy_q[s] <= 1'b0;
         end
       end
@@ -1797,11 +1844,11 @@ module rc_tracer #(
     .prim_slot_i      (free_idx),
     .prim_pixel_i     (pkt_pixel_i),
     .ray_i            (ext_take || bq_pop),
-    .ray_slot_i       (bq_valid && !shq_valid ? bq_slot : free_idx),
+    .ray_slot_i       (lane_bq ? bq_slot : free_idx),
     .ray_org_i        (core_pkt_org),
     .ray_dir_i        (core_pkt_dir),
     .ray_inv_len_i    (core_pkt_inv_len),
-    .ray_w_i          (bq_valid && !shq_valid ? bq_w : {4{FpOne}}),
+    .ray_w_i          (lane_bq ? bq_w : {4{FpOne}}),
     .cw_i             (cw_cur),
     .cw_ln_i          (cw_ln),
     .cw_d0_i          (cw_d0),
@@ -1892,6 +1939,14 @@ module rc_tracer #(
   // The trees fit the stacks.
   Bounces_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               max_bounces_i <= DepthW'(MaxBounces));
+  // The select copies are the queues' valid bits (rc_reg_copies keeps the copies equal).
+  ShqSel_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             shq_sel[0] == shq_valid);
+  BqSel_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            bq_sel[0] == bq_valid);
+  // A write starts with a done slot that is not being written.
+  DonePick_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               !fw_busy_q && dn_any_q |-> done_q[dn_idx_q] && !fin_q[dn_idx_q]);
   // A write of the core belongs to a packet that expects it.
   CoreWrite_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                 core_fb_valid |-> cw_expected);
