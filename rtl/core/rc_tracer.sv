@@ -518,6 +518,13 @@ module rc_tracer #(
   // The core //
   //////////////
 
+  // The core's writes (co_*, its output register in the shading unit) are registered here
+  // (core_fb_*, loaded in every cycle) before the controller takes them: the shading unit is
+  // across the die from the fetch queue, the shadow packets' counts and the lane records.
+  logic            co_valid, co_hit;
+  logic [31:0]     co_pixel, co_tri;
+  logic [23:0]     co_rgb;
+  logic [W-1:0]    co_t, co_u, co_v, co_dz;
   logic            core_fb_valid, core_fb_hit;
   logic [31:0]     core_fb_pixel, core_fb_tri;
   logic [23:0]     core_fb_rgb;
@@ -559,16 +566,16 @@ module rc_tracer #(
     .pkt_kind_i      (core_pkt_kind),
     .pkt_t_hi_i      (core_pkt_t_hi),
     .pkt_start_tri_i (core_pkt_start_tri),
-    .fb_valid_o      (core_fb_valid),
+    .fb_valid_o      (co_valid),
     .fb_ready_i      (1'b1),
-    .fb_pixel_o      (core_fb_pixel),
-    .fb_rgb_o        (core_fb_rgb),
-    .fb_hit_o        (core_fb_hit),
-    .fb_tri_o        (core_fb_tri),
-    .fb_t_o          (core_fb_t),
-    .fb_u_o          (core_fb_u),
-    .fb_v_o          (core_fb_v),
-    .fb_dz_o         (core_fb_dz),
+    .fb_pixel_o      (co_pixel),
+    .fb_rgb_o        (co_rgb),
+    .fb_hit_o        (co_hit),
+    .fb_tri_o        (co_tri),
+    .fb_t_o          (co_t),
+    .fb_u_o          (co_u),
+    .fb_v_o          (co_v),
+    .fb_dz_o         (co_dz),
     .node_req_valid_o,
     .node_req_ready_i,
     .node_req_tag_o,
@@ -620,6 +627,15 @@ module rc_tracer #(
     .perf_o,
     .dbg_thread_state_o
   );
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) core_fb_valid <= 1'b0;
+    else core_fb_valid <= co_valid;
+  end
+  always_ff @(posedge clk_i) begin
+    {core_fb_hit, core_fb_pixel, core_fb_tri, core_fb_rgb, core_fb_t, core_fb_u, core_fb_v,
+     core_fb_dz} <= {co_hit, co_pixel, co_tri, co_rgb, co_t, co_u, co_v, co_dz};
+  end
 
   // The core's write: a slot's current packet's ray, or a shadow packet's.
   logic              cw_shadow, cw_cur, cw_sh, cw_reached, cw_d0, cw_d1;
@@ -1903,7 +1919,8 @@ module rc_tracer #(
     error_o = core_error;
     error_o[rc_pkg::CoreStatusBadAddress] = core_error[rc_pkg::CoreStatusBadAddress] || bad_addr_q;
   end
-  assign idle_o = core_idle && busy_q == '0 && !st_valid_q && !st2_valid_q && !oq_valid;
+  assign idle_o = core_idle && !core_fb_valid && busy_q == '0 && !st_valid_q && !st2_valid_q &&
+                  !oq_valid;
 
   // Not read: the primary packets' kind, limits and start triangles (the controller makes the
   // secondary packets); the fields of the records the lighting does not use; the valid bits of
