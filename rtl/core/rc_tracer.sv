@@ -901,9 +901,14 @@ module rc_tracer #(
     end
   end
 
-  // The entries' payload (no reset: written before it is read).
+  // The entries' payload (no reset: written before it is read). The tail entry is free unless
+  // the ring is full, so the lane's copy is written into it in every cycle the ring has room,
+  // allocated or not (the enables are the tail's decode, not the sequencer's step); the
+  // allocation's cycle writes last.
+  logic fe_room;
+  assign fe_room = fe_count_q != (FetchW + 1)'(FetchEntries);
   always_ff @(posedge clk_i) begin
-    if (fs_alloc) begin
+    if (fe_room) begin
       fe_ln_q[fe_tail_q]   <= {fs_slot_q, fs_lane};
       fe_last_q[fe_tail_q] <= fs_last;
       fe_ray_q[fe_tail_q]  <= seq_ray;
