@@ -182,8 +182,15 @@ module rc_board #(
 
   assign busy = running_q | (pend_q != 2'd0);
 
+  // The register file's lock, registered from the next busy (wr_ok_q == !busy, RegLock_A), so
+  // that running_q's and pend_q's nets end at one flip-flop, not at the file's enables.
+  logic busy_d, wr_ok_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) wr_ok_q <= 1'b1;
+    else wr_ok_q <= !busy_d;
+  end
   always_ff @(posedge clk_i) begin
-    if (reg_we_i && !busy && {1'b0, reg_addr_i} < (AddrW+1)'(Regs)) begin
+    if (reg_we_i && wr_ok_q && {1'b0, reg_addr_i} < (AddrW+1)'(Regs)) begin
       regs_q[reg_addr_i[$clog2(Regs)-1:0]] <= reg_wdata_i;
     end
   end
@@ -228,6 +235,8 @@ module rc_board #(
   assign size_ok   = size_ok_q;
   assign cfg_ok    = cfg_ok_q;
   assign gen_start = (pend_q == 2'd1) && size_ok && cfg_ok;
+  // busy in the next cycle: a start, the start's count, a frame that starts, or one not ending.
+  assign busy_d    = start_req || pend_q > 2'd1 || gen_start || (running_q && !fin_q);
 
   // The frame size, its product and its check are registers in a row (the register file is
   // locked from the start request on, and a register written in the request's own cycle is in
@@ -870,6 +879,9 @@ module rc_board #(
   // The generator runs only inside a frame.
   GenInFrame_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
     gen_busy |-> running_q);
+  // The register file's lock is the frame control's busy.
+  RegLock_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+    wr_ok_q == !busy);
 `endif
 
 endmodule

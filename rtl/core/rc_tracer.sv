@@ -969,6 +969,30 @@ module rc_tracer #(
   logic [HlTagW-1:0] geo_tag;
   logic [3*W-1:0]    geo_p, geo_r, geo_refr;
   logic [W-1:0]      geo_w_mirror, geo_w_refract;
+  // The light unit's geometry records (hg_*) pass a one-entry queue here (u_geo_q, geo_*): the
+  // light unit's geometry FIFO is across the die from the decision and the children's
+  // registers. The queue takes a record while it is empty (its count, a register, is the light
+  // unit's ready); records come at most one per rc_hit_light period.
+  localparam int unsigned GeoQW = HlTagW + 11 * W + 2;
+  logic              hg_valid, hg_mirror, hg_refract, gq_count;
+  logic [HlTagW-1:0] hg_tag;
+  logic [3*W-1:0]    hg_p, hg_r, hg_refr;
+  logic [W-1:0]      hg_w_mirror, hg_w_refract;
+  rc_fifo #(
+    .Width   (GeoQW),
+    .Depth   (1),
+    .MemArray(1'b0)
+  ) u_geo_q (
+    .clk_i,
+    .rst_ni,
+    .push_i (hg_valid && !gq_count),
+    .data_i ({hg_tag, hg_p, hg_r, hg_refr, hg_w_mirror, hg_w_refract, hg_mirror, hg_refract}),
+    .valid_o(geo_valid),
+    .ready_i(geo_ready),
+    .data_o ({geo_tag, geo_p, geo_r, geo_refr, geo_w_mirror, geo_w_refract, geo_mirror,
+              geo_refract}),
+    .count_o(gq_count)
+  );
   logic              lt_valid, lt_ready, lt_take;
   logic [HlTagW-1:0] lt_tag;
   logic [LightW-1:0] lt_light;
@@ -1009,16 +1033,16 @@ module rc_tracer #(
     .kd_i            (fe_kd_q[fe_head_q]),
     .ks_i            (fe_ks_q[fe_head_q]),
     .ns_i            (fe_ns_q[fe_head_q]),
-    .geo_valid_o     (geo_valid),
-    .geo_ready_i     (geo_ready),
-    .geo_tag_o       (geo_tag),
-    .geo_p_o         (geo_p),
-    .geo_r_o         (geo_r),
-    .geo_refr_o      (geo_refr),
-    .geo_w_mirror_o  (geo_w_mirror),
-    .geo_w_refract_o (geo_w_refract),
-    .geo_mirror_o    (geo_mirror),
-    .geo_refract_o   (geo_refract),
+    .geo_valid_o     (hg_valid),
+    .geo_ready_i     (!gq_count),
+    .geo_tag_o       (hg_tag),
+    .geo_p_o         (hg_p),
+    .geo_r_o         (hg_r),
+    .geo_refr_o      (hg_refr),
+    .geo_w_mirror_o  (hg_w_mirror),
+    .geo_w_refract_o (hg_w_refract),
+    .geo_mirror_o    (hg_mirror),
+    .geo_refract_o   (hg_refract),
     .lt_valid_o      (lt_valid),
     .lt_ready_i      (lt_ready),
     .lt_tag_o        (lt_tag),
