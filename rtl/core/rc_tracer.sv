@@ -628,10 +628,18 @@ module rc_tracer #(
     .dbg_thread_state_o
   );
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) core_fb_valid <= 1'b0;
-    else core_fb_valid <= co_valid;
-  end
+  // The valid bit is a kept register (rc_reg_copies): the core's watchdog registers the same
+  // handshake, and synthesis would otherwise merge the two into the core's flip-flop.
+  rc_reg_copies #(
+    .Width   (1),
+    .Copies  (1),
+    .HasReset(1'b1)
+  ) u_fb_valid (
+    .clk_i,
+    .rst_ni,
+    .d_i(co_valid),
+    .q_o(core_fb_valid)
+  );
   always_ff @(posedge clk_i) begin
     {core_fb_hit, core_fb_pixel, core_fb_tri, core_fb_rgb, core_fb_t, core_fb_u, core_fb_v,
      core_fb_dz} <= {co_hit, co_pixel, co_tri, co_rgb, co_t, co_u, co_v, co_dz};
@@ -1179,6 +1187,17 @@ module rc_tracer #(
   logic [DepthW-1:0] sp_geo, sp_seq, sp_fq, dec_sp;
   logic [StkIdxW-1:0] wa_geo, wa_seq, wa_fq, ra_geo, ra_seq, ra_fq, stk_waddr_q, stk_raddr_q;
   assign sp_geo = sp_q[geo_slot*DepthW +: DepthW];
+  // The sequencer's candidate is registered (sp_seq_q, wa_seq_q, ra_seq_q, loaded in every
+  // cycle): its slot is loaded at a pop and steps a cycle later at the earliest, and no decision
+  // changes that slot's pointer while the sequencer holds it, so at a step the registers are
+  // the slot's (SeqSp_A).
+  logic [DepthW-1:0]  sp_seq_q;
+  logic [StkIdxW-1:0] wa_seq_q, ra_seq_q;
+  always_ff @(posedge clk_i) begin
+    sp_seq_q <= sp_seq;
+    wa_seq_q <= wa_seq;
+    ra_seq_q <= ra_seq;
+  end
   assign sp_seq = sp_q[fs_slot_q*DepthW +: DepthW];
   assign sp_fq  = sp_q[fq_slot*DepthW +: DepthW];
   assign wa_geo = StkIdxW'(geo_slot * MaxBounces + 32'(sp_geo));
@@ -1187,7 +1206,7 @@ module rc_tracer #(
   assign ra_geo = StkIdxW'(geo_slot * MaxBounces + 32'(sp_geo) - 1);
   assign ra_seq = StkIdxW'(fs_slot_q * MaxBounces + 32'(sp_seq) - 1);
   assign ra_fq  = StkIdxW'(fq_slot * MaxBounces + 32'(sp_fq) - 1);
-  assign dec_sp = dec_geo ? sp_geo : dec_seq ? sp_seq : sp_fq;
+  assign dec_sp = dec_geo ? sp_geo : dec_seq ? sp_seq_q : sp_fq;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       dq_q     <= 1'b0;
@@ -1204,8 +1223,8 @@ module rc_tracer #(
       dq_now_q    <= dec_m_any || dec_r_any;
       dq_push_q   <= dec_m_any && dec_r_any;
       dq_sp_q     <= dec_sp;
-      stk_waddr_q <= dec_geo ? wa_geo : dec_seq ? wa_seq : wa_fq;
-      stk_raddr_q <= dec_geo ? ra_geo : dec_seq ? ra_seq : ra_fq;
+      stk_waddr_q <= dec_geo ? wa_geo : dec_seq ? wa_seq_q : wa_fq;
+      stk_raddr_q <= dec_geo ? ra_geo : dec_seq ? ra_seq_q : ra_fq;
     end
   end
   always_comb begin
@@ -1990,6 +2009,9 @@ module rc_tracer #(
                              shq_sel[0] == shq_valid);
   BqSel_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             bq_sel[0] == bq_valid);
+  // A sequencer step finds its slot's stack pointer in the registered candidate.
+  SeqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            fs_step |-> {sp_seq_q, wa_seq_q, ra_seq_q} == {sp_seq, wa_seq, ra_seq});
   // A write starts with a done slot that is not being written.
   DonePick_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                !fw_busy_q && dn_any_q |-> done_q[dn_idx_q] && !fin_q[dn_idx_q]);
