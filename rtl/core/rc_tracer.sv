@@ -628,18 +628,22 @@ module rc_tracer #(
     .dbg_thread_state_o
   );
 
-  // The valid bit is a kept register (rc_reg_copies): the core's watchdog registers the same
-  // handshake, and synthesis would otherwise merge the two into the core's flip-flop.
+  // The valid bit is four kept registers (rc_reg_copies), one per group of the write's users:
+  // 0 the fetch queue, 1 the slots' state, 2 the lane records' ports and the add queue, 3 the
+  // shadow packets. Kept, too, because the core's watchdog registers the same handshake and
+  // synthesis would otherwise merge them into the core's flip-flop.
+  logic [3:0] fbv_q;
   rc_reg_copies #(
     .Width   (1),
-    .Copies  (1),
+    .Copies  (4),
     .HasReset(1'b1)
   ) u_fb_valid (
     .clk_i,
     .rst_ni,
     .d_i(co_valid),
-    .q_o(core_fb_valid)
+    .q_o(fbv_q)
   );
+  assign core_fb_valid = fbv_q[0];
   always_ff @(posedge clk_i) begin
     {core_fb_hit, core_fb_pixel, core_fb_tri, core_fb_rgb, core_fb_t, core_fb_u, core_fb_v,
      core_fb_dz} <= {co_hit, co_pixel, co_tri, co_rgb, co_t, co_u, co_v, co_dz};
@@ -647,6 +651,7 @@ module rc_tracer #(
 
   // The core's write: a slot's current packet's ray, or a shadow packet's.
   logic              cw_shadow, cw_cur, cw_sh, cw_reached, cw_d0, cw_d1;
+  logic              cw_cur_fq, cw_cur_ln, cw_reached_ln;  // cw_cur, cw_reached: other copies
   logic [SlotW-1:0]  cw_slot;     // the current packet's slot
   logic [SpW-1:0]    cw_sp;       // the shadow packet
   logic [1:0]        cw_lane;
@@ -656,12 +661,15 @@ module rc_tracer #(
   assign cw_sp      = core_fb_pixel[2 +: SpW];
   assign cw_lane    = core_fb_pixel[1:0];
   assign cw_ln      = {cw_slot, cw_lane};
-  assign cw_cur     = core_fb_valid && !cw_shadow;
-  assign cw_sh      = core_fb_valid && cw_shadow;
+  assign cw_cur     = fbv_q[1] && !cw_shadow;
+  assign cw_cur_fq  = fbv_q[0] && !cw_shadow;
+  assign cw_cur_ln  = fbv_q[2] && !cw_shadow;
+  assign cw_sh      = fbv_q[3] && cw_shadow;
   assign cw_d0      = core_fb_pixel[PixD0];
   assign cw_d1      = core_fb_pixel[PixD1];
   // A shadow ray reached its light: no hit, and its packet met no error (colour 1).
   assign cw_reached = cw_sh && !core_fb_hit && !core_fb_rgb[0];
+  assign cw_reached_ln = fbv_q[2] && cw_shadow && !core_fb_hit && !core_fb_rgb[0];
 
   // The shadow packets in flight: busy and rays out (the four terms are a block RAM, u_terms,
   // below; the slot, light and whether from a primary hit travel in the rays' pixel ids).
@@ -705,7 +713,7 @@ module rc_tracer #(
   logic             fq_push, fq_valid, fq_pop, fr_valid, fr_pop;
   logic [SlotW-1:0] fq_slot, fr_slot;
   logic [$clog2(Slots + 1)-1:0] fq_count;
-  assign fq_push = cw_cur && pend_q[cw_slot*3 +: 3] == 3'd1;
+  assign fq_push = cw_cur_fq && pend_q[cw_slot*3 +: 3] == 3'd1;
 
   rc_fifo #(
     .Width   (SlotW),
@@ -1089,8 +1097,15 @@ module rc_tracer #(
   always_ff @(posedge clk_i) max_bounces_q <= max_bounces_i;
   assign geo_deeper = geo_depth < max_bounces_q;
   // The decision waits while the sequencer still issues the packet's misses (it reads the
-  // packet's weights, which the decision replaces).
-  assign geo_ready  = !dq_q && (!geo_last || (dec_room && !(fs_busy_q && fs_slot_q == geo_slot)));
+  // packet's weights, which the decision replaces), and a last record decides from its second
+  // cycle in the queue on (gq_old_q: the geometry candidate's registers are its by then).
+  logic gq_old_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) gq_old_q <= 1'b0;
+    else gq_old_q <= geo_valid && !geo_take;
+  end
+  assign geo_ready  = !dq_q && (!geo_last || (gq_old_q && dec_room &&
+                                              !(fs_busy_q && fs_slot_q == geo_slot)));
   assign geo_take   = geo_valid && geo_ready;
   assign dec_geo    = geo_take && geo_last;
   assign geo_end    = geo_valid && geo_last;
@@ -1187,6 +1202,16 @@ module rc_tracer #(
   logic [DepthW-1:0] sp_geo, sp_seq, sp_fq, dec_sp;
   logic [StkIdxW-1:0] wa_geo, wa_seq, wa_fq, ra_geo, ra_seq, ra_fq, stk_waddr_q, stk_raddr_q;
   assign sp_geo = sp_q[geo_slot*DepthW +: DepthW];
+  // The geometry candidate is registered too (sp_geo_q, wa_geo_q, ra_geo_q, loaded in every
+  // cycle from the record in the geometry queue): a last record decides from its second cycle
+  // there, and no decision changes its slot's pointer while the slot's packet is lit (GeoSp_A).
+  logic [DepthW-1:0]  sp_geo_q;
+  logic [StkIdxW-1:0] wa_geo_q, ra_geo_q;
+  always_ff @(posedge clk_i) begin
+    sp_geo_q <= sp_geo;
+    wa_geo_q <= wa_geo;
+    ra_geo_q <= ra_geo;
+  end
   // The sequencer's candidate is registered (sp_seq_q, wa_seq_q, ra_seq_q, loaded in every
   // cycle): its slot is loaded at a pop and steps a cycle later at the earliest, and no decision
   // changes that slot's pointer while the sequencer holds it, so at a step the registers are
@@ -1206,7 +1231,7 @@ module rc_tracer #(
   assign ra_geo = StkIdxW'(geo_slot * MaxBounces + 32'(sp_geo) - 1);
   assign ra_seq = StkIdxW'(fs_slot_q * MaxBounces + 32'(sp_seq) - 1);
   assign ra_fq  = StkIdxW'(fq_slot * MaxBounces + 32'(sp_fq) - 1);
-  assign dec_sp = dec_geo ? sp_geo : dec_seq ? sp_seq_q : sp_fq;
+  assign dec_sp = dec_geo ? sp_geo_q : dec_seq ? sp_seq_q : sp_fq;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       dq_q     <= 1'b0;
@@ -1223,8 +1248,8 @@ module rc_tracer #(
       dq_now_q    <= dec_m_any || dec_r_any;
       dq_push_q   <= dec_m_any && dec_r_any;
       dq_sp_q     <= dec_sp;
-      stk_waddr_q <= dec_geo ? wa_geo : dec_seq ? wa_seq_q : wa_fq;
-      stk_raddr_q <= dec_geo ? ra_geo : dec_seq ? ra_seq_q : ra_fq;
+      stk_waddr_q <= dec_geo ? wa_geo_q : dec_seq ? wa_seq_q : wa_fq;
+      stk_raddr_q <= dec_geo ? ra_geo_q : dec_seq ? ra_seq_q : ra_fq;
     end
   end
   always_comb begin
@@ -1342,7 +1367,7 @@ module rc_tracer #(
   );
   assign {aq_ln, aq_term} = aq_rdata;
   logic rs_q;  // a reached shadow ray's term is read in this cycle (added two cycles later)
-  assign aq_pop = aq_valid && !cw_reached && !(cw_cur && cw_d0);  // u_lanes's add port
+  assign aq_pop = aq_valid && !cw_reached_ln && !(cw_cur_ln && cw_d0);  // u_lanes's add port
 
   // The miss term: fix(bg_c * w) per channel, MissL cycles; issued only while the add queue has
   // room for it beside the ones in flight and an ambient term.
@@ -1410,7 +1435,15 @@ module rc_tracer #(
     .valid_o(mf_valid),
     .out_o  (mf_out)
   );
-  assign mo_valid = mf_valid && mo_ch_q == 2'd2;
+  // A miss's term leaves MissL cycles after its issue: mo_valid is the issue through a shift
+  // register (mi_sr_q, with reset), a flip-flop beside the sample take and the add queue's
+  // counts instead of the conversion's valid and mo_ch_q's compare (MoValid_A).
+  logic [MissL-1:0] mi_sr_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) mi_sr_q <= '0;
+    else mi_sr_q <= {mi_sr_q[MissL-2:0], mi_issue};
+  end
+  assign mo_valid = mi_sr_q[MissL-1];
   assign mo_term  = {mf_out, mo_g_q, mo_r_q};
   rc_delay #(
     .Width (LaneW),
@@ -1885,8 +1918,8 @@ module rc_tracer #(
   // one written); by then its slot's sequencer and lighting have read the packet before it.
   // The sums: a reached shadow ray's term (read from u_terms in the ray's cycle) or, in a cycle
   // without one, the add queue's head; the term is added two cycles later (registered twice).
-  assign ln_add        = cw_reached || aq_pop;
-  assign ln_add_ln     = cw_reached ? {cws_slot, cw_lane} : aq_ln;
+  assign ln_add        = cw_reached_ln || aq_pop;
+  assign ln_add_ln     = cw_reached_ln ? {cws_slot, cw_lane} : aq_ln;
   assign ln_add_term   = rs2_q ? rs_term_q : aq_term2_q;
   assign ln_add_lights = (rs2_q && rs2_d0_q) ? MaxLights'(1) << rs2_light_q : '0;
   always_ff @(posedge clk_i) begin
@@ -1913,7 +1946,7 @@ module rc_tracer #(
     .ray_dir_i        (core_pkt_dir),
     .ray_inv_len_i    (core_pkt_inv_len),
     .ray_w_i          (lane_bq ? bq_w : {4{FpOne}}),
-    .cw_i             (cw_cur),
+    .cw_i             (cw_cur_ln),
     .cw_ln_i          (cw_ln),
     .cw_d0_i          (cw_d0),
     .cw_d1_i          (cw_d1),
@@ -2012,6 +2045,12 @@ module rc_tracer #(
   // A sequencer step finds its slot's stack pointer in the registered candidate.
   SeqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             fs_step |-> {sp_seq_q, wa_seq_q, ra_seq_q} == {sp_seq, wa_seq, ra_seq});
+  // The miss term's shift register marks the third channel's result.
+  MoValid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              mo_valid == (mf_valid && mo_ch_q == 2'd2));
+  // A geometry decision finds its slot's stack pointer in the registered candidate.
+  GeoSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            dec_geo |-> {sp_geo_q, wa_geo_q, ra_geo_q} == {sp_geo, wa_geo, ra_geo});
   // A write starts with a done slot that is not being written.
   DonePick_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                !fw_busy_q && dn_any_q |-> done_q[dn_idx_q] && !fin_q[dn_idx_q]);
