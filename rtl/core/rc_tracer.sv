@@ -952,17 +952,43 @@ module rc_tracer #(
   // The tag through rc_hit_light: {start triangle, depth, primary, last, slot, lane} (the
   // slot's depth does not change while its packet is lit).
   localparam int unsigned HlTagW = 32 + DepthW + 1 + 1 + LaneW;
-  logic              hl_valid, hl_ready, hl_take;
-  logic [LaneW-1:0]  hl_ln;
-  logic [7*W-1:0]    hl_ray;
+  // The ring's head entry (a distributed-RAM read) goes into a one-entry queue (u_hl_q, hl_*)
+  // before rc_hit_light, whose input registers are across the die: the read ends at a register
+  // here. The queue takes an entry while it is empty (fe_pop); rc_hit_light takes at most one
+  // hit per Period cycles, so the queue's cycle between two entries costs nothing.
+  localparam int unsigned HlQW = HlTagW + 1 + 7 * W + 2 * W + 3 * W + 5 * W + 6 * W + ExpB;
+  logic              fe_valid, fe_pop;
+  logic [LaneW-1:0]  fe_head_ln;
+  logic [DepthW-1:0] fe_head_depth;
+  logic              hl_valid, hl_ready, hl_last, hq_count;
   logic [HlTagW-1:0] hl_tag;
-  assign hl_valid = fe_count_q != '0 && fe_done_q[fe_head_q];
-  assign hl_take  = hl_valid && hl_ready;
-  assign hl_ln    = fe_ln_q[fe_head_q];
-  assign hl_ray   = fe_ray_q[fe_head_q];
-  logic [DepthW-1:0] hl_depth;
-  assign hl_depth = depth_q[hl_ln[LaneW-1:2]*DepthW +: DepthW];
-  assign hl_tag   = {fe_tri_q[fe_head_q], hl_depth, hl_depth == '0, fe_last_q[fe_head_q], hl_ln};
+  logic [7*W-1:0]    hl_ray;
+  logic [W-1:0]      hl_t, hl_dz, hl_eta, hl_ior, hl_w, hl_mir, hl_tr;
+  logic [3*W-1:0]    hl_n, hl_kd, hl_ks;
+  logic [ExpB-1:0]   hl_ns;
+  assign fe_valid      = fe_count_q != '0 && fe_done_q[fe_head_q];
+  assign fe_pop        = fe_valid && !hq_count;
+  assign fe_head_ln    = fe_ln_q[fe_head_q];
+  assign fe_head_depth = depth_q[fe_head_ln[LaneW-1:2]*DepthW +: DepthW];
+  rc_fifo #(
+    .Width   (HlQW),
+    .Depth   (1),
+    .MemArray(1'b0)
+  ) u_hl_q (
+    .clk_i,
+    .rst_ni,
+    .push_i (fe_pop),
+    .data_i ({fe_tri_q[fe_head_q], fe_head_depth, fe_head_depth == '0, fe_last_q[fe_head_q],
+              fe_head_ln, fe_last_q[fe_head_q], fe_ray_q[fe_head_q], fe_t_q[fe_head_q],
+              fe_dz_q[fe_head_q], fe_eta_q[fe_head_q], fe_ior_q[fe_head_q], fe_w_q[fe_head_q],
+              fe_mir_q[fe_head_q], fe_tr_q[fe_head_q], fe_n_q[fe_head_q], fe_kd_q[fe_head_q],
+              fe_ks_q[fe_head_q], fe_ns_q[fe_head_q]}),
+    .valid_o(hl_valid),
+    .ready_i(hl_ready),
+    .data_o ({hl_tag, hl_last, hl_ray, hl_t, hl_dz, hl_eta, hl_ior, hl_w, hl_mir, hl_tr, hl_n,
+              hl_kd, hl_ks, hl_ns}),
+    .count_o(hq_count)
+  );
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -972,11 +998,11 @@ module rc_tracer #(
       fe_done_q  <= '0;
     end else begin
       if (fs_alloc) fe_tail_q <= fe_tail_q + 1'b1;
-      if (hl_take) fe_head_q <= fe_head_q + 1'b1;
-      fe_count_q <= fe_count_q + (FetchW + 1)'(fs_alloc) - (FetchW + 1)'(hl_take);
+      if (fe_pop) fe_head_q <= fe_head_q + 1'b1;
+      fe_count_q <= fe_count_q + (FetchW + 1)'(fs_alloc) - (FetchW + 1)'(fe_pop);
       for (int e = 0; e < FetchEntries; e++) begin
         if (ns_valid && ns_tag_q == FetchW'(e)) fe_done_q[e] <= 1'b1;
-        else if (hl_take && fe_head_q == FetchW'(e)) fe_done_q[e] <= 1'b0;
+        else if (fe_pop && fe_head_q == FetchW'(e)) fe_done_q[e] <= 1'b0;
       end
     end
   end
@@ -1009,6 +1035,17 @@ module rc_tracer #(
               geo_refract}),
     .count_o(gq_count)
   );
+  // The light unit's samples (hk_*) pass a one-entry queue here (u_lt_q, lt_*): the unit's
+  // output FIFO is across the die, and its pop would otherwise wait for lt_ready, which is made
+  // here. The queue takes a sample while it is empty (its count, a register, is the unit's
+  // ready); samples come at most one per Period cycles.
+  localparam int unsigned LtQW = HlTagW + LightW + 3 + 7 * W + 6 * FW;
+  logic              hk_valid, hk_lane_last, hk_light_last, hk_present, ltq_count;
+  logic [HlTagW-1:0] hk_tag;
+  logic [LightW-1:0] hk_light;
+  logic [3*W-1:0]    hk_org, hk_dir;
+  logic [W-1:0]      hk_t_hi;
+  logic [3*FW-1:0]   hk_term, hk_amb;
   logic              lt_valid, lt_ready, lt_take;
   logic [HlTagW-1:0] lt_tag;
   logic [LightW-1:0] lt_light;
@@ -1016,6 +1053,22 @@ module rc_tracer #(
   logic [3*W-1:0]    lt_org, lt_dir;
   logic [W-1:0]      lt_t_hi;
   logic [3*FW-1:0]   lt_term, lt_amb;
+  rc_fifo #(
+    .Width   (LtQW),
+    .Depth   (1),
+    .MemArray(1'b0)
+  ) u_lt_q (
+    .clk_i,
+    .rst_ni,
+    .push_i (hk_valid && !ltq_count),
+    .data_i ({hk_tag, hk_light, hk_lane_last, hk_light_last, hk_present, hk_org, hk_dir, hk_t_hi,
+              hk_term, hk_amb}),
+    .valid_o(lt_valid),
+    .ready_i(lt_ready),
+    .data_o ({lt_tag, lt_light, lt_lane_last, lt_light_last, lt_present, lt_org, lt_dir, lt_t_hi,
+              lt_term, lt_amb}),
+    .count_o(ltq_count)
+  );
 
   rc_hit_light #(
     .ExpW     (ExpW),
@@ -1034,21 +1087,21 @@ module rc_tracer #(
     .valid_i         (hl_valid),
     .ready_o         (hl_ready),
     .tag_i           (hl_tag),
-    .last_i          (fe_last_q[fe_head_q]),
+    .last_i          (hl_last),
     .org_i           (hl_ray[0 +: 3*W]),
     .dir_i           (hl_ray[3*W +: 3*W]),
     .inv_len_i       (hl_ray[6*W +: W]),
-    .t_i             (fe_t_q[fe_head_q]),
-    .dz_i            (fe_dz_q[fe_head_q]),
-    .n_i             (fe_n_q[fe_head_q]),
-    .eta_enter_i     (fe_eta_q[fe_head_q]),
-    .eta_leave_i     (fe_ior_q[fe_head_q]),
-    .w_i             (fe_w_q[fe_head_q]),
-    .mirror_i        (fe_mir_q[fe_head_q]),
-    .transmit_i      (fe_tr_q[fe_head_q]),
-    .kd_i            (fe_kd_q[fe_head_q]),
-    .ks_i            (fe_ks_q[fe_head_q]),
-    .ns_i            (fe_ns_q[fe_head_q]),
+    .t_i             (hl_t),
+    .dz_i            (hl_dz),
+    .n_i             (hl_n),
+    .eta_enter_i     (hl_eta),
+    .eta_leave_i     (hl_ior),
+    .w_i             (hl_w),
+    .mirror_i        (hl_mir),
+    .transmit_i      (hl_tr),
+    .kd_i            (hl_kd),
+    .ks_i            (hl_ks),
+    .ns_i            (hl_ns),
     .geo_valid_o     (hg_valid),
     .geo_ready_i     (!gq_count),
     .geo_tag_o       (hg_tag),
@@ -1059,18 +1112,18 @@ module rc_tracer #(
     .geo_w_refract_o (hg_w_refract),
     .geo_mirror_o    (hg_mirror),
     .geo_refract_o   (hg_refract),
-    .lt_valid_o      (lt_valid),
-    .lt_ready_i      (lt_ready),
-    .lt_tag_o        (lt_tag),
-    .lt_light_o      (lt_light),
-    .lt_lane_last_o  (lt_lane_last),
-    .lt_light_last_o (lt_light_last),
-    .lt_org_o        (lt_org),
-    .lt_present_o    (lt_present),
-    .lt_dir_o        (lt_dir),
-    .lt_t_hi_o       (lt_t_hi),
-    .lt_term_o       (lt_term),
-    .lt_amb_o        (lt_amb)
+    .lt_valid_o      (hk_valid),
+    .lt_ready_i      (!ltq_count),
+    .lt_tag_o        (hk_tag),
+    .lt_light_o      (hk_light),
+    .lt_lane_last_o  (hk_lane_last),
+    .lt_light_last_o (hk_light_last),
+    .lt_org_o        (hk_org),
+    .lt_present_o    (hk_present),
+    .lt_dir_o        (hk_dir),
+    .lt_t_hi_o       (hk_t_hi),
+    .lt_term_o       (hk_term),
+    .lt_amb_o        (hk_amb)
   );
 
   ////////////////////////////////////////////
@@ -1184,7 +1237,7 @@ module rc_tracer #(
   localparam int unsigned StkIdxW  = (StkDepth > 1) ? $clog2(StkDepth) : 1;
   logic              dec, dec_now, dec_push, dec_pop, dec_done, dec_m_any, dec_r_any;
   logic [SlotW-1:0]  dec_slot, pop_slot_q;
-  child_t            dec_m, dec_r, stk_top;
+  child_t            dec_r, stk_top;
   logic [DepthW-1:0] dq_sp_q;
   assign dec       = dec_geo || dec_seq || (fq_pop && fq_work == 4'd0);
   assign dec_slot  = dec_geo ? geo_slot : dec_seq ? fs_slot_q : fq_slot;
@@ -1197,7 +1250,7 @@ module rc_tracer #(
   // registered one is the pointer of the second (DqSp_A). Each candidate slot's are made from
   // registers, the decision's kind chooses among them, and the block RAM's address and read
   // enable come from flip-flops.
-  logic              dq_geo_q, dq_now_q, dq_push_q, stk_re_q;
+  logic              dq_geo_q, dq_now_q, dq_push_q, dq_msel_q, stk_re_q;
   logic [SlotW-1:0]  dq_slot_q;
   logic [DepthW-1:0] sp_geo, sp_seq, sp_fq, dec_sp;
   logic [StkIdxW-1:0] wa_geo, wa_seq, wa_fq, ra_geo, ra_seq, ra_fq, stk_waddr_q, stk_raddr_q;
@@ -1247,18 +1300,15 @@ module rc_tracer #(
       dq_slot_q   <= dec_slot;
       dq_now_q    <= dec_m_any || dec_r_any;
       dq_push_q   <= dec_m_any && dec_r_any;
+      dq_msel_q   <= dec_m_any;
       dq_sp_q     <= dec_sp;
       stk_waddr_q <= dec_geo ? wa_geo_q : dec_seq ? wa_seq_q : wa_fq;
       stk_raddr_q <= dec_geo ? ra_geo_q : dec_seq ? ra_seq_q : ra_fq;
     end
   end
   always_comb begin
-    dec_m = gm_q;
     dec_r = gr_q;
-    if (!dq_geo_q) begin
-      dec_m.mask = '0;
-      dec_r.mask = '0;
-    end
+    if (!dq_geo_q) dec_r.mask = '0;
   end
   assign dec_now   = dq_q && dq_now_q;
   assign dec_push  = dq_q && dq_push_q;
@@ -1285,17 +1335,29 @@ module rc_tracer #(
   // (pop2_q), from a register behind the block RAM: the slot's next write, fetch or decision
   // is far later, and no decision is carried out in that cycle (the tree packet queue holds
   // the packet).
+  // pop_q in two kept copies: copy 0 for the sequencer and the slots (dec_room, snd), copy 1
+  // (pop_sel_q) for the sent packet's select, whose 800 multiplexers are across the die from
+  // the sequencer.
+  logic              pop_sel_q;
+  rc_reg_copies #(
+    .Width   (1),
+    .Copies  (2),
+    .HasReset(1'b1)
+  ) u_pop_q (
+    .clk_i,
+    .rst_ni,
+    .d_i   (dec_pop),
+    .q_o   ({pop_sel_q, pop_q})
+  );
   logic              pop2_q, pop2_mirror_q;
   logic [SlotW-1:0]  pop2_slot_q;
   logic [3:0]        pop2_mask_q;
   logic [DepthW-1:0] pop2_depth_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      pop_q      <= 1'b0;
       pop_slot_q <= '0;
       pop2_q     <= 1'b0;
     end else begin
-      pop_q  <= dec_pop;
       pop2_q <= pop_q;
       if (dec_pop) pop_slot_q <= dq_slot_q;
     end
@@ -1321,14 +1383,15 @@ module rc_tracer #(
   logic [DepthW-1:0] sw_depth;
   assign snd      = dec_now || pop_q;
   assign snd_slot = pop_q ? pop_slot_q : dq_slot_q;
-  assign snd_pkt  = pop_q ? stk_top : dec_m.mask != 4'd0 ? dec_m : dec_r;
+  // Which of the decision's packets is sent is registered in its first cycle (dq_msel_q, the
+  // mirror packet's: DecSel_A), so the slots' wide writes do not wait for dq_geo_q's masks.
+  assign snd_pkt  = pop_sel_q ? stk_top : dq_msel_q ? gm_q : gr_q;
   assign sw      = dec_now || pop2_q;
   assign sw_slot = pop2_q ? pop2_slot_q : dq_slot_q;
   always_comb begin
     if (pop2_q) {sw_mask, sw_mirror, sw_depth} = {pop2_mask_q, pop2_mirror_q, pop2_depth_q};
-    else if (dec_m.mask != 4'd0) {sw_mask, sw_mirror, sw_depth} = {dec_m.mask, dec_m.mirror,
-                                                                  dec_m.depth};
-    else {sw_mask, sw_mirror, sw_depth} = {dec_r.mask, dec_r.mirror, dec_r.depth};
+    else if (dq_msel_q) {sw_mask, sw_mirror, sw_depth} = {gm_q.mask, gm_q.mirror, gm_q.depth};
+    else {sw_mask, sw_mirror, sw_depth} = {gr_q.mask, gr_q.mirror, gr_q.depth};
   end
   assign bq_push  = snd;
   assign bq_wdata = {snd_pkt.depth == DepthW'(1), snd_pkt.mirror, snd_pkt.mask, snd_pkt.org,
@@ -2095,6 +2158,9 @@ module rc_tracer #(
   // The pointer registered in a decision's first cycle is its slot's in the second.
   DqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                            dq_q |-> dq_sp_q == sp_q[dq_slot_q*DepthW +: DepthW]);
+  // The registered choice is the mirror packet whenever it has rays, the refraction one else.
+  DecSel_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             dq_q |-> dq_msel_q == (dq_geo_q && gm_q.mask != 4'd0));
   // The registered read enable is the pop's.
   StkRe_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             stk_re_q == (dq_q && !dq_now_q && dq_sp_q != '0));
