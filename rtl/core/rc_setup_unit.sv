@@ -301,8 +301,8 @@ module rc_setup_unit #(
   // its last ray to unit u - 1, and the rotation moves on to u. An idle feeder offers nothing
   // (su_v_q = 0): the rotation stays, and the condition holds unless a take now makes it busy.
   logic          feed_idle_q, last_q;
-  logic [NU-1:0] st_idle_q;
-  logic [1:0]    st_r_q [NU];
+  logic [3*NU-1:0] st_idle_q;
+  logic [1:0]      st_r_q [3*NU];
   logic [NU-1:0] su_v_q, hot_q, hot_d, arm_q, arm_d, su_v_d;
   logic [1:0]    feed_r_d;
   assign su_take = |(su_v_q & su_ready_all);
@@ -349,12 +349,14 @@ module rc_setup_unit #(
     end
   end
   // The idle flag (the inverse: a different function, so Yosys keeps it apart from feed_busy_q)
-  // and the ray counter, in NU + 1 kept copies: copy 0 for the feeder (feed_idle_q, feed_r_q),
-  // copy u + 1 for set-up unit u's offer select (st_idle_q[u], st_r_q[u]).
-  logic [(NU+1)*3-1:0] feed_state_q;
+  // and the ray counter, in 3 NU + 1 kept copies: copy 0 for the feeder (feed_idle_q,
+  // feed_r_q), copies 3u + 1 .. 3u + 3 for set-up unit u's offer select, one per group of its
+  // registers (st_idle_q[3u + k], st_r_q[3u + k]; k = 0: the origin, 1: the direction, 2: the
+  // tag and limit), so no one copy's net spans the unit's 170 multiplexers.
+  logic [(3*NU+1)*3-1:0] feed_state_q;
   rc_reg_copies #(
     .Width   (3),
-    .Copies  (NU + 1),
+    .Copies  (3 * NU + 1),
     .HasReset(1'b1),
     .ResetVal(3'b100)  // idle, ray 0
   ) u_feed_state (
@@ -364,7 +366,7 @@ module rc_setup_unit #(
     .q_o   (feed_state_q)
   );
   assign {feed_idle_q, feed_r_q} = feed_state_q[2:0];
-  for (genvar u = 0; u < NU; u++) begin : g_state_copy
+  for (genvar u = 0; u < 3 * NU; u++) begin : g_state_copy
     assign {st_idle_q[u], st_r_q[u]} = feed_state_q[(u+1)*3 +: 3];
   end
   // The feeder's copy of the packet follows the input register while the feeder is idle (so the
@@ -462,7 +464,8 @@ module rc_setup_unit #(
   // while the feeder is idle (an offer starts with the take), else ray
   // feed_r_q + 1 of the feeder's copy (an offer moves on to u when u - 1 takes ray feed_r_q).
   // Its enable is the unit's own valid flip-flop, so no unit's ready reaches these registers,
-  // and its select is the unit's own copy of the idle flag and the ray counter.
+  // and its select is the unit's own copies of the idle flag and the ray counter, one for its
+  // origin, one for its direction, one for its tag and limit.
   // The tag's thread is not staged: feed_thr_q holds it for the whole packet (staging it would
   // take it from the free pick's choice while the feeder is idle: run 54, -0.06 and 0.00 ns).
   for (genvar u = 0; u < NU; u++) begin : g_setup
@@ -473,11 +476,14 @@ module rc_setup_unit #(
     logic [1:0]      nx_r;
     assign u_ready_i = out_ready && out_u_q == UW'(u);
     assign st_en     = ~su_v_q[u] | ((NU == 1) & su_ready_all[u]);
-    assign nx_r      = st_idle_q[u] ? 2'd0 : st_r_q[u] + 2'd1;
-    assign nx_org    = st_idle_q[u] ? pin_org_q[0 +: 3*W] : lane_3w(feed_org_q, nx_r);
-    assign nx_dir    = st_idle_q[u] ? pin_dir_q[0 +: 3*W] : lane_3w(feed_dir_q, nx_r);
-    assign nx_tag    = st_idle_q[u] ? {pin_mask_q[0], 2'd0} : {feed_vmask_q[nx_r], nx_r};
-    assign nx_tlim   = st_idle_q[u] ? pin_tlim_q[0 +: W] : lane_w(feed_tlim_q, nx_r);
+    logic [1:0] nx_r_o, nx_r_d;  // the next ray by the origin's and the direction's copies
+    assign nx_r_o    = st_idle_q[3*u] ? 2'd0 : st_r_q[3*u] + 2'd1;
+    assign nx_r_d    = st_idle_q[3*u+1] ? 2'd0 : st_r_q[3*u+1] + 2'd1;
+    assign nx_r      = st_idle_q[3*u+2] ? 2'd0 : st_r_q[3*u+2] + 2'd1;
+    assign nx_org    = st_idle_q[3*u] ? pin_org_q[0 +: 3*W] : lane_3w(feed_org_q, nx_r_o);
+    assign nx_dir    = st_idle_q[3*u+1] ? pin_dir_q[0 +: 3*W] : lane_3w(feed_dir_q, nx_r_d);
+    assign nx_tag    = st_idle_q[3*u+2] ? {pin_mask_q[0], 2'd0} : {feed_vmask_q[nx_r], nx_r};
+    assign nx_tlim   = st_idle_q[3*u+2] ? pin_tlim_q[0 +: W] : lane_w(feed_tlim_q, nx_r);
     always_ff @(posedge clk_i) begin
       if (st_en) begin
         st_org_q  <= nx_org;
