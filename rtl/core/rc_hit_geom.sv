@@ -178,7 +178,7 @@ module rc_hit_geom #(
   // overwrite it too), so the enable is ready_o's two flip-flops, not valid_i's net.
   logic [TagW-1:0] tag_q;
   logic [3*W-1:0]  org_q, dir_q, n_q;
-  logic [W-1:0]    ilen_q, t_q, eta_q, w_q, mirror_q, transmit_q;
+  logic [W-1:0]    ilen_q, t_q, eta_enter_q, eta_leave_q, w_q, mirror_q, transmit_q;
   logic            back_q;
 
   always_ff @(posedge clk_i) begin
@@ -190,7 +190,8 @@ module rc_hit_geom #(
       ilen_q     <= inv_len_i;
       t_q        <= t_i;
       back_q     <= pos(dz_i);
-      eta_q      <= pos(dz_i) ? eta_leave_i : eta_enter_i;
+      eta_enter_q <= eta_enter_i;
+      eta_leave_q <= eta_leave_i;
       w_q        <= w_i;
       mirror_q   <= mirror_i;
       transmit_q <= transmit_i;
@@ -297,10 +298,12 @@ module rc_hit_geom #(
   // Refraction: q = 1 - e^2 (1 - c^2), T = e V - g N       //
   ////////////////////////////////////////////////////////////
 
-  // e (the input register's, one of the two ratios) as a stream: at slot k the register holds it,
-  // so a delay line of T gives it at T, T + 1, T + 2.
-  logic [W-1:0] e_at_ev, e_at_c;
-  rc_delay #(.Width(W), .Cycles(TimeEv)) u_dly_e0 (.clk_i, .data_i(eta_q), .data_o(e_at_ev));
+  // e (one of the input register's two ratios, chosen by back_q after the register: the ratios
+  // come from across the die, and back_q's compare is not on their way in) as a stream: at slot
+  // k the register holds it, so a delay line of T gives it at T, T + 1, T + 2.
+  logic [W-1:0] eta, e_at_ev, e_at_c;
+  assign eta = back_q ? eta_leave_q : eta_enter_q;
+  rc_delay #(.Width(W), .Cycles(TimeEv)) u_dly_e0 (.clk_i, .data_i(eta), .data_o(e_at_ev));
   rc_delay_ram #(.Width(W), .Cycles(TimeC - TimeEv)) u_dly_e1 (
     .clk_i, .rst_ni, .data_i(e_at_ev), .data_o(e_at_c)
   );

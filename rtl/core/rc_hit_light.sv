@@ -212,8 +212,25 @@ module rc_hit_light #(
   assign {hg_tag_hit, hg_last, hg_mat} = hg_tag;
   assign no_lights      = cfg_none_q;
   assign fill_bank_full = wb_q ? full_q[1] : full_q[0];
-  assign hg_ready       = (geo_count != CntFW'(GeoDepth)) & (no_lights | ~fill_bank_full);
+  // The geometry side's ready is a register (hg_ready_q), loaded with the next cycle's room
+  // (HgReady_A): it pops rc_hit_geom's output FIFO and writes the lane memory, a thousand
+  // enables, which thus start at two flip-flops (the FIFO's valid and this).
+  logic             hg_ready_q, hg_ready_d, wb_d;
+  logic [1:0]       full_d;
+  logic [CntFW-1:0] geo_count_d;
+  logic             geo_pop;
+  assign geo_pop        = geo_valid_o & geo_ready_i;
+  assign hg_ready       = hg_ready_q;
   assign hg_take        = hg_valid & hg_ready;
+  assign full_d         = (full_q | full_set) & ~full_clr;
+  assign wb_d           = wb_q ^ (fill & hg_last);
+  assign geo_count_d    = geo_count + CntFW'(hg_take) - CntFW'(geo_pop);
+  assign hg_ready_d     = (geo_count_d != CntFW'(GeoDepth)) &
+                          ((light_count_i == '0) | ~(wb_d ? full_d[1] : full_d[0]));
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) hg_ready_q <= 1'b1;  // empty: room, and no bank full
+    else hg_ready_q <= hg_ready_d;
+  end
 
   rc_fifo #(
     .Width   (GeoW),
@@ -273,10 +290,10 @@ module rc_hit_light #(
       rk_q    <= '0;
       rl_q    <= '0;
     end else begin
-      full_q <= (full_q | full_set) & ~full_clr;
+      full_q <= full_d;
       if (fill) begin
         wk_q <= hg_last ? 2'd0 : wk_q + 2'd1;
-        wb_q <= wb_q ^ hg_last;
+        wb_q <= wb_d;
         if (hg_last) lanes_q[2*wb_q +: 2] <= wk_q;
       end
       if (lt_take) begin
@@ -378,6 +395,10 @@ module rc_hit_light #(
   LightSel_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                lt_take |-> {sel_dir_q, sel_pos_q, sel_col_q} ==
                                            {sel_dir, sel_pos, sel_col});
+  // The registered ready is the room of this cycle.
+  HgReady_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              hg_ready_q == ((geo_count != CntFW'(GeoDepth)) &
+                                             (no_lights | ~fill_bank_full)));
   // A packet has at most four hits.
   PacketLanes_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                   fill && wk_q == 2'd3 |-> hg_last);

@@ -411,7 +411,9 @@ module rc_tracer #(
       take_q   <= 1'b0;
     end else begin
       lo_any_q <= lo_any_c;
-      hi_any_q <= hi_any_c && hi_idx_c != lo_idx_c;
+      // The highest free slot is another than the lowest when two or more are free: the free
+      // vector less its lowest bit (one carry chain, not the two picks' indices compared).
+      hi_any_q <= (~busy_q & (~busy_q - 1'b1)) != '0;
       take_q   <= slot_take;
     end
   end
@@ -713,6 +715,16 @@ module rc_tracer #(
   logic             fq_push, fq_valid, fq_pop, fr_valid, fr_pop;
   logic [SlotW-1:0] fq_slot, fr_slot;
   logic [$clog2(Slots + 1)-1:0] fq_count;
+  // A slot enters the queue in the cycle after its last write (fq_push, registered with its
+  // slot): the write's pixel id selects its count, and the compare ends at a register instead
+  // of at the queue's enables.
+  logic             fq_push_q;
+  logic [SlotW-1:0] fq_wslot_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) fq_push_q <= 1'b0;
+    else fq_push_q <= fq_push;
+  end
+  always_ff @(posedge clk_i) fq_wslot_q <= cw_slot;
   assign fq_push = cw_cur_fq && pend_q[cw_slot*3 +: 3] == 3'd1;
 
   rc_fifo #(
@@ -722,8 +734,8 @@ module rc_tracer #(
   ) u_fetch_q (
     .clk_i,
     .rst_ni,
-    .push_i (fq_push),
-    .data_i (cw_slot),
+    .push_i (fq_push_q),
+    .data_i (fq_wslot_q),
     .valid_o(fr_valid),
     .ready_i(fr_pop),
     .data_o (fr_slot),
@@ -808,8 +820,9 @@ module rc_tracer #(
   logic [31:0]       lshd_req_index_q;
   logic              mi_ok;       // room for a miss term
   logic              mi_free;     // the miss term's multiplier takes a miss
-  assign fs_room_hit  = fe_count_q != (FetchW + 1)'(FetchEntries) &&
-                        (!lshd_req_valid_q || lshd_req_ready_i);
+  // A hit needs an entry and a free shading request register; the port's ready is not waited
+  // for (it comes from across the die), and the sequencer steps a lane per two cycles anyway.
+  assign fs_room_hit  = fe_count_q != (FetchW + 1)'(FetchEntries) && !lshd_req_valid_q;
   assign fs_room_miss = mi_ok && mi_free;
   // A packet without hits is decided at its last miss's issue (dec_seq), after its weights are
   // read.
@@ -898,13 +911,14 @@ module rc_tracer #(
         fs_lanes_q <= fs_lanes_q & ~(4'd1 << fs_lane);
         if ((fs_lanes_q & ~(4'd1 << fs_lane)) == 4'd0) fs_busy_q <= 1'b0;
       end
-      if (fs_alloc) begin
-        lshd_req_valid_q <= 1'b1;
+      // The request's fields load while the register is free, allocated or not (an allocation
+      // needs it free), so the sequencer's step is only the valid bit's enable.
+      if (!lshd_req_valid_q) begin
         lshd_req_tag_q   <= fe_tail_q;
         lshd_req_index_q <= seq_tri;
-      end else if (lshd_req_ready_i) begin
-        lshd_req_valid_q <= 1'b0;
       end
+      if (fs_alloc) lshd_req_valid_q <= 1'b1;
+      else if (lshd_req_ready_i) lshd_req_valid_q <= 1'b0;
       if (lshd_take) begin
         lmat_req_valid_q <= 1'b1;
         lmat_req_tag_q   <= lshd_rsp_tag_i;
@@ -1171,29 +1185,25 @@ module rc_tracer #(
     gm.depth  = geo_depth + 1'b1;
     gr.depth  = geo_depth + 1'b1;
     // A loop over the lanes with constant part-selects: a select at a computed offset becomes a
-    // barrel shifter over the whole record in synthesis. A lane's origin and start triangle are
-    // written into both packets when it has either ray (a lane without its ray is never read),
-    // so the two packets' copies are the same registers (synthesis merges them).
-    // The rays' fields are loaded whenever a record is offered (geo_valid), not only when it
-    // is taken: the geometry FIFO holds it until the take, records come in order, and the
-    // decision reads the packets before (in dq_q, a cycle in which no record is taken), so the
-    // wide enables do not wait for geo_ready. Only the masks (and with them the mirror flag
-    // and depth) wait for the take.
+    // barrel shifter over the whole record in synthesis. A lane's rays (origin, start triangle,
+    // directions and weights) are written whenever its record is offered (geo_valid), whether
+    // or not it makes a ray: a lane without its ray is never read, so the two packets' origins
+    // and start triangles are the same registers (synthesis merges them), and the wide enables
+    // wait neither for geo_ready nor for the depth's compare and the material's flags. The
+    // geometry FIFO holds a record until the take, records come in order, and the decision
+    // reads the packets before (in dq_q, a cycle in which no record is taken). Only the masks
+    // (and with them the mirror flag and depth) wait for the take and the flags.
     for (int r = 0; r < 4; r++) begin
-      if (geo_lane == 2'(r) && geo_valid && geo_deeper && (geo_mirror || geo_refract)) begin
+      if (geo_lane == 2'(r) && geo_valid) begin
         gm.org[r*3*W +: 3*W]   = geo_p;
         gm.stri[r*32 +: 32]    = geo_tri;
-      end
-      if (geo_lane == 2'(r) && geo_valid && geo_deeper && geo_mirror) begin
-        gm.mask[r]             = 1'b1;  // loaded at the take only
         gm.dir[r*3*W +: 3*W]   = geo_r;
         gm.w[r*W +: W]         = geo_w_mirror;
-      end
-      if (geo_lane == 2'(r) && geo_valid && geo_deeper && geo_refract) begin
-        gr.mask[r]             = 1'b1;
         gr.dir[r*3*W +: 3*W]   = geo_refr;
         gr.w[r*W +: W]         = geo_w_refract;
       end
+      if (geo_lane == 2'(r) && geo_valid && geo_deeper && geo_mirror) gm.mask[r] = 1'b1;
+      if (geo_lane == 2'(r) && geo_valid && geo_deeper && geo_refract) gr.mask[r] = 1'b1;
     end
     gr.org  = gm.org;
     gr.stri = gm.stri;
@@ -1278,13 +1288,26 @@ module rc_tracer #(
   end
   assign sp_seq = sp_q[fs_slot_q*DepthW +: DepthW];
   assign sp_fq  = sp_q[fq_slot*DepthW +: DepthW];
+  // The fetch head's candidate is registered as the slot enters the head register (from the
+  // FIFO's slot): a slot waiting for its fetch has no decision, so its pointer does not change
+  // until it leaves the head (FqSp_A).
+  logic [DepthW-1:0]  sp_fq_q, sp_fr;
+  logic [StkIdxW-1:0] wa_fq_q, ra_fq_q;
+  assign sp_fr = sp_q[fr_slot*DepthW +: DepthW];
+  always_ff @(posedge clk_i) begin
+    if (fr_pop) begin
+      sp_fq_q <= sp_fr;
+      wa_fq_q <= StkIdxW'(fr_slot * MaxBounces + 32'(sp_fr));
+      ra_fq_q <= StkIdxW'(fr_slot * MaxBounces + 32'(sp_fr) - 1);
+    end
+  end
   assign wa_geo = StkIdxW'(geo_slot * MaxBounces + 32'(sp_geo));
   assign wa_seq = StkIdxW'(fs_slot_q * MaxBounces + 32'(sp_seq));
   assign wa_fq  = StkIdxW'(fq_slot * MaxBounces + 32'(sp_fq));
   assign ra_geo = StkIdxW'(geo_slot * MaxBounces + 32'(sp_geo) - 1);
   assign ra_seq = StkIdxW'(fs_slot_q * MaxBounces + 32'(sp_seq) - 1);
   assign ra_fq  = StkIdxW'(fq_slot * MaxBounces + 32'(sp_fq) - 1);
-  assign dec_sp = dec_geo ? sp_geo_q : dec_seq ? sp_seq_q : sp_fq;
+  assign dec_sp = dec_geo ? sp_geo_q : dec_seq ? sp_seq_q : sp_fq_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       dq_q     <= 1'b0;
@@ -1302,8 +1325,8 @@ module rc_tracer #(
       dq_push_q   <= dec_m_any && dec_r_any;
       dq_msel_q   <= dec_m_any;
       dq_sp_q     <= dec_sp;
-      stk_waddr_q <= dec_geo ? wa_geo_q : dec_seq ? wa_seq_q : wa_fq;
-      stk_raddr_q <= dec_geo ? ra_geo_q : dec_seq ? ra_seq_q : ra_fq;
+      stk_waddr_q <= dec_geo ? wa_geo_q : dec_seq ? wa_seq_q : wa_fq_q;
+      stk_raddr_q <= dec_geo ? ra_geo_q : dec_seq ? ra_seq_q : ra_fq_q;
     end
   end
   always_comb begin
@@ -1604,10 +1627,19 @@ module rc_tracer #(
   end
 
   // The shadow packets' entries.
-  logic                     cws_free;
+  // A packet is freed in the cycle after its last ray's write (cwsf_q, registered with its
+  // index): the write's pixel id selects its count, and the compare ends at a register
+  // instead of at the busy bits' decode.
+  logic                     cws_free, cwsf_q;
+  logic [SpW-1:0]           cwsf_sp_q;
   logic [ShadowPackets-1:0] cwsf_hot;
   assign cws_free = cw_sh && sp_cnt_q[cw_sp] == 3'd1;
-  rc_onehot #(.N(ShadowPackets), .IdxW(SpW)) u_cwsf_hot (.valid_i(cws_free), .idx_i(cw_sp),
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) cwsf_q <= 1'b0;
+    else cwsf_q <= cws_free;
+  end
+  always_ff @(posedge clk_i) cwsf_sp_q <= cw_sp;
+  rc_onehot #(.N(ShadowPackets), .IdxW(SpW)) u_cwsf_hot (.valid_i(cwsf_q), .idx_i(cwsf_sp_q),
                                                          .hot_o(cwsf_hot));
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -2158,6 +2190,13 @@ module rc_tracer #(
   // The pointer registered in a decision's first cycle is its slot's in the second.
   DqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                            dq_q |-> dq_sp_q == sp_q[dq_slot_q*DepthW +: DepthW]);
+  // A fetch decision finds its slot's stack pointer in the registered candidate.
+  FqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                           dec && !dec_geo && !dec_seq |->
+                           {sp_fq_q, wa_fq_q, ra_fq_q} == {sp_fq, wa_fq, ra_fq});
+  // Two or more free slots: the highest free slot is another than the lowest.
+  HiAny_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            hi_any_q == $past(hi_any_c && hi_idx_c != lo_idx_c));
   // The registered choice is the mirror packet whenever it has rays, the refraction one else.
   DecSel_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                              dq_q |-> dq_msel_q == (dq_geo_q && gm_q.mask != 4'd0));
