@@ -183,18 +183,18 @@ module rc_hit_geom #(
 
   always_ff @(posedge clk_i) begin
     if (ready_o) begin
-      tag_q      <= tag_i;
-      org_q      <= org_i;
-      dir_q      <= dir_i;
-      n_q        <= n_i;
-      ilen_q     <= inv_len_i;
-      t_q        <= t_i;
-      back_q     <= pos(dz_i);
+      tag_q       <= tag_i;
+      org_q       <= org_i;
+      dir_q       <= dir_i;
+      n_q         <= n_i;
+      ilen_q      <= inv_len_i;
+      t_q         <= t_i;
+      back_q      <= pos(dz_i);
       eta_enter_q <= eta_enter_i;
       eta_leave_q <= eta_leave_i;
-      w_q        <= w_i;
-      mirror_q   <= mirror_i;
-      transmit_q <= transmit_i;
+      w_q         <= w_i;
+      mirror_q    <= mirror_i;
+      transmit_q  <= transmit_i;
     end
   end
 
