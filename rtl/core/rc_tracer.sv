@@ -1260,54 +1260,36 @@ module rc_tracer #(
   // registered one is the pointer of the second (DqSp_A). Each candidate slot's are made from
   // registers, the decision's kind chooses among them, and the block RAM's address and read
   // enable come from flip-flops.
-  logic              dq_geo_q, dq_now_q, dq_push_q, dq_msel_q, stk_re_q;
-  logic [SlotW-1:0]  dq_slot_q;
-  logic [DepthW-1:0] sp_geo, sp_seq, sp_fq, dec_sp;
-  logic [StkIdxW-1:0] wa_geo, wa_seq, wa_fq, ra_geo, ra_seq, ra_fq, stk_waddr_q, stk_raddr_q;
-  assign sp_geo = sp_q[geo_slot*DepthW +: DepthW];
-  // The geometry candidate is registered too (sp_geo_q, wa_geo_q, ra_geo_q, loaded in every
-  // cycle from the record in the geometry queue): a last record decides from its second cycle
-  // there, and no decision changes its slot's pointer while the slot's packet is lit (GeoSp_A).
-  logic [DepthW-1:0]  sp_geo_q;
-  logic [StkIdxW-1:0] wa_geo_q, ra_geo_q;
+  logic               dq_geo_q, dq_now_q, dq_push_q, dq_msel_q, stk_re_q;
+  logic [SlotW-1:0]   dq_slot_q;
+  logic [DepthW-1:0]  dec_sp;
+  logic [StkIdxW-1:0] dec_wa, dec_ra, stk_waddr_q, stk_raddr_q;
+  // A slot's candidate {stack pointer, write address (the next entry), read address (the
+  // top)}; each candidate slot's is registered, and the decision's kind chooses among them.
+  localparam int unsigned CandW = DepthW + 2 * StkIdxW;
+  function automatic logic [CandW-1:0] stk_cand(input logic [SlotW-1:0]        slot,
+                                                input logic [Slots*DepthW-1:0] sp);
+    logic [DepthW-1:0] p;
+    p = sp[slot*DepthW +: DepthW];
+    stk_cand = {p, StkIdxW'(slot * MaxBounces + 32'(p)),
+                StkIdxW'(slot * MaxBounces + 32'(p) - 1)};
+  endfunction
+  logic [CandW-1:0] cand_geo_q, cand_seq_q, cand_fq_q;
   always_ff @(posedge clk_i) begin
-    sp_geo_q <= sp_geo;
-    wa_geo_q <= wa_geo;
-    ra_geo_q <= ra_geo;
+    // The geometry candidate is loaded in every cycle from the record in the geometry queue: a
+    // last record decides from its second cycle there, and no decision changes its slot's
+    // pointer while the slot's packet is lit (GeoSp_A).
+    cand_geo_q <= stk_cand(geo_slot, sp_q);
+    // The sequencer's, in every cycle: its slot is loaded at a pop and steps a cycle later at
+    // the earliest, and no decision changes that slot's pointer while the sequencer holds it,
+    // so at a step the register is the slot's (SeqSp_A).
+    cand_seq_q <= stk_cand(fs_slot_q, sp_q);
+    // The fetch head's, as the slot enters the head register (from the FIFO's slot): a slot
+    // waiting for its fetch has no decision, so its pointer does not change until it leaves
+    // the head (FqSp_A).
+    if (fr_pop) cand_fq_q <= stk_cand(fr_slot, sp_q);
   end
-  // The sequencer's candidate is registered (sp_seq_q, wa_seq_q, ra_seq_q, loaded in every
-  // cycle): its slot is loaded at a pop and steps a cycle later at the earliest, and no decision
-  // changes that slot's pointer while the sequencer holds it, so at a step the registers are
-  // the slot's (SeqSp_A).
-  logic [DepthW-1:0]  sp_seq_q;
-  logic [StkIdxW-1:0] wa_seq_q, ra_seq_q;
-  always_ff @(posedge clk_i) begin
-    sp_seq_q <= sp_seq;
-    wa_seq_q <= wa_seq;
-    ra_seq_q <= ra_seq;
-  end
-  assign sp_seq = sp_q[fs_slot_q*DepthW +: DepthW];
-  assign sp_fq  = sp_q[fq_slot*DepthW +: DepthW];
-  // The fetch head's candidate is registered as the slot enters the head register (from the
-  // FIFO's slot): a slot waiting for its fetch has no decision, so its pointer does not change
-  // until it leaves the head (FqSp_A).
-  logic [DepthW-1:0]  sp_fq_q, sp_fr;
-  logic [StkIdxW-1:0] wa_fq_q, ra_fq_q;
-  assign sp_fr = sp_q[fr_slot*DepthW +: DepthW];
-  always_ff @(posedge clk_i) begin
-    if (fr_pop) begin
-      sp_fq_q <= sp_fr;
-      wa_fq_q <= StkIdxW'(fr_slot * MaxBounces + 32'(sp_fr));
-      ra_fq_q <= StkIdxW'(fr_slot * MaxBounces + 32'(sp_fr) - 1);
-    end
-  end
-  assign wa_geo = StkIdxW'(geo_slot * MaxBounces + 32'(sp_geo));
-  assign wa_seq = StkIdxW'(fs_slot_q * MaxBounces + 32'(sp_seq));
-  assign wa_fq  = StkIdxW'(fq_slot * MaxBounces + 32'(sp_fq));
-  assign ra_geo = StkIdxW'(geo_slot * MaxBounces + 32'(sp_geo) - 1);
-  assign ra_seq = StkIdxW'(fs_slot_q * MaxBounces + 32'(sp_seq) - 1);
-  assign ra_fq  = StkIdxW'(fq_slot * MaxBounces + 32'(sp_fq) - 1);
-  assign dec_sp = dec_geo ? sp_geo_q : dec_seq ? sp_seq_q : sp_fq_q;
+  assign {dec_sp, dec_wa, dec_ra} = dec_geo ? cand_geo_q : dec_seq ? cand_seq_q : cand_fq_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       dq_q     <= 1'b0;
@@ -1325,8 +1307,8 @@ module rc_tracer #(
       dq_push_q   <= dec_m_any && dec_r_any;
       dq_msel_q   <= dec_m_any;
       dq_sp_q     <= dec_sp;
-      stk_waddr_q <= dec_geo ? wa_geo_q : dec_seq ? wa_seq_q : wa_fq_q;
-      stk_raddr_q <= dec_geo ? ra_geo_q : dec_seq ? ra_seq_q : ra_fq_q;
+      stk_waddr_q <= dec_wa;
+      stk_raddr_q <= dec_ra;
     end
   end
   always_comb begin
@@ -2139,13 +2121,13 @@ module rc_tracer #(
                             bq_sel[0] == bq_valid);
   // A sequencer step finds its slot's stack pointer in the registered candidate.
   SeqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                            fs_step |-> {sp_seq_q, wa_seq_q, ra_seq_q} == {sp_seq, wa_seq, ra_seq});
+                            fs_step |-> cand_seq_q == stk_cand(fs_slot_q, sp_q));
   // The miss term's shift register marks the third channel's result.
   MoValid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               mo_valid == (mf_valid && mo_ch_q == 2'd2));
   // A geometry decision finds its slot's stack pointer in the registered candidate.
   GeoSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                            dec_geo |-> {sp_geo_q, wa_geo_q, ra_geo_q} == {sp_geo, wa_geo, ra_geo});
+                            dec_geo |-> cand_geo_q == stk_cand(geo_slot, sp_q));
   // A write starts with a done slot that is not being written.
   DonePick_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                                !fw_busy_q && dn_any_q |-> done_q[dn_idx_q] && !fin_q[dn_idx_q]);
@@ -2193,7 +2175,7 @@ module rc_tracer #(
   // A fetch decision finds its slot's stack pointer in the registered candidate.
   FqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                            dec && !dec_geo && !dec_seq |->
-                           {sp_fq_q, wa_fq_q, ra_fq_q} == {sp_fq, wa_fq, ra_fq});
+                           cand_fq_q == stk_cand(fq_slot, sp_q));
   // Two or more free slots: the highest free slot is another than the lowest.
   HiAny_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             hi_any_q == $past(hi_any_c && hi_idx_c != lo_idx_c));
