@@ -120,8 +120,9 @@ module rc_core_status #(
   localparam int unsigned KindLo = rc_pkg::CorePerfPrimaryRays;
   localparam int unsigned KindHi = rc_pkg::CorePerfRefractTriangleTests;
 
-  if (PerfSettle < NPerf + 4 || ReadLatency != 2) begin : g_settle_check
-    $error("rc_core_status: need perf_settle_cycles >= core_perf.count + 4, perf_read_latency 2");
+  // The per-kind increments come a cycle later than the others (rc_kind_perf registers them).
+  if (PerfSettle < NPerf + 5 || ReadLatency != 2) begin : g_settle_check
+    $error("rc_core_status: need perf_settle_cycles >= core_perf.count + 5, perf_read_latency 2");
   end
 
   // Whether counter k has a front of its own (not the largest depth; the per-kind counters only
