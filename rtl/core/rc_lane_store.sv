@@ -29,7 +29,8 @@
 //   zero per cycle; the sums of the two before it are forwarded to it when they are to its
 //   lane, so any sequence of them is exact.
 // - Reads (registered: the lane given in a cycle is on the outputs in the next one; seq_ln_i's
-//   two cycles later, its address registered before the block RAMs):
+//   two cycles later, its address registered before the block RAMs, and seq_ray_o and seq_w_o
+//   three cycles later, through a register after their block RAMs):
 //     seq_ln_i -> seq_*: the current packet's ray, weight, triangle, t and d'z (the sequencer);
 //     fin_ln_i -> fin_*: the primary record, pixel id, sums, lights and the two triangles (the
 //              final write).
@@ -141,7 +142,7 @@ module rc_lane_store #(
   logic               rw_we_q, pr_we_q;
   logic [SlotW-1:0]   rw_slot_q, pr_slot_q;
   logic [127:0]       pr_pixel_q;
-  logic [1:0]         seq_lane_q;
+  logic [1:0]         seq_lane_q, seq_rw_lane_q;
   logic [LaneW-1:0]   seq_ln_q;  // the sequencer's lane, registered beside the block RAMs
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -163,10 +164,13 @@ module rc_lane_store #(
     pr_slot_q  <= prim_slot_i;
     pr_pixel_q <= prim_pixel_i;
   end
+  // The rays and weights are read through a register after the block RAMs (OutReg): a DP16KD's
+  // read reaches the fabric 5.8 ns after the edge, and the lane's select and the fetch ring's
+  // distributed RAM are across the die (the lit board routed at 6799b81, seed 2: -2.77 ns).
   rc_ram #(
     .Width (4 * RwW),
     .Depth (Slots),
-    .OutReg(1'b0)
+    .OutReg(1'b1)
   ) u_rw (
     .clk_i,
     .we_i   (rw_we_q),
@@ -178,7 +182,7 @@ module rc_lane_store #(
   );
   // The lane: a multiplexer (an indexed part-select of the word would be a shifter).
   always_comb begin
-    unique case (seq_lane_q)
+    unique case (seq_rw_lane_q)
       2'd0:    {seq_w_o, seq_ray_o} = rw_rdata[0*RwW +: RwW];
       2'd1:    {seq_w_o, seq_ray_o} = rw_rdata[1*RwW +: RwW];
       2'd2:    {seq_w_o, seq_ray_o} = rw_rdata[2*RwW +: RwW];
@@ -358,9 +362,10 @@ module rc_lane_store #(
       a_zero_q <= l_zero_q;
     end
     if (a_q) fwd_data_q <= a_new;
-    seq_ln_q   <= seq_ln_i;
-    seq_lane_q <= seq_ln_q[1:0];
-    fin_lane_q <= fin_ln_i[1:0];
+    seq_ln_q      <= seq_ln_i;
+    seq_lane_q    <= seq_ln_q[1:0];
+    seq_rw_lane_q <= seq_lane_q;
+    fin_lane_q    <= fin_ln_i[1:0];
   end
 
   ////////////////

@@ -235,9 +235,9 @@ module rc_tracer #(
   // pending (ambient and miss terms, at most two add queues' worth) and its packets in
   // rc_hit_light (at most MaxBounces + 1): one counter, as the slot waits for all three.
   localparam int unsigned WkW    = $clog2(4 * ShadowPackets + 2 * AddQ + MaxBounces + 2);
-  // The miss term's latency: the weight's register and three channels, one a cycle (the term
-  // leaves with the third), the product, the fixed point (two stages).
-  localparam int unsigned MissL  = 3 + rc_pkg::FpStagesMul + 2;
+  // The miss term's latency: the issue's register, the weight's register and three channels,
+  // one a cycle (the term leaves with the third), the product, the fixed point (two stages).
+  localparam int unsigned MissL  = 4 + rc_pkg::FpStagesMul + 2;
   localparam int unsigned KsLsb  = 8 * (rc_pkg::ImageMaterialKs - rc_pkg::ImageMaterialKd);
   localparam int unsigned NsLsb  = 8 * (rc_pkg::ImageMaterialNs - rc_pkg::ImageMaterialKd);
   localparam int unsigned IorLsb = 8 * (rc_pkg::ImageMaterialIor - rc_pkg::ImageMaterialKd);
@@ -283,6 +283,7 @@ module rc_tracer #(
   logic [Slots-1:0]       cf_q;      // the current packet failed (a secondary packet's colour 1)
   logic [Slots-1:0]       cm_q;      // the current packet is a mirror packet
   logic [Slots*3-1:0]     pend_q;    // the current packet's writes still due, [3s +: 3]
+  logic [Slots-1:0]       pend1_q;   // pend_q[3s +: 3] == 1 (Pend1_A)
   logic [Slots*DepthW-1:0] depth_q;  // the current packet's depth
   logic [Slots*WkW-1:0]   wk_q;      // work out: shadow rays, adds pending, packets being lit
   logic [Slots*DepthW-1:0] sp_q;     // the stack's entries
@@ -422,8 +423,20 @@ module rc_tracer #(
     lo_hot_q   <= lo_hot_c;
     hi_idx_q   <= hi_idx_c;
     hi_hot_q   <= hi_hot_c;
-    take_idx_q <= free_idx;
   end
+  // The slot taken, a kept register: the lane records' pixel-id slot (rc_lane_store's pr_slot_q)
+  // loads the same value, and the two merged sat beside the block RAMs (the lit board routed at
+  // 6799b81, seed 2: pr_slot_q through the free pick into cf_q, cmask_q, pend_q and depth_q,
+  // -1.61 to -0.54 ns).
+  rc_reg_copies #(
+    .Width (SlotW),
+    .Copies(1)
+  ) u_take_idx (
+    .clk_i,
+    .rst_ni,
+    .d_i(free_idx),
+    .q_o(take_idx_q)
+  );
   assign use_hi   = take_q && lo_idx_q == take_idx_q;
   assign free_any = use_hi ? hi_any_q : lo_any_q;
   assign free_idx = use_hi ? hi_idx_q : lo_idx_q;
@@ -725,7 +738,10 @@ module rc_tracer #(
     else fq_push_q <= fq_push;
   end
   always_ff @(posedge clk_i) fq_wslot_q <= cw_slot;
-  assign fq_push = cw_cur_fq && pend_q[cw_slot*3 +: 3] == 3'd1;
+  // Whether the write is its packet's last reads a flag per slot (pend1_q), not the slot's count
+  // and a compare (the lit board routed at 6799b81, seed 2: core_fb_pixel through the count's
+  // select into fq_push_q, -2.30 ns).
+  assign fq_push = cw_cur_fq && pend1_q[cw_slot];
 
   rc_fifo #(
     .Width   (SlotW),
@@ -789,7 +805,10 @@ module rc_tracer #(
   // The lane's records (u_lanes) are read two cycles ahead (the address registered beside the
   // block RAMs, then their read register): at a pop its first lane, at a step the next one,
   // else the lane again; so seq_* hold fs_lane's from the second cycle after a pop or a step
-  // on, and the sequencer waits one cycle after each (fs_wait_q): a lane per two cycles.
+  // on, and the sequencer waits one cycle after each (fs_wait_q): a lane per two cycles. The
+  // ray and its weight (seq_ray, seq_w) come a cycle later still, through a register after the
+  // block RAMs: they are fs_lane's in the cycle after a step, and in the one after that, and
+  // their users (the entry's copy, the miss term's weight) take them then.
   logic [LaneW-1:0] seq_ln;
   logic [7*W-1:0]   seq_ray;
   logic [W-1:0]     seq_w, seq_t, seq_dz;
@@ -822,7 +841,8 @@ module rc_tracer #(
   logic              mi_free;     // the miss term's multiplier takes a miss
   // A hit needs an entry and a free shading request register; the port's ready is not waited
   // for (it comes from across the die), and the sequencer steps a lane per two cycles anyway.
-  assign fs_room_hit  = fe_count_q != (FetchW + 1)'(FetchEntries) && !lshd_req_valid_q;
+  logic fe_room;  // the ring has room (a register: FeRoom_A)
+  assign fs_room_hit  = fe_room && !lshd_req_valid_q;
   assign fs_room_miss = mi_ok && mi_free;
   // A packet without hits is decided at its last miss's issue (dec_seq), after its weights are
   // read.
@@ -934,18 +954,29 @@ module rc_tracer #(
   // The entries' payload (no reset: written before it is read). The tail entry is free unless
   // the ring is full, so the lane's copy is written into it in every cycle the ring has room,
   // allocated or not (the enables are the tail's decode, not the sequencer's step); the
-  // allocation's cycle writes last.
-  logic fe_room;
-  assign fe_room = fe_count_q != (FetchW + 1)'(FetchEntries);
+  // allocation's cycle writes last. The ray and its weight are written a cycle later, into the
+  // tail of the cycle before (fe_rw_*_q): they come from the block RAMs' register a cycle after
+  // the rest (the lit board routed at 6799b81, seed 2: the block RAM's read through the lane's
+  // select into fe_ray_q and fe_w_q, -2.57 and -2.77 ns). An entry is not read in the cycle
+  // after its allocation (FeRwLate_A: it waits for its shading and material reads).
+  logic              fe_rw_we_q;
+  logic [FetchW-1:0] fe_rw_tail_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) fe_rw_we_q <= 1'b0;
+    else fe_rw_we_q <= fe_room;
+  end
+  always_ff @(posedge clk_i) fe_rw_tail_q <= fe_tail_q;
   always_ff @(posedge clk_i) begin
     if (fe_room) begin
       fe_ln_q[fe_tail_q]   <= {fs_slot_q, fs_lane};
       fe_last_q[fe_tail_q] <= fs_last;
-      fe_ray_q[fe_tail_q]  <= seq_ray;
-      fe_w_q[fe_tail_q]    <= seq_w;
       fe_tri_q[fe_tail_q]  <= seq_tri;
       fe_t_q[fe_tail_q]    <= seq_t;
       fe_dz_q[fe_tail_q]   <= seq_dz;
+    end
+    if (fe_rw_we_q) begin
+      fe_ray_q[fe_rw_tail_q] <= seq_ray;
+      fe_w_q[fe_rw_tail_q]   <= seq_w;
     end
     if (lshd_take) fe_n_q[lshd_rsp_tag_i] <= lshd_rsp_error_i ? '0 : lshd_rsp_data_i[NrmLsb +: 3*W];
     if (lmat_take) begin
@@ -1004,16 +1035,22 @@ module rc_tracer #(
     .count_o(hq_count)
   );
 
+  // The ring's room is a register, loaded with the next count's compare (the lit board routed
+  // at 6799b81, seed 2: fe_count_q's compare through the sequencer's step, -1.57 ns).
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       fe_head_q  <= '0;
       fe_tail_q  <= '0;
       fe_count_q <= '0;
       fe_done_q  <= '0;
+      fe_room    <= 1'b1;
     end else begin
       if (fs_alloc) fe_tail_q <= fe_tail_q + 1'b1;
       if (fe_pop) fe_head_q <= fe_head_q + 1'b1;
       fe_count_q <= fe_count_q + (FetchW + 1)'(fs_alloc) - (FetchW + 1)'(fe_pop);
+      fe_room    <= fe_pop ||
+                    (fe_count_q != (FetchW + 1)'(FetchEntries) &&
+                     !(fs_alloc && fe_count_q == (FetchW + 1)'(FetchEntries - 1)));
       for (int e = 0; e < FetchEntries; e++) begin
         if (ns_valid && ns_tag_q == FetchW'(e)) fe_done_q[e] <= 1'b1;
         else if (fe_pop && fe_head_q == FetchW'(e)) fe_done_q[e] <= 1'b0;
@@ -1440,34 +1477,42 @@ module rc_tracer #(
   // The miss term: fix(bg_c * w) per channel, MissL cycles; issued only while the add queue has
   // room for it beside the ones in flight and an ambient term.
   // pm_q = aq_count + mi_count_q, counted beside them so that the room is a compare of a
-  // register with a constant.
+  // register with a constant. A miss term's push into the add queue leaves the sum as it is (one
+  // in flight less, one queued more), so the count adds the issues and the ambient terms and
+  // takes the pops: a sample is not taken while a miss term leaves (lt_ready), and the queue's
+  // pushes are exactly those two (the lit board routed at 6799b81, seed 2: sp_free_any through
+  // the sample's take and four increments into pm_q, -2.33 ns).
   localparam int unsigned PmW = $clog2(AddQ + MissL + 1);
   logic [PmW-1:0] pm_q;
   assign mi_ok = 32'(pm_q) + 2 <= AddQ;
   // Channel-serial: one multiplier and one conversion take the three channels in consecutive
-  // cycles (mi_ph_q 1, 2, 3: red, green, blue), the weight held in mi_w_q; a miss may issue
-  // while the last channel enters (mi_free), so one per three cycles. The results leave in the
-  // same order, three consecutive ones per miss (mo_ch_q counts them), and the term goes with
-  // the third.
+  // cycles (mi_ph_q 1, 2, 3: red, green, blue), from the second cycle after the issue (the
+  // weight, seq_w, comes the cycle after it and is held in mi_w_q); a miss may issue while the
+  // second channel enters (mi_free: its first channel then enters after the last one), so one
+  // per three cycles. The results leave in the same order, three consecutive ones per miss
+  // (mo_ch_q counts them), and the term goes with the third.
   logic [1:0]   mi_ph_q, mo_ch_q;
-  logic [W-1:0] mi_w_q;  // the weight, registered off the lane records' block RAM
+  logic         mi_issue_q;  // a miss issued in the cycle before: its weight is on seq_w
+  logic [W-1:0] mi_w_q;      // the weight, registered off the lane records' register
   logic [W-1:0] mi_bg;
   logic         mm_valid, mf_valid;
   logic [W-1:0] mm_res;
   logic [FW-1:0] mf_out, mo_r_q, mo_g_q;
-  assign mi_free = mi_ph_q == 2'd0 || mi_ph_q == 2'd3;
+  assign mi_free = !mi_issue_q && mi_ph_q != 2'd1;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      mi_ph_q <= 2'd0;
-      mo_ch_q <= 2'd0;
+      mi_issue_q <= 1'b0;
+      mi_ph_q    <= 2'd0;
+      mo_ch_q    <= 2'd0;
     end else begin
-      if (mi_issue) mi_ph_q <= 2'd1;
+      mi_issue_q <= mi_issue;
+      if (mi_issue_q) mi_ph_q <= 2'd1;
       else if (mi_ph_q != 2'd0) mi_ph_q <= mi_ph_q + 2'd1;  // 3 wraps to 0
       if (mf_valid) mo_ch_q <= (mo_ch_q == 2'd2) ? 2'd0 : mo_ch_q + 2'd1;
     end
   end
   always_ff @(posedge clk_i) begin
-    if (mi_issue) mi_w_q <= seq_w;
+    if (mi_issue_q) mi_w_q <= seq_w;
     if (mf_valid && mo_ch_q == 2'd0) mo_r_q <= mf_out;
     if (mf_valid && mo_ch_q == 2'd1) mo_g_q <= mf_out;
   end
@@ -1528,7 +1573,7 @@ module rc_tracer #(
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) pm_q <= '0;
-    else pm_q <= pm_q + PmW'(mi_issue) - PmW'(mo_valid) + PmW'(aq_push) - PmW'(aq_pop);
+    else pm_q <= pm_q + PmW'(mi_issue) + PmW'(lt_amb_push) - PmW'(aq_pop);
   end
 
   // A light's samples: the ambient term at light 0 (to the add queue, after a miss term in the
@@ -1913,6 +1958,8 @@ module rc_tracer #(
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_mi_hot  (.valid_i(ev_mi_q),  .idx_i(ev_mi_slot_q),
                                                   .hot_o(mi_hot));
   assign ev_hot = lt_hot | cws_hot | aq_hot | fq_hot | mi_hot;
+  logic [4:0] wk_lt;  // a sample's change of its slot's work (with lt_hot)
+  assign wk_lt = 5'(ev_rays_q) + 5'(ev_amb_q) - 5'(ev_lt_end_q);
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_cw_hot  (.valid_i(cw_cur), .idx_i(cw_slot),
                                                   .hot_o(cw_hot));
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_snd_hot (.valid_i(sw),     .idx_i(sw_slot),
@@ -1930,6 +1977,7 @@ module rc_tracer #(
       cf_q    <= '0;
       cm_q    <= '0;
       pend_q  <= '0;
+      pend1_q <= '0;
       depth_q <= '0;
       wk_q    <= '0;
       sp_q    <= '0;
@@ -1937,11 +1985,12 @@ module rc_tracer #(
       for (int s = 0; s < Slots; s++) begin
         // The work's change in this cycle, -3 .. 7: a shadow packet's rays, a miss term's
         // issue, an ambient term, a packet into the lighting; less a shadow ray's write, an
-        // add, a packet's last sample.
-        logic [4:0] wk_delta;
-        wk_delta = (lt_hot[s] ? 5'(ev_rays_q) : 5'd0) + 5'(mi_hot[s]) +
-                   5'(ev_amb_q && lt_hot[s]) + 5'(fq_hot[s]) - 5'(cws_hot[s]) - 5'(aq_hot[s]) -
-                   5'(ev_lt_end_q && lt_hot[s]);
+        // add, a packet's last sample. The sample's three (wk_lt, -1 .. 5) are summed once for
+        // all slots, the four single events per slot, then the two (the lit board routed at
+        // 6799b81, seed 2: ev_lt_q through seven terms into wk_q, -1.50 ns in 13 cells).
+        logic [4:0] wk_delta, wk_one;
+        wk_one   = 5'(mi_hot[s]) + 5'(fq_hot[s]) - 5'(cws_hot[s]) - 5'(aq_hot[s]);
+        wk_delta = (lt_hot[s] ? wk_lt : 5'd0) + wk_one;
         wk_q[s*WkW +: WkW] <= wk_q[s*WkW +: WkW] + {{(WkW - 5){wk_delta[4]}}, wk_delta};
         // The free slot's state is cleared while a primary packet is offered (slot_offer), not
         // only when it is taken: the slot is free (SlotOffer_A), and nothing reads a free
@@ -1953,15 +2002,18 @@ module rc_tracer #(
           cf_q[s]   <= 1'b0;
           cm_q[s]   <= 1'b0;
           pend_q[s*3 +: 3] <= rc_pkg::ray_count(pkt_mask_i);
+          pend1_q[s]       <= rc_pkg::ray_count(pkt_mask_i) == 3'd1;
           depth_q[s*DepthW +: DepthW] <= '0;
           sp_q[s*DepthW +: DepthW] <= '0;
         end else begin
           if (cw_hot[s]) begin
             pend_q[s*3 +: 3] <= pend_q[s*3 +: 3] - 1'b1;
+            pend1_q[s]       <= pend_q[s*3 +: 3] == 3'd2;
             if (!cw_d0 && core_fb_rgb[0]) cf_q[s] <= 1'b1;
           end
           if (snd_hot[s]) begin
             pend_q[s*3 +: 3] <= rc_pkg::ray_count(sw_mask);
+            pend1_q[s]       <= rc_pkg::ray_count(sw_mask) == 3'd1;
             depth_q[s*DepthW +: DepthW] <= sw_depth;
             cm_q[s] <= sw_mirror;
             cf_q[s] <= 1'b0;
@@ -2122,6 +2174,18 @@ module rc_tracer #(
   // A sequencer step finds its slot's stack pointer in the registered candidate.
   SeqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             fs_step |-> cand_seq_q == stk_cand(fs_slot_q, sp_q));
+  // A slot's last-write flag is its count's compare.
+  for (genvar gs = 0; gs < Slots; gs++) begin : g_pend1_chk
+    Pend1_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              pend1_q[gs] == (pend_q[gs*3 +: 3] == 3'd1));
+  end
+  // The ring's room register is the count's compare.
+  FeRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                             fe_room == (fe_count_q != (FetchW + 1)'(FetchEntries)));
+  // An entry whose ray and weight are written in this cycle (a cycle after the rest) is not
+  // read: it waits for its shading and material reads.
+  FeRwLate_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                               fe_rw_we_q && fe_valid |-> fe_head_q != fe_rw_tail_q);
   // The miss term's shift register marks the third channel's result.
   MoValid_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               mo_valid == (mf_valid && mo_ch_q == 2'd2));
