@@ -5,13 +5,15 @@
 // - Function: exactly rc::light_byte() (tb/golden/trace.hpp), bit for bit, with F = FixBits:
 //   x = min(sum_i, 2^F) * 255 (computed as (m << 8) - m), byte_o = x >> F rounded to nearest,
 //   ties to even on the F bits shifted out.
-// - Handshake: valid only, no backpressure. valid_o is valid_i one cycle later; byte_o belongs to
-//   the input of the cycle before and is meaningful only while valid_o is 1.
-// - Latency: 1 (the output register).
+// - Handshake: valid only, no backpressure. valid_o is valid_i two cycles later; byte_o belongs to
+//   the input of two cycles before and is meaningful only while valid_o is 1.
+// - Latency: 2 (x registered, then the output register: the clamp and the product are one carry
+//   chain each, the rounding's compare and increment two more; the lit board routed at 6799b81,
+//   seed 2, had all four in one cycle, 38 cells, -0.74 ns).
 // - Parameters: FixBits: F (default docs/spec.toml [light] fixed_bits, >= 1); SumW: the sum's bits
 //   (> FixBits).
 // - Illegal input: none; every sum is legal.
-// - Reset: rst_ni (active low, asynchronous) clears only valid_o (rc_pipe_out).
+// - Reset: rst_ni (active low, asynchronous) clears only the valid bits.
 module rc_light_byte #(
   parameter int unsigned FixBits = rc_pkg::LightFixedBits,
   parameter int unsigned SumW    = 32
@@ -31,7 +33,8 @@ module rc_light_byte #(
   localparam int unsigned XW = FixBits + 9;  // min(sum, 2^F) * 255 < 2^(F + 8)
 
   logic [FixBits:0]   m;        // min(sum, 2^F)
-  logic [XW-1:0]      x;
+  logic [XW-1:0]      x, x_q;
+  logic               x_v_q;
   logic [8:0]         q;        // x >> F: at most 255, one more bit for the rounding's carry
   logic [FixBits-1:0] rem, half;
   logic               up;
@@ -40,8 +43,13 @@ module rc_light_byte #(
   assign m    = (sum_i >= SumW'(1 << FixBits)) ? (FixBits + 1)'(1 << FixBits)
                                                : (FixBits + 1)'(sum_i);
   assign x    = (XW'(m) << 8) - XW'(m);
-  assign q    = x[XW-1 -: 9];
-  assign rem  = x[FixBits-1:0];
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) x_v_q <= 1'b0;
+    else x_v_q <= valid_i;
+  end
+  always_ff @(posedge clk_i) x_q <= x;
+  assign q    = x_q[XW-1 -: 9];
+  assign rem  = x_q[FixBits-1:0];
   assign half = FixBits'(1) << (FixBits - 1);
   assign up   = (rem > half) || ((rem == half) && q[0]);
   // q + up never exceeds 255: q = 255 only at m = 2^F, where rem = 0.
@@ -54,7 +62,7 @@ module rc_light_byte #(
   ) u_out (
     .clk_i,
     .rst_ni,
-    .valid_i,
+    .valid_i(x_v_q),
     .data_i (byte_d),
     .valid_o,
     .data_o (byte_o)

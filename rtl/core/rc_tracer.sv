@@ -819,6 +819,7 @@ module rc_tracer #(
   logic [FetchW:0]   fe_count_q;
   logic [FetchEntries-1:0] fe_done_q;
   logic [LaneW-1:0]  fe_ln_q    [FetchEntries];
+  logic [DepthW-1:0] fe_depth_q [FetchEntries];  // the slot's depth (FeDepth_A)
   logic              fe_last_q  [FetchEntries];
   logic [3*W-1:0]    fe_n_q     [FetchEntries];
   logic [3*W-1:0]    fe_kd_q    [FetchEntries];
@@ -968,7 +969,8 @@ module rc_tracer #(
   always_ff @(posedge clk_i) fe_rw_tail_q <= fe_tail_q;
   always_ff @(posedge clk_i) begin
     if (fe_room) begin
-      fe_ln_q[fe_tail_q]   <= {fs_slot_q, fs_lane};
+      fe_ln_q[fe_tail_q]    <= {fs_slot_q, fs_lane};
+      fe_depth_q[fe_tail_q] <= depth_q[fs_slot_q*DepthW +: DepthW];
       fe_last_q[fe_tail_q] <= fs_last;
       fe_tri_q[fe_tail_q]  <= seq_tri;
       fe_t_q[fe_tail_q]    <= seq_t;
@@ -1014,7 +1016,11 @@ module rc_tracer #(
   assign fe_valid      = fe_count_q != '0 && fe_done_q[fe_head_q];
   assign fe_pop        = fe_valid && !hq_count;
   assign fe_head_ln    = fe_ln_q[fe_head_q];
-  assign fe_head_depth = depth_q[fe_head_ln[LaneW-1:2]*DepthW +: DepthW];
+  // The entry's depth is copied from its slot's at allocation (it does not change until the
+  // slot's next packet is sent, after its lighting), so the head's read is one distributed-RAM
+  // read, not that and the slot's select after it (the lit board routed at 6799b81, seed 2:
+  // fe_head_q through both into u_hl_q, -1.47 ns).
+  assign fe_head_depth = fe_depth_q[fe_head_q];
   rc_fifo #(
     .Width   (HlQW),
     .Depth   (1),
@@ -1303,13 +1309,28 @@ module rc_tracer #(
   logic [StkIdxW-1:0] dec_wa, dec_ra, stk_waddr_q, stk_raddr_q;
   // A slot's candidate {stack pointer, write address (the next entry), read address (the
   // top)}; each candidate slot's is registered, and the decision's kind chooses among them.
+  // The addresses slot * MaxBounces + p and that less one are AND-OR tables over the slot and
+  // its pointer's value, not a multiplier and two carry chains after the pointer's select (the
+  // lit board routed at 6799b81, seed 2: the geometry's and the sequencer's candidates, 10
+  // cells, -0.61 and -0.88 ns).
   localparam int unsigned CandW = DepthW + 2 * StkIdxW;
   function automatic logic [CandW-1:0] stk_cand(input logic [SlotW-1:0]        slot,
                                                 input logic [Slots*DepthW-1:0] sp);
-    logic [DepthW-1:0] p;
-    p = sp[slot*DepthW +: DepthW];
-    stk_cand = {p, StkIdxW'(slot * MaxBounces + 32'(p)),
-                StkIdxW'(slot * MaxBounces + 32'(p) - 1)};
+    logic [DepthW-1:0]  p;
+    logic [StkIdxW-1:0] wa, ra;
+    p  = '0;
+    wa = '0;
+    ra = '0;
+    for (int s = 0; s < Slots; s++) begin
+      p = p | ({DepthW{slot == SlotW'(s)}} & sp[s*DepthW +: DepthW]);
+      for (int q = 0; q < (1 << DepthW); q++) begin
+        wa = wa | ({StkIdxW{slot == SlotW'(s) && sp[s*DepthW +: DepthW] == DepthW'(q)}} &
+                   StkIdxW'(s * MaxBounces + q));
+        ra = ra | ({StkIdxW{slot == SlotW'(s) && sp[s*DepthW +: DepthW] == DepthW'(q)}} &
+                   StkIdxW'(s * MaxBounces + q - 1));
+      end
+    end
+    stk_cand = {p, wa, ra};
   endfunction
   logic [CandW-1:0] cand_geo_q, cand_seq_q, cand_fq_q;
   always_ff @(posedge clk_i) begin
@@ -1317,10 +1338,10 @@ module rc_tracer #(
     // last record decides from its second cycle there, and no decision changes its slot's
     // pointer while the slot's packet is lit (GeoSp_A).
     cand_geo_q <= stk_cand(geo_slot, sp_q);
-    // The sequencer's, in every cycle: its slot is loaded at a pop and steps a cycle later at
-    // the earliest, and no decision changes that slot's pointer while the sequencer holds it,
-    // so at a step the register is the slot's (SeqSp_A).
-    cand_seq_q <= stk_cand(fs_slot_q, sp_q);
+    // The sequencer's is the fetch head's, copied at the pop that gives the sequencer its slot:
+    // no decision changes that slot's pointer while the sequencer holds it, so at a step the
+    // register is the slot's (SeqSp_A).
+    if (fq_pop) cand_seq_q <= cand_fq_q;
     // The fetch head's, as the slot enters the head register (from the FIFO's slot): a slot
     // waiting for its fetch has no decision, so its pointer does not change until it leaves
     // the head (FqSp_A).
@@ -1796,10 +1817,11 @@ module rc_tracer #(
   logic [SlotW-1:0] fw_slot_q;
   logic [1:0]       fw_lane_q;
   logic [LaneW-1:0] fw_ln;
-  // The lane's write in two stages (st_*, then st2_*), the sums registered before their bytes.
-  logic             st_valid_q, st_hit_q, st2_valid_q, st2_hit_q;
-  logic [OutW-1:0]  st_rec_q, st2_rec_q;  // {pixel, rgb, hit, tri, t, u, v, lights, bounce,
-                                          //  refract}
+  // The lane's write in three stages (st_*, st2_*, st3_*), the sums registered before their
+  // bytes (rc_light_byte: two cycles).
+  logic             st_valid_q, st_hit_q, st2_valid_q, st2_hit_q, st3_valid_q, st3_hit_q;
+  logic [OutW-1:0]  st_rec_q, st2_rec_q, st3_rec_q;  // {pixel, rgb, hit, tri, t, u, v, lights,
+                                                     //  bounce, refract}
   logic [3*SumW-1:0] st_sum_q;
   logic [2:0]       oq_count;
   logic             oq_valid;
@@ -1808,7 +1830,7 @@ module rc_tracer #(
   logic [23:0]      lb_rgb;
 
   assign fw_ln    = {fw_slot_q, fw_lane_q};
-  // The room: fw_cnt_q counts the output queue's entries and the writes in its two stages
+  // The room: fw_cnt_q counts the output queue's entries and the writes in its three stages
   // (FwCnt_A), so the room is a compare of a register with a constant.
   logic [2:0] fw_cnt_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -1858,6 +1880,9 @@ module rc_tracer #(
       st2_valid_q <= 1'b0;
       st2_hit_q   <= 1'b0;
       st2_rec_q   <= '0;
+      st3_valid_q <= 1'b0;
+      st3_hit_q   <= 1'b0;
+      st3_rec_q   <= '0;
     end else begin
       if (!fw_busy_q && dn_any_q) begin
         fw_busy_q <= 1'b1;
@@ -1869,9 +1894,14 @@ module rc_tracer #(
       end
       st_valid_q  <= fw_write;
       st2_valid_q <= st_valid_q;
+      st3_valid_q <= st2_valid_q;
       if (st_valid_q) begin
         st2_hit_q <= st_hit_q;
         st2_rec_q <= st_rec_q;
+      end
+      if (st2_valid_q) begin
+        st3_hit_q <= st2_hit_q;
+        st3_rec_q <= st2_rec_q;
       end
     end
   end
@@ -1885,8 +1915,8 @@ module rc_tracer #(
     st_sum_q <= ln_fin_sum;
   end
   always_comb begin
-    oq_wdata = st2_rec_q;
-    if (st2_hit_q) oq_wdata[OutW-33 -: 24] = lb_rgb;
+    oq_wdata = st3_rec_q;
+    if (st3_hit_q) oq_wdata[OutW-33 -: 24] = lb_rgb;
   end
 
   rc_fifo #(
@@ -1896,7 +1926,7 @@ module rc_tracer #(
   ) u_out_q (
     .clk_i,
     .rst_ni,
-    .push_i (st2_valid_q),
+    .push_i (st3_valid_q),
     .data_i (oq_wdata),
     .valid_o(oq_valid),
     .ready_i(fb_ready_i),
@@ -2130,7 +2160,7 @@ module rc_tracer #(
     error_o[rc_pkg::CoreStatusBadAddress] = core_error[rc_pkg::CoreStatusBadAddress] || bad_addr_q;
   end
   assign idle_o = core_idle && !core_fb_valid && busy_q == '0 && !st_valid_q && !st2_valid_q &&
-                  !oq_valid;
+                  !st3_valid_q && !oq_valid;
 
   // Not read: the primary packets' kind, limits and start triangles (the controller makes the
   // secondary packets); the fields of the records the lighting does not use; the valid bits of
@@ -2179,6 +2209,10 @@ module rc_tracer #(
     Pend1_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                               pend1_q[gs] == (pend_q[gs*3 +: 3] == 3'd1));
   end
+  // The head entry's depth is its slot's.
+  FeDepth_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                              fe_valid |-> fe_head_depth ==
+                                           depth_q[fe_head_ln[LaneW-1:2]*DepthW +: DepthW]);
   // The ring's room register is the count's compare.
   FeRoom_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                              fe_room == (fe_count_q != (FetchW + 1)'(FetchEntries)));
@@ -2232,7 +2266,8 @@ module rc_tracer #(
                              sh_close |-> !spb_q[sp_free]);
   // The final write's count is the output queue's entries and the writes in its two stages.
   FwCnt_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
-                            fw_cnt_q == oq_count + 3'(st_valid_q) + 3'(st2_valid_q));
+                            fw_cnt_q == oq_count + 3'(st_valid_q) + 3'(st2_valid_q) +
+                                        3'(st3_valid_q));
   // The pointer registered in a decision's first cycle is its slot's in the second.
   DqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                            dq_q |-> dq_sp_q == sp_q[dq_slot_q*DepthW +: DepthW]);
