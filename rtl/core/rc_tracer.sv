@@ -374,10 +374,10 @@ module rc_tracer #(
   // hi_*); the lowest, unless it was taken in the cycle before (one slot is taken per cycle),
   // then the highest when it is another. A slot freed in a cycle is offered from the one after
   // the next.
-  logic             free_any, slot_take, lo_any_c, hi_any_c, lo_any_q, hi_any_q, take_q;
-  logic [SlotW-1:0] free_idx, lo_idx_c, hi_idx_c, lo_idx_q, hi_idx_q, take_idx_q;
+  logic             free_any, slot_take, lo_any_c, hi_any_c, lo_any_q, hi_any_q;
+  logic [SlotW-1:0] free_idx, lo_idx_c, hi_idx_c, lo_idx_q, hi_idx_q;
   logic [Slots-1:0] free_hot, lo_hot_c, hi_hot_c, lo_hot_q, hi_hot_q, busy_rev;
-  logic             use_hi;
+  logic             use_hi, use_hi_st;
   rc_lowest #(
     .N   (Slots),
     .IdxW(SlotW)
@@ -409,13 +409,11 @@ module rc_tracer #(
     if (!rst_ni) begin
       lo_any_q <= 1'b0;
       hi_any_q <= 1'b0;
-      take_q   <= 1'b0;
     end else begin
       lo_any_q <= lo_any_c;
       // The highest free slot is another than the lowest when two or more are free: the free
       // vector less its lowest bit (one carry chain, not the two picks' indices compared).
       hi_any_q <= (~busy_q & (~busy_q - 1'b1)) != '0;
-      take_q   <= slot_take;
     end
   end
   always_ff @(posedge clk_i) begin
@@ -424,23 +422,26 @@ module rc_tracer #(
     hi_idx_q   <= hi_idx_c;
     hi_hot_q   <= hi_hot_c;
   end
-  // The slot taken, a kept register: the lane records' pixel-id slot (rc_lane_store's pr_slot_q)
-  // loads the same value, and the two merged sat beside the block RAMs (the lit board routed at
-  // 6799b81, seed 2: pr_slot_q through the free pick into cf_q, cmask_q, pend_q and depth_q,
-  // -1.61 to -0.54 ns).
+  // "The lowest was taken in the cycle before" (use_hi) is itself a register, two kept copies
+  // (UseHi_A): the lowest free slot of this cycle is the one taken. use_hi_st selects the slots'
+  // state enables (about 200 flip-flops' enables through free_hot), use_hi the rest. (The lit
+  // board routed: at 6799b81, seed 2, the slot taken, which Yosys had merged with the lane
+  // store's pr_slot_q beside the block RAMs, through the compare into cf_q, cmask_q, pend_q and
+  // depth_q, -1.61 ns; at d6b0aa3, seed 1, with a register of its own, -1.47 ns, 217
+  // endpoints.)
   rc_reg_copies #(
-    .Width (SlotW),
-    .Copies(1)
-  ) u_take_idx (
+    .Width   (1),
+    .Copies  (2),
+    .HasReset(1'b1)
+  ) u_use_hi (
     .clk_i,
     .rst_ni,
-    .d_i(free_idx),
-    .q_o(take_idx_q)
+    .d_i(slot_take && lo_idx_c == free_idx),
+    .q_o({use_hi_st, use_hi})
   );
-  assign use_hi   = take_q && lo_idx_q == take_idx_q;
   assign free_any = use_hi ? hi_any_q : lo_any_q;
   assign free_idx = use_hi ? hi_idx_q : lo_idx_q;
-  assign free_hot = use_hi ? hi_hot_q : lo_hot_q;
+  assign free_hot = use_hi_st ? hi_hot_q : lo_hot_q;
 
   // The controller's own packets first: shadow packets, then the trees' packets.
   // The queues' valid bits select about a thousand multiplexer bits into the core's set-up unit
@@ -1767,6 +1768,7 @@ module rc_tracer #(
 
   // Done slots: the lowest first, one slot's lanes at a time, one lane per cycle.
   logic [Slots-1:0] done_vec, dn_hot, dn_hot_q, fs_hot, lnp_hot, lnp1_hot, ev_hot;
+  logic [Slots-1:0] wk_hot_q;  // a work event registered with its change, not yet counted
   logic             dn_any, dn_any_q;
   logic [SlotW-1:0] dn_idx, dn_idx_q;
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_fs_hot  (.valid_i(fs_busy_q),   .idx_i(fs_slot_q),
@@ -1779,9 +1781,9 @@ module rc_tracer #(
     for (int s = 0; s < Slots; s++) begin
       // Not while the sequencer still issues the last packet's misses (their adds are counted
       // from the issue), nor while an add's sum is still to be written (ln_add_pend1,
-      // ln_add_pend), nor with a work event not yet counted (ev_hot).
+      // ln_add_pend), nor with a work event not yet counted (ev_hot, wk_hot_q).
       done_vec[s] = busy_q[s] && td_q[s] && !fin_q[s] && wk_q[s*WkW +: WkW] == '0 &&
-                    !ev_hot[s] && !fs_hot[s] && !lnp_hot[s] && !lnp1_hot[s];
+                    !ev_hot[s] && !wk_hot_q[s] && !fs_hot[s] && !lnp_hot[s] && !lnp1_hot[s];
     end
   end
   // Registered: a done slot stays done until its write starts (fin_q), which masks it at once.
@@ -1988,8 +1990,28 @@ module rc_tracer #(
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_mi_hot  (.valid_i(ev_mi_q),  .idx_i(ev_mi_slot_q),
                                                   .hot_o(mi_hot));
   assign ev_hot = lt_hot | cws_hot | aq_hot | fq_hot | mi_hot;
-  logic [4:0] wk_lt;  // a sample's change of its slot's work (with lt_hot)
+  // The work's change of each slot in this cycle's events, -3 .. 7: a shadow packet's rays, a
+  // miss term's issue, an ambient term, a packet into the lighting; less a shadow ray's write,
+  // an add, a packet's last sample. The sample's three (wk_lt, -1 .. 5) are summed once for all
+  // slots, the four single events per slot, then the two; the change is registered (wk_dq_q,
+  // with wk_hot_q: an event in it) and added to the count in the next cycle, so the sums and
+  // the counts' adders are a cycle apart (the lit board routed at d6b0aa3, seed 1: ev_rays_q
+  // through both into wk_q, -2.32 ns, 228 endpoints; at 6799b81, -1.50 ns in 13 cells).
+  logic [4:0]         wk_lt;  // a sample's change of its slot's work (with lt_hot)
+  logic [Slots*5-1:0] wk_dq_q;
   assign wk_lt = 5'(ev_rays_q) + 5'(ev_amb_q) - 5'(ev_lt_end_q);
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      wk_dq_q  <= '0;
+      wk_hot_q <= '0;
+    end else begin
+      for (int s = 0; s < Slots; s++) begin
+        wk_dq_q[s*5 +: 5] <= (lt_hot[s] ? wk_lt : 5'd0) + 5'(mi_hot[s]) + 5'(fq_hot[s]) -
+                             5'(cws_hot[s]) - 5'(aq_hot[s]);
+      end
+      wk_hot_q <= ev_hot;
+    end
+  end
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_cw_hot  (.valid_i(cw_cur), .idx_i(cw_slot),
                                                   .hot_o(cw_hot));
   rc_onehot #(.N(Slots), .IdxW(SlotW)) u_snd_hot (.valid_i(sw),     .idx_i(sw_slot),
@@ -2013,15 +2035,9 @@ module rc_tracer #(
       sp_q    <= '0;
     end else begin
       for (int s = 0; s < Slots; s++) begin
-        // The work's change in this cycle, -3 .. 7: a shadow packet's rays, a miss term's
-        // issue, an ambient term, a packet into the lighting; less a shadow ray's write, an
-        // add, a packet's last sample. The sample's three (wk_lt, -1 .. 5) are summed once for
-        // all slots, the four single events per slot, then the two (the lit board routed at
-        // 6799b81, seed 2: ev_lt_q through seven terms into wk_q, -1.50 ns in 13 cells).
-        logic [4:0] wk_delta, wk_one;
-        wk_one   = 5'(mi_hot[s]) + 5'(fq_hot[s]) - 5'(cws_hot[s]) - 5'(aq_hot[s]);
-        wk_delta = (lt_hot[s] ? wk_lt : 5'd0) + wk_one;
-        wk_q[s*WkW +: WkW] <= wk_q[s*WkW +: WkW] + {{(WkW - 5){wk_delta[4]}}, wk_delta};
+        // The work's change, registered (wk_dq_q) and added a cycle later.
+        wk_q[s*WkW +: WkW] <= wk_q[s*WkW +: WkW] +
+                              {{(WkW - 5){wk_dq_q[s*5 + 4]}}, wk_dq_q[s*5 +: 5]};
         // The free slot's state is cleared while a primary packet is offered (slot_offer), not
         // only when it is taken: the slot is free (SlotOffer_A), and nothing reads a free
         // slot's state but busy_q, which alone waits for the core's take.
@@ -2275,6 +2291,16 @@ module rc_tracer #(
   FqSp_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                            dec && !dec_geo && !dec_seq |->
                            cand_fq_q == stk_cand(fq_slot, sp_q));
+  // use_hi is "a slot was taken in the cycle before, and it is the lowest free one registered".
+  logic             take_q;
+  logic [SlotW-1:0] take_idx_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) take_q <= 1'b0;
+    else take_q <= slot_take;
+  end
+  always_ff @(posedge clk_i) take_idx_q <= free_idx;
+  UseHi_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
+                            use_hi == (take_q && lo_idx_q == take_idx_q));
   // Two or more free slots: the highest free slot is another than the lowest.
   HiAny_A: assert property (@(posedge clk_i) disable iff (checks_on !== 1'b1)
                             hi_any_q == $past(hi_any_c && hi_idx_c != lo_idx_c));
