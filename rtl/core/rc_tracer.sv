@@ -730,8 +730,8 @@ module rc_tracer #(
   logic [SlotW-1:0] fq_slot, fr_slot;
   logic [$clog2(Slots + 1)-1:0] fq_count;
   // A slot enters the queue in the cycle after its last write (fq_push, registered with its
-  // slot): the write's pixel id selects its count, and the compare ends at a register instead
-  // of at the queue's enables.
+  // slot): the write's pixel id selects its slot's flag, which ends at a register instead of at
+  // the queue's enables.
   logic             fq_push_q;
   logic [SlotW-1:0] fq_wslot_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
