@@ -119,26 +119,33 @@ $(GEN_PKG): docs/spec.toml tb/gen_constants.py $(wildcard rtl/core/rc_core_types
 	$(PYTHON) tb/gen_constants.py docs/spec.toml $(BUILD)/gen
 
 # Every module is linted as a top of its own (so submodules are checked with default parameters
-# too), the board also lit (rc_tracer inside), then Yosys reads everything, elaborates and checks
-# for latches and other problems.
+# too), the board also lit (rc_tracer inside), and Yosys reads everything, elaborates and checks
+# for latches and other problems. Yosys (about 30 s) runs beside the Verilator runs, which go
+# $(JOBS) at a time; a failing run's messages are printed after its command line.
+LINT_VERILATOR = verilator --lint-only -Wall --assert $(WAIVERS) $(RTL_FILES)
 lint: deps $(GEN_PKG)
-	@set -e; tops=$$(sed -n 's/^\s*module\s\+\([a-zA-Z0-9_]\+\).*/\1/p' $(RTL_FILES) $(TB_RTL)); \
-	for top in $$tops; do \
-	  echo "verilator --lint-only -Wall --top-module $$top"; \
-	  verilator --lint-only -Wall --assert $(WAIVERS) $(RTL_FILES) $(TB_RTL) --top-module $$top; \
-	done
-	@echo "verilator --lint-only -Wall --top-module rc_board -GLit=1 (the lit board)"
-	@verilator --lint-only -Wall --assert $(WAIVERS) $(RTL_FILES) --top-module rc_board "-GLit=1'b1"
-	@echo "yosys: read, elaborate and check all RTL"
-	@rc=0; yosys -q -l $(BUILD)/yosys_lint.log \
+	@echo "yosys: read, elaborate and check all RTL (in the background)"
+	@yosys -q -l $(BUILD)/yosys_lint.log \
 	  -p "read_verilog -sv $(RTL_FILES); hierarchy -check; proc; check -assert" \
-	  > /dev/null 2>&1 || rc=$$?; \
-	if [ $$rc -ne 0 ]; then \
+	  > /dev/null 2>&1; echo $$? > $(BUILD)/yosys_lint.rc & \
+	tops=$$(sed -n 's/^\s*module\s\+\([a-zA-Z0-9_]\+\).*/\1/p' $(RTL_FILES) $(TB_RTL)); \
+	vrc=0; \
+	{ for top in $$tops; do echo "$$top|--top-module $$top $(TB_RTL)"; done; \
+	  echo "rc_board -GLit=1 (the lit board)|--top-module rc_board -GLit=1\'b1"; } | \
+	xargs -P $(JOBS) -d '\n' -n 1 sh -c \
+	  'name=$${1%%|*}; args=$${1#*|}; \
+	   if out=$$(eval "$(LINT_VERILATOR) $$args" 2>&1); then \
+	     echo "verilator --lint-only -Wall --top-module $$name"; \
+	   else echo "verilator --lint-only -Wall --top-module $$name: FAILED"; echo "$$out"; exit 1; fi' \
+	  sh || vrc=1; \
+	wait; rc=$$(cat $(BUILD)/yosys_lint.rc); \
+	if [ "$$rc" -ne 0 ]; then \
 	  echo "yosys failed with exit status $$rc ($(BUILD)/yosys_lint.log):"; \
 	  grep -iE 'error|warning' $(BUILD)/yosys_lint.log || tail -n 20 $(BUILD)/yosys_lint.log; \
-	  exit 1; fi
-	@if grep -q 'Latch inferred' $(BUILD)/yosys_lint.log; then \
-	  grep 'Latch inferred' $(BUILD)/yosys_lint.log; exit 1; fi
+	  exit 1; fi; \
+	if grep -q 'Latch inferred' $(BUILD)/yosys_lint.log; then \
+	  grep 'Latch inferred' $(BUILD)/yosys_lint.log; exit 1; fi; \
+	if [ $$vrc -ne 0 ]; then echo "verilator lint failed (above)"; exit 1; fi
 	@echo "lint clean"
 
 synth-units: deps $(GEN_PKG)
